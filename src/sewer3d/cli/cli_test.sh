@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Command-line contract: --help everywhere, one-line errors with non-zero exit, outputs written.
+set -u
+bin=${SEWER3D:?set SEWER3D to the sewer3d binary}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# expect_ok CMD...: exit 0
+expect_ok() { "$@" >"$tmp/out" 2>"$tmp/err" || fail "exit $? from: $* ($(head -c 300 "$tmp/err"))"; }
+# expect_error NEEDLE CMD...: non-zero exit, exactly one stderr line containing NEEDLE
+expect_error() {
+  local needle=$1; shift
+  if "$@" >"$tmp/out" 2>"$tmp/err"; then fail "exit 0 from: $*"; return; fi
+  local lines; lines=$(wc -l <"$tmp/err")
+  [ "$lines" -eq 1 ] || fail "expected one stderr line from: $* (got $lines: $(cat "$tmp/err"))"
+  grep -q -- "$needle" "$tmp/err" || fail "stderr of '$*' lacks '$needle': $(cat "$tmp/err")"
+}
+
+expect_ok "$bin" --help
+for sub in module pattern describe; do
+  grep -q "$sub" "$tmp/out" || fail "--help does not list $sub"
+done
+for sub in module pattern describe; do
+  expect_ok "$bin" "$sub" --help
+  grep -q -- "--" "$tmp/out" || fail "$sub --help shows no options"
+done
+
+expect_error "error" "$bin"
+expect_error "error" "$bin" no-such-command
+expect_error "--bogus" "$bin" module --out "$tmp/m" --bogus
+expect_error "--out" "$bin" module
+expect_error "WxH" "$bin" module --out "$tmp/m" --camera-size 640by480
+expect_error "--cols" "$bin" pattern --out "$tmp/p.png" --cols -5
+expect_error "--window" "$bin" pattern --out "$tmp/p.png" --window 12
+expect_error "no_such.json" "$bin" describe --module "$tmp/no_such.json"
+printf '{"camera": 3}' >"$tmp/bad.json"
+expect_error "camera" "$bin" describe --module "$tmp/bad.json"
+expect_error "not reached" "$bin" pattern --out "$tmp/never.png" --rows 6 --cols 6 \
+  --min-hamming 20 --max-moves 500 --quiet
+[ ! -e "$tmp/never.png" ] || fail "an unreached pattern was written"
+
+expect_ok "$bin" module --out "$tmp/m" --camera-size 648x486
+for f in module.json pattern.png pattern.json pattern_preview.png; do
+  [ -s "$tmp/m/$f" ] || fail "module did not write $f"
+done
+expect_ok "$bin" describe --module "$tmp/m/module.json"
+grep -q "cover" "$tmp/out" || fail "describe does not report the disparity coverage"
+
+expect_ok "$bin" pattern --out "$tmp/p/small.png" --rows 6 --cols 40 --seed 3 --quiet
+[ -s "$tmp/p/small.png" ] && [ -s "$tmp/p/small.json" ] || fail "pattern outputs missing"
+grep -q '"valid": true' "$tmp/p/small.json" || fail "pattern report not valid"
+
+# A module whose pattern file is truncated.
+head -c 100 "$tmp/m/pattern.png" >"$tmp/m/cut.png"
+sed 's/"pattern.png"/"cut.png"/' "$tmp/m/module.json" >"$tmp/m/cut.json"
+expect_error "cut.png" "$bin" describe --module "$tmp/m/cut.json"
+
+if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
+echo "all CLI checks passed"

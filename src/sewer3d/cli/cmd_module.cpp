@@ -1,0 +1,83 @@
+// `sewer3d module`: writes the default module (the paper's geometry) and its pattern.
+
+#include <fmt/core.h>
+
+#include <filesystem>
+
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/summary.hpp"
+#include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/module_io.hpp"
+#include "sewer3d/io/pattern_io.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+
+namespace sewer3d::cli {
+
+std::optional<std::pair<int, int>> ParseSize(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
+      w <= 0 || h <= 0) {
+    return std::nullopt;
+  }
+  return std::make_pair(w, h);
+}
+
+Command AddModuleCommand(CLI::App& app) {
+  struct Args {
+    std::string out;
+    std::string camera_size = "2592x1944";
+    DefaultModuleOptions options;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand(
+      "module", "Write the default module (module.json + pattern) for the paper's geometry");
+  sub->add_option("--out", args->out, "Output folder")->required();
+  sub->add_option("--camera-size", args->camera_size, "Camera image size WxH (FOV is kept)")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& s) { return ParseSize(s) ? std::string() : "expected WxH, got " + s; },
+          "WxH"));
+  sub->add_option("--hfov-deg", args->options.horizontal_fov_deg, "Horizontal field of view")
+      ->capture_default_str()
+      ->check(CLI::Range(10.0, 150.0));
+  sub->add_option("--stereo-angle-deg", args->options.stereo_angle_deg,
+                  "Angle between camera and projector fields where they meet")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 80.0));
+  sub->add_option("--pitch-px", args->options.pitch_px, "Pattern element pitch, projector px")
+      ->capture_default_str()
+      ->check(CLI::Range(2.0, 100.0));
+  sub->add_option("--spot-px", args->options.spot_diameter_px, "Spot diameter, projector px")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 100.0));
+  return {sub, [args] {
+            const auto size = *ParseSize(args->camera_size);
+            args->options.camera_width = size.first;
+            args->options.camera_height = size.second;
+            const ModuleDescription module = MakeDefaultModule(args->options);
+            const std::filesystem::path dir = args->out;
+            const BinaryArray pattern = DefaultPatternArray();
+            WritePatternMatrix(dir / module.pattern.matrix_path, pattern);
+            const SubmapSearchOptions search = DefaultPatternSearchOptions();
+            WritePatternSidecar(PatternSidecarPath(dir / module.pattern.matrix_path),
+                                {&search, nullptr, "shipped"},
+                                VerifyPattern(pattern, search.constraints));
+            WritePatternPreview(dir / "pattern_preview.png", pattern, 8, search.constraints.window);
+            SaveModule(dir / "module.json", module);
+            const DefaultModuleGeometry g = DescribeDefaultModule(args->options);
+            fmt::print("wrote {}/module.json, {}, pattern.json, pattern_preview.png\n",
+                       dir.string(), module.pattern.matrix_path);
+            fmt::print("default module: stereo angle {:g} deg where the fields meet at {:g} mm, "
+                       "fields tilted {:g} deg each; lens field {:g} x {:.1f} deg, camera sees "
+                       "{:.1f} to {:.1f} deg along the carrier axis\n",
+                       args->options.stereo_angle_deg, args->options.meeting_distance_mm,
+                       g.field_tilt_deg, args->options.horizontal_fov_deg,
+                       g.lens_vertical_fov_deg, g.field_top_deg, g.field_bottom_deg);
+            PrintModuleSummary(module, pattern);
+            return 0;
+          }};
+}
+
+}  // namespace sewer3d::cli

@@ -1,0 +1,72 @@
+#include "sewer3d/cli/summary.hpp"
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/pattern/constraints.hpp"
+
+namespace sewer3d::cli {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+
+// Full field of view (deg) along x or y through the principal point.
+double FieldOfView(const CameraModel& model, bool horizontal) {
+  const auto& c = model.intrinsics();
+  const auto a = horizontal ? model.Unproject({-0.5, c.cy}) : model.Unproject({c.cx, -0.5});
+  const auto b = horizontal ? model.Unproject({c.width - 0.5, c.cy})
+                            : model.Unproject({c.cx, c.height - 0.5});
+  if (!a || !b) return std::nan("");
+  return horizontal ? (std::atan(b->x()) - std::atan(a->x())) * kRadToDeg
+                    : (std::atan(b->y()) - std::atan(a->y())) * kRadToDeg;
+}
+
+}  // namespace
+
+bool PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pattern) {
+  const CameraModel camera(m.camera), projector(m.projector);
+  fmt::print("camera     {}x{} px, f {:.1f}/{:.1f} px, principal point ({:.1f}, {:.1f}), k [{:g}, {:g}, {:g}]\n",
+             m.camera.width, m.camera.height, m.camera.fx, m.camera.fy, m.camera.cx, m.camera.cy,
+             m.camera.k[0], m.camera.k[1], m.camera.k[2]);
+  fmt::print("           field of view {:.1f} x {:.1f} deg{}\n", FieldOfView(camera, true),
+             FieldOfView(camera, false),
+             camera.WholeImageInvertible() ? "" : " (distortion folds over inside the image!)");
+  fmt::print("projector  {}x{} px, f {:.1f}/{:.1f} px, principal point ({:.1f}, {:.1f})\n",
+             m.projector.width, m.projector.height, m.projector.fx, m.projector.fy,
+             m.projector.cx, m.projector.cy);
+  const Eigen::Vector3d projector_centre = m.projector_from_camera.Inverse().translation;
+  fmt::print("baseline   {:.2f} mm, projector centre in camera frame ({:.2f}, {:.2f}, {:.2f}) mm\n",
+             projector_centre.norm(), projector_centre.x(), projector_centre.y(),
+             projector_centre.z());
+
+  const DisparityRange range =
+      ComputeDisparityRange(m, kWorkingDistanceMinMm, kWorkingDistanceMaxMm);
+  fmt::print("disparity  walls {:.0f}-{:.0f} mm from the camera: {:.0f} px along projector u "
+             "({:.1f} columns of {:g} px), {:.1f} px along v ({:.2f} rows)\n",
+             kWorkingDistanceMinMm, kWorkingDistanceMaxMm, range.max_du_px, range.max_cols,
+             m.pattern.pitch_px, range.max_dv_px, range.max_rows);
+
+  PatternConstraints constraints;
+  PatternReport report = VerifyPattern(pattern, constraints);
+  std::string kind = "torus";
+  if (!report.valid) {
+    constraints.torus = false;
+    const PatternReport plain = VerifyPattern(pattern, constraints);
+    if (plain.valid) {
+      report = plain;
+      kind = "plain (windows inside the tile only)";
+    }
+  }
+  fmt::print("pattern    {} ({}), pitch {:g} px, spot {:g} px: {}\n", m.pattern.matrix_path, kind,
+             m.pattern.pitch_px, m.pattern.spot_diameter_px, Describe(report));
+  const bool spans = pattern.cols > range.max_cols;
+  const int needed = static_cast<int>(std::ceil(range.max_cols));
+  fmt::print("           {} columns {} the {} the disparity range needs\n", pattern.cols,
+             spans ? "cover" : "do NOT cover", needed);
+  return report.valid && spans;
+}
+
+}  // namespace sewer3d::cli

@@ -1,0 +1,96 @@
+#include "sewer3d/io/image_io.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "sewer3d/io/file_error.hpp"
+
+namespace sewer3d {
+namespace {
+
+void EnsureParent(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+  if (ec) throw FileError(path.parent_path(), "cannot create folder: " + ec.message());
+}
+
+void Write(const std::filesystem::path& path, const cv::Mat& image) {
+  EnsureParent(path);
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path.string(), image);
+  } catch (const cv::Exception& e) {
+    throw FileError(path, std::string("cannot write image: ") + e.err);
+  }
+  if (!ok) throw FileError(path, "cannot write image");
+}
+
+}  // namespace
+
+BinaryArray ReadPatternMatrix(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw FileError(path, "no such file");
+  std::ifstream file(path, std::ios::binary);
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(file)), {});
+  if (!file.good() && !file.eof()) throw FileError(path, "cannot read file");
+  // A PNG ends with an IEND chunk; checking it first keeps libpng from printing its own
+  // error for the common case of a file cut short.
+  static constexpr std::uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  static constexpr std::uint8_t kIend[8] = {'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  const bool png = bytes.size() >= 8 && std::equal(kPngSignature, kPngSignature + 8, bytes.begin());
+  if (png && (bytes.size() < 20 || !std::equal(kIend, kIend + 8, bytes.end() - 8))) {
+    throw FileError(path, "cannot decode image: truncated PNG (no IEND chunk)");
+  }
+  cv::Mat image;
+  try {
+    image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw FileError(path, std::string("cannot decode image: ") + e.err);
+  }
+  if (image.empty()) throw FileError(path, "cannot decode image (not an image, or truncated)");
+  if (image.channels() > 1) {
+    std::vector<cv::Mat> channels;
+    cv::split(image, channels);
+    cv::Mat any = channels[0] != 0;
+    for (size_t i = 1; i < channels.size(); ++i) any |= channels[i] != 0;
+    image = any;
+  }
+  BinaryArray array(image.rows, image.cols);
+  cv::Mat spots = image != 0;
+  for (int r = 0; r < image.rows; ++r) {
+    for (int c = 0; c < image.cols; ++c) array.set(r, c, spots.at<std::uint8_t>(r, c) ? 1 : 0);
+  }
+  return array;
+}
+
+void WritePatternMatrix(const std::filesystem::path& path, const BinaryArray& array) {
+  cv::Mat1b image(array.rows, array.cols);
+  for (int r = 0; r < array.rows; ++r) {
+    for (int c = 0; c < array.cols; ++c) image(r, c) = array.at(r, c) ? 255 : 0;
+  }
+  Write(path, image);
+}
+
+void WritePatternPreview(const std::filesystem::path& path, const BinaryArray& array, int scale,
+                         int window) {
+  cv::Mat3b image(array.rows * scale, array.cols * scale, cv::Vec3b(20, 20, 20));
+  for (int r = 0; r < array.rows; ++r) {
+    for (int c = 0; c < array.cols; ++c) {
+      if (!array.at(r, c)) continue;
+      cv::circle(image, {c * scale + scale / 2, r * scale + scale / 2}, std::max(1, scale / 3),
+                 cv::Scalar(255, 255, 255), cv::FILLED, cv::LINE_AA);
+    }
+  }
+  for (int c = 0; c <= array.cols; c += window) {
+    cv::line(image, {c * scale, 0}, {c * scale, image.rows}, cv::Scalar(0, 120, 255), 1);
+  }
+  Write(path, image);
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,23 @@
+#pragma once
+/// \file
+/// Reading and writing images and pattern matrices. Errors are FileError.
+
+#include <filesystem>
+
+#include "sewer3d/pattern/binary_array.hpp"
+
+namespace sewer3d {
+
+/// Reads a pattern matrix PNG (one pixel per element, non-zero = spot, DESIGN.md contract).
+/// Colour images count a pixel as a spot when any channel is non-zero.
+BinaryArray ReadPatternMatrix(const std::filesystem::path& path);
+
+/// Writes a matrix PNG: 8-bit grey, 255 = spot, 0 = no spot. Creates parent folders.
+void WritePatternMatrix(const std::filesystem::path& path, const BinaryArray& array);
+
+/// Writes an enlarged, human-viewable picture of the matrix (each element scale x scale px,
+/// spots as white disks, grid lines every window elements).
+void WritePatternPreview(const std::filesystem::path& path, const BinaryArray& array, int scale,
+                         int window);
+
+}  // namespace sewer3d

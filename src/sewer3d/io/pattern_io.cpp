@@ -1,0 +1,56 @@
+#include "sewer3d/io/pattern_io.hpp"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/io/file_error.hpp"
+
+namespace sewer3d {
+
+std::filesystem::path PatternSidecarPath(const std::filesystem::path& matrix_path) {
+  std::filesystem::path sidecar = matrix_path;
+  sidecar.replace_extension(".json");
+  return sidecar;
+}
+
+void WritePatternSidecar(const std::filesystem::path& path, const PatternProvenance& provenance,
+                         const PatternReport& report) {
+  SEWER3D_CHECK(provenance.options != nullptr);
+  const SubmapSearchOptions& o = *provenance.options;
+  nlohmann::json doc;
+  doc["source"] = provenance.source;
+  doc["parameters"] = {{"rows", o.rows},
+                       {"cols", o.cols},
+                       {"window", o.constraints.window},
+                       {"min_hamming", o.constraints.min_hamming},
+                       {"min_weight", o.constraints.min_weight},
+                       {"isolated", o.constraints.isolated},
+                       {"torus", o.constraints.torus},
+                       {"seed", o.seed}};
+  if (provenance.result != nullptr) {
+    const SubmapSearchResult& r = *provenance.result;
+    doc["search"] = {{"reached", r.reached},
+                     {"termination", r.termination},
+                     {"final_cost", r.final_cost},
+                     {"moves", r.moves},
+                     {"seconds", r.elapsed_s}};
+  }
+  doc["verified"] = {{"valid", report.valid},
+                     {"rows", report.rows},
+                     {"cols", report.cols},
+                     {"windows", report.windows},
+                     {"unique", report.duplicate_pairs == 0},
+                     {"min_hamming", report.min_hamming_found},
+                     {"pairs_below_min_hamming", report.close_pairs},
+                     {"min_weight", report.min_weight_found},
+                     {"max_weight", report.max_weight_found},
+                     {"adjacent_spot_pairs", report.adjacent_spot_pairs},
+                     {"density", report.density}};
+  std::ofstream file(path, std::ios::binary);
+  if (!file) throw FileError(path, "cannot open for writing");
+  file << doc.dump(2) << "\n";
+  if (!file.flush()) throw FileError(path, "write failed");
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,44 @@
+#include "sewer3d/pattern/codebook.hpp"
+
+namespace sewer3d {
+
+Codebook::Codebook(const BinaryArray& array, const PatternConstraints& constraints)
+    : window_(constraints.window), min_hamming_(constraints.min_hamming) {
+  constraints.Check();
+  const int n = constraints.window;
+  const int win_rows = constraints.torus ? array.rows : array.rows - n + 1;
+  const int win_cols = constraints.torus ? array.cols : array.cols - n + 1;
+  SEWER3D_CHECK(win_rows > 0 && win_cols > 0, "array smaller than the window");
+  table_.reserve(static_cast<std::size_t>(win_rows) * win_cols);
+  for (int r = 0; r < win_rows; ++r) {
+    for (int c = 0; c < win_cols; ++c) {
+      const auto [it, inserted] = table_.emplace(TiledWindowCode(array, r, c, n), ArrayPosition{r, c});
+      SEWER3D_CHECK(inserted, "window at (" << r << ", " << c << ") repeats the one at ("
+                                            << it->second.row << ", " << it->second.col << ")");
+    }
+  }
+}
+
+std::optional<ArrayPosition> Codebook::Find(std::uint64_t code) const {
+  const auto it = table_.find(code);
+  if (it == table_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<CodewordMatch> Codebook::Decode(std::uint64_t code, int max_corrected_bits) const {
+  SEWER3D_CHECK(max_corrected_bits >= 0 && max_corrected_bits <= 1,
+                "only single-bit correction is supported, asked " << max_corrected_bits);
+  SEWER3D_CHECK(2 * max_corrected_bits < min_hamming_,
+                "correcting " << max_corrected_bits << " bits needs min Hamming > "
+                              << 2 * max_corrected_bits);
+  if (const auto exact = Find(code)) return CodewordMatch{*exact, code, 0};
+  if (max_corrected_bits == 0) return std::nullopt;
+  const int bits = window_ * window_;
+  for (int b = 0; b < bits; ++b) {
+    const std::uint64_t candidate = code ^ (std::uint64_t{1} << b);
+    if (const auto hit = Find(candidate)) return CodewordMatch{*hit, candidate, 1};
+  }
+  return std::nullopt;
+}
+
+}  // namespace sewer3d

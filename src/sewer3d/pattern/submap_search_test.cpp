@@ -1,0 +1,95 @@
+#include "sewer3d/pattern/submap_search.hpp"
+
+#include <gtest/gtest.h>
+
+#include "sewer3d/pattern/default_pattern.hpp"
+
+namespace sewer3d {
+namespace {
+
+TEST(SubmapSearch, ReachesSmallTorusAndVerifies) {
+  SubmapSearchOptions options;
+  options.rows = 6;
+  options.cols = 60;
+  options.seed = 11;
+  const SubmapSearchResult result = SearchPerfectSubmap(options);
+  ASSERT_TRUE(result.reached) << result.termination;
+  EXPECT_EQ(result.final_cost, 0);
+  const PatternReport report = VerifyPattern(result.array, options.constraints);
+  EXPECT_TRUE(report.valid) << Describe(report);
+}
+
+TEST(SubmapSearch, ReachesPlainArrayWithOtherParameters) {
+  SubmapSearchOptions options;
+  options.rows = 9;
+  options.cols = 40;
+  options.constraints.window = 5;
+  options.constraints.min_weight = 3;
+  options.constraints.min_hamming = 2;
+  options.constraints.torus = false;
+  const SubmapSearchResult result = SearchPerfectSubmap(options);
+  ASSERT_TRUE(result.reached) << result.termination;
+  EXPECT_TRUE(VerifyPattern(result.array, options.constraints).valid);
+}
+
+TEST(SubmapSearch, DeterministicForASeed) {
+  SubmapSearchOptions options;
+  options.rows = 6;
+  options.cols = 80;
+  options.seed = 5;
+  const auto a = SearchPerfectSubmap(options);
+  const auto b = SearchPerfectSubmap(options);
+  EXPECT_EQ(a.array, b.array);
+  EXPECT_EQ(a.moves, b.moves);
+  options.seed = 6;
+  EXPECT_FALSE(SearchPerfectSubmap(options).array == a.array);
+}
+
+TEST(SubmapSearch, ReportsHonestlyWhenASizeIsNotReached) {
+  // Isolated spots allow at most 9 per 6 x 6 window, so two windows differ in at most 18 bits:
+  // a minimum distance of 20 is impossible. The search must say so and return its best attempt.
+  SubmapSearchOptions options;
+  options.rows = 6;
+  options.cols = 6;
+  options.constraints.min_hamming = 20;
+  options.max_moves = 2000;
+  const auto result = SearchPerfectSubmap(options);
+  EXPECT_FALSE(result.reached);
+  EXPECT_EQ(result.termination, "move budget");
+  EXPECT_GT(result.final_cost, 0);
+  EXPECT_FALSE(VerifyPattern(result.array, options.constraints).valid);
+}
+
+TEST(SubmapSearch, ProgressCallbackCanStop) {
+  SubmapSearchOptions options;
+  options.rows = 6;
+  options.cols = 6;
+  options.constraints.min_hamming = 20;
+  options.progress_interval_moves = 10;
+  int calls = 0;
+  options.progress = [&](const SubmapSearchProgress& p) {
+    EXPECT_GT(p.moves, 0);
+    return ++calls < 3;
+  };
+  const auto result = SearchPerfectSubmap(options);
+  EXPECT_EQ(result.termination, "stopped");
+  EXPECT_EQ(calls, 3);
+}
+
+TEST(SubmapSearch, ShippedArrayIsReproducibleFromItsSeed) {
+  const auto result = SearchPerfectSubmap(DefaultPatternSearchOptions());
+  ASSERT_TRUE(result.reached);
+  EXPECT_EQ(result.array, DefaultPatternArray());
+}
+
+TEST(SubmapSearch, RejectsBadOptions) {
+  SubmapSearchOptions options;
+  options.rows = 4;  // smaller than the window
+  EXPECT_THROW(SearchPerfectSubmap(options), std::invalid_argument);
+  options = {};
+  options.constraints.window = 9;
+  EXPECT_THROW(SearchPerfectSubmap(options), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sewer3d
