@@ -19,10 +19,10 @@ expect_error() {
 }
 
 expect_ok "$bin" --help
-for sub in module pattern describe; do
+for sub in module pattern describe posegraph; do
   grep -q "$sub" "$tmp/out" || fail "--help does not list $sub"
 done
-for sub in module pattern describe; do
+for sub in module pattern describe posegraph; do
   expect_ok "$bin" "$sub" --help
   grep -q -- "--" "$tmp/out" || fail "$sub --help shows no options"
 done
@@ -56,6 +56,18 @@ grep -q '"valid": true' "$tmp/p/small.json" || fail "pattern report not valid"
 head -c 100 "$tmp/m/pattern.png" >"$tmp/m/cut.png"
 sed 's/"pattern.png"/"cut.png"/' "$tmp/m/module.json" >"$tmp/m/cut.json"
 expect_error "cut.png" "$bin" describe --module "$tmp/m/cut.json"
+
+# Pose graphs.
+data=${SEWER3D_DATA:?set SEWER3D_DATA to tests/data}
+expect_ok "$bin" posegraph --in "$data/posegraph/tinyGrid3D.g2o" --out "$tmp/g/tiny.g2o" --threads 1
+grep -q "final cost" "$tmp/out" || fail "posegraph prints no final cost"
+[ "$(grep -c VERTEX_SE3:QUAT "$tmp/g/tiny.g2o")" -eq 9 ] || fail "posegraph output lacks vertices"
+expect_ok "$bin" posegraph --in "$tmp/g/tiny.g2o" --out "$tmp/g/again.g2o" --init odometry --robust huber:2
+expect_error "huber" "$bin" posegraph --in "$tmp/g/tiny.g2o" --out "$tmp/g/x.g2o" --robust cauchy:1
+expect_error "--init" "$bin" posegraph --in "$tmp/g/tiny.g2o" --out "$tmp/g/x.g2o" --init magic
+head -3 "$data/posegraph/tinyGrid3D.g2o" >"$tmp/g/cut.g2o"
+echo "EDGE_SE3:QUAT 0 1 1 0 0 0 0 0 1 100" >>"$tmp/g/cut.g2o"
+expect_error "line 4" "$bin" posegraph --in "$tmp/g/cut.g2o" --out "$tmp/g/x.g2o"
 
 if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
 echo "all CLI checks passed"

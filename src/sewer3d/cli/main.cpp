@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
       sewer3d::cli::AddModuleCommand(app),
       sewer3d::cli::AddPatternCommand(app),
       sewer3d::cli::AddDescribeCommand(app),
+      sewer3d::cli::AddPoseGraphCommand(app),
   };
   try {
     app.parse(argc, argv);

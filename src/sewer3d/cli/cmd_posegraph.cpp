@@ -1,0 +1,78 @@
+// `sewer3d posegraph`: optimises a g2o pose graph and prints the report.
+
+#include <fmt/core.h>
+
+#include <thread>
+
+#include "sewer3d/cli/command.hpp"
+#include "sewer3d/io/g2o_io.hpp"
+#include "sewer3d/posegraph/solver.hpp"
+
+namespace sewer3d::cli {
+namespace {
+
+/// "huber:0.5" -> 0.5; nullopt when malformed.
+std::optional<double> ParseRobust(const std::string& text) {
+  constexpr std::string_view kPrefix = "huber:";
+  if (!text.starts_with(kPrefix)) return std::nullopt;
+  const std::string number = text.substr(kPrefix.size());
+  char* end = nullptr;
+  const double delta = std::strtod(number.c_str(), &end);
+  if (number.empty() || *end != '\0' || !(delta > 0.0) || !std::isfinite(delta)) return std::nullopt;
+  return delta;
+}
+
+}  // namespace
+
+Command AddPoseGraphCommand(CLI::App& app) {
+  struct Args {
+    std::string in, out, init = "auto", robust;
+    PoseGraphOptions options;
+  };
+  auto args = std::make_shared<Args>();
+  args->options.num_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  CLI::App* sub = app.add_subcommand("posegraph", "Optimise a g2o pose graph (Ceres LM, chordal init)");
+  sub->add_option("--in", args->in, "Input graph (g2o VERTEX_SE3:QUAT / EDGE_SE3:QUAT)")->required();
+  sub->add_option("--out", args->out, "Optimised graph to write (g2o)")->required();
+  sub->add_option("--init", args->init, "Start: the file's poses (odometry), chordal, or auto")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"odometry", "chordal", "auto"}));
+  sub->add_option("--robust", args->robust, "Robust loss on every edge, e.g. huber:1.0 (sigma units)")
+      ->check(CLI::Validator(
+          [](std::string& s) { return ParseRobust(s) ? std::string() : "expected huber:DELTA > 0, got " + s; },
+          "huber:DELTA"));
+  sub->add_option("--max-iterations", args->options.max_iterations, "Levenberg-Marquardt iterations")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  sub->add_option("--threads", args->options.num_threads, "Threads for Ceres")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  return {sub, [args] {
+            PoseGraphOptions options = args->options;
+            options.init = args->init == "odometry" ? PoseGraphInit::kGiven
+                           : args->init == "chordal" ? PoseGraphInit::kChordal
+                                                     : PoseGraphInit::kAuto;
+            if (!args->robust.empty()) options.huber_delta = *ParseRobust(args->robust);
+            PoseGraph graph = ReadG2o(args->in);
+            fmt::print("{}: {} poses, {} edges, cost at its poses {:.7g}\n", args->in,
+                       graph.nodes().size(), graph.edges().size(), GraphCost(graph));
+            std::fflush(stdout);
+            const PoseGraphReport r = OptimisePoseGraph(graph, options);
+            fmt::print("init        {} (initial cost {:.7g}, {:.3f} s)\n", r.init_used,
+                       r.initial_cost, r.init_seconds);
+            fmt::print("final cost  {:.7g} after {} iterations, {:.3f} s, {} thread(s)\n",
+                       r.final_cost, r.iterations, r.solve_seconds, options.num_threads);
+            fmt::print("termination {}\n", r.termination);
+            fmt::print("usable      {}\n", r.usable ? "yes" : "no");
+            WriteG2o(args->out, graph);
+            fmt::print("wrote {}\n", args->out);
+            if (!r.usable) {
+              fmt::print(stderr, "sewer3d: error: {}: optimisation did not give a usable solution ({})\n",
+                         args->in, r.termination);
+              return 1;
+            }
+            return 0;
+          }};
+}
+
+}  // namespace sewer3d::cli

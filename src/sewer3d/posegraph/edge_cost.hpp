@@ -1,0 +1,52 @@
+#pragma once
+/// \file
+/// The pose-graph residual as a Ceres auto-differentiated functor (paper eq. for the pose
+/// graph; Ceres' examples/slam/pose_graph_3d): parameters p_a (3), q_a (4, x y z w),
+/// p_b (3), q_b (4); residual sqrt(Ω) [R_aᵀ (p_b − p_a) − p̂_ab ; 2 vec(q̂_ab (q_a⁻¹ q_b)⁻¹)].
+
+#include <ceres/autodiff_cost_function.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "sewer3d/posegraph/pose_graph.hpp"
+
+namespace sewer3d {
+
+class EdgeCost {
+ public:
+  EdgeCost(const Rigid3d& a_from_b, const Matrix6d& sqrt_information)
+      : p_ab_(a_from_b.translation), q_ab_(a_from_b.rotation), sqrt_information_(sqrt_information) {}
+
+  template <typename T>
+  bool operator()(const T* p_a_ptr, const T* q_a_ptr, const T* p_b_ptr, const T* q_b_ptr,
+                  T* residuals_ptr) const {
+    Eigen::Map<const Eigen::Matrix<T, 3, 1>> p_a(p_a_ptr), p_b(p_b_ptr);
+    Eigen::Map<const Eigen::Quaternion<T>> q_a(q_a_ptr), q_b(q_b_ptr);
+    const Eigen::Quaternion<T> q_a_inverse = q_a.conjugate();
+    const Eigen::Quaternion<T> q_ab_estimated = q_a_inverse * q_b;
+    const Eigen::Matrix<T, 3, 1> p_ab_estimated = q_a_inverse * (p_b - p_a);
+    const Eigen::Quaternion<T> delta_q = q_ab_.template cast<T>() * q_ab_estimated.conjugate();
+    Eigen::Map<Eigen::Matrix<T, 6, 1>> residuals(residuals_ptr);
+    residuals.template head<3>() = p_ab_estimated - p_ab_.template cast<T>();
+    residuals.template tail<3>() = T(2.0) * delta_q.vec();
+    residuals.applyOnTheLeft(sqrt_information_.template cast<T>());
+    return true;
+  }
+
+  /// sqrt_information: upper-triangular S with SᵀS = Ω.
+  static ceres::CostFunction* Create(const Rigid3d& a_from_b, const Matrix6d& sqrt_information) {
+    return new ceres::AutoDiffCostFunction<EdgeCost, 6, 3, 4, 3, 4>(
+        new EdgeCost(a_from_b, sqrt_information));
+  }
+
+ private:
+  Eigen::Vector3d p_ab_;
+  Eigen::Quaterniond q_ab_;
+  Matrix6d sqrt_information_;
+};
+
+/// Upper-triangular S with SᵀS = Ω (Cholesky).
+Matrix6d SqrtInformation(const Matrix6d& information);
+
+}  // namespace sewer3d

@@ -1,0 +1,62 @@
+#include "sewer3d/posegraph/pose_graph.hpp"
+
+#include <Eigen/Cholesky>
+
+#include "sewer3d/core/check.hpp"
+
+namespace sewer3d {
+
+bool IsSymmetricPositiveDefinite(const Matrix6d& m) {
+  if (!m.allFinite()) return false;
+  if ((m - m.transpose()).norm() > 1e-9 * std::max(1.0, m.norm())) return false;
+  const Eigen::LLT<Matrix6d> llt(m);
+  return llt.info() == Eigen::Success;
+}
+
+void PoseGraph::AddEdge(const PoseEdge& edge) {
+  SEWER3D_CHECK(HasNode(edge.from) && HasNode(edge.to),
+                "edge " << edge.from << " -> " << edge.to << " names a missing node");
+  SEWER3D_CHECK(edge.from != edge.to, "self-loop on node " << edge.from);
+  SEWER3D_CHECK(IsSymmetricPositiveDefinite(edge.information),
+                "information of edge " << edge.from << " -> " << edge.to
+                                       << " is not symmetric positive definite");
+  SEWER3D_CHECK(edge.a_from_b.translation.allFinite() && edge.a_from_b.rotation.coeffs().allFinite(),
+                "edge " << edge.from << " -> " << edge.to << " has non-finite values");
+  edges_.push_back(edge);
+}
+
+void PoseGraph::AddRegularisationEdge(int a, int b, const Rigid3d& a_from_b,
+                                      const Matrix6d& covariance) {
+  SEWER3D_CHECK(IsSymmetricPositiveDefinite(covariance), "covariance not positive definite");
+  PoseEdge edge;
+  edge.from = a;
+  edge.to = b;
+  edge.a_from_b = a_from_b;
+  edge.information = covariance.inverse();
+  edge.information = 0.5 * (edge.information + edge.information.transpose()).eval();
+  edge.kind = EdgeKind::kRegularisation;
+  AddEdge(edge);
+}
+
+Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& world_from_a,
+                                         const Rigid3d& world_from_b) {
+  const Eigen::Quaterniond q_a_inverse = world_from_a.rotation.conjugate();
+  const Eigen::Quaterniond q_ab = q_a_inverse * world_from_b.rotation;
+  const Eigen::Quaterniond delta = edge.a_from_b.rotation * q_ab.conjugate();
+  Eigen::Matrix<double, 6, 1> r;
+  r.head<3>() = q_a_inverse * (world_from_b.translation - world_from_a.translation) -
+                edge.a_from_b.translation;
+  r.tail<3>() = 2.0 * delta.vec();
+  return r;
+}
+
+double GraphCost(const PoseGraph& graph) {
+  double cost = 0.0;
+  for (const PoseEdge& e : graph.edges()) {
+    const auto r = EdgeResidual(e, graph.node(e.from), graph.node(e.to));
+    cost += 0.5 * r.dot(e.information * r);
+  }
+  return cost;
+}
+
+}  // namespace sewer3d

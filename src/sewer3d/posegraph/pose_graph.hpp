@@ -1,0 +1,81 @@
+#pragma once
+/// \file
+/// A 3D pose graph (paper §optimise): nodes are absolute poses (world_from_node, position +
+/// unit quaternion), edges are measured relative poses with 6x6 information matrices in the
+/// order (translation, rotation). Plain data; the solver is in solver.hpp.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "sewer3d/core/rigid3.hpp"
+
+namespace sewer3d {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+/// Where an edge comes from; the paper weighs feature edges above projection edges and adds
+/// regularisation edges between the first and last acquisition of each module.
+enum class EdgeKind { kGeneric, kOdometry, kFeature, kProjection, kRegularisation };
+
+struct PoseEdge {
+  int from = 0;  ///< node a
+  int to = 0;    ///< node b
+  /// Measured pose of b in a's frame: p̂_ab = R_aᵀ (p_b − p_a), q̂_ab = q_a⁻¹ q_b.
+  Rigid3d a_from_b;
+  /// Information of the residual [translation; 2 vec(rotation error)]; symmetric positive
+  /// definite.
+  Matrix6d information = Matrix6d::Identity();
+  EdgeKind kind = EdgeKind::kGeneric;
+  /// Huber scale for this edge's residual norm (<= 0: plain least squares).
+  double huber_delta = 0.0;
+};
+
+class PoseGraph {
+ public:
+  /// Adds or replaces node `id` (pose = world_from_node).
+  void SetNode(int id, const Rigid3d& world_from_node) { nodes_[id] = world_from_node; }
+  bool HasNode(int id) const { return nodes_.count(id) != 0; }
+  const Rigid3d& node(int id) const { return nodes_.at(id); }
+  Rigid3d& mutable_node(int id) { return nodes_.at(id); }
+  const std::map<int, Rigid3d>& nodes() const { return nodes_; }
+
+  /// Adds an edge; throws std::invalid_argument for unknown nodes, a self-loop, or an
+  /// information matrix that is not symmetric positive definite.
+  void AddEdge(const PoseEdge& edge);
+
+  /// The paper's regularisation edge: "node b sits at a_from_b relative to node a" with the
+  /// given 6x6 covariance (translation mm², rotation rad²), e.g. first and last acquisition
+  /// of a module in a straight pipe.
+  void AddRegularisationEdge(int a, int b, const Rigid3d& a_from_b, const Matrix6d& covariance);
+
+  const std::vector<PoseEdge>& edges() const { return edges_; }
+  std::vector<PoseEdge>& mutable_edges() { return edges_; }
+
+  /// Nodes held fixed by the file or the caller (gauge); the solver also fixes the first node
+  /// when this is empty.
+  std::vector<int>& fixed_nodes() { return fixed_; }
+  const std::vector<int>& fixed_nodes() const { return fixed_; }
+
+ private:
+  std::map<int, Rigid3d> nodes_;
+  std::vector<PoseEdge> edges_;
+  std::vector<int> fixed_;
+};
+
+/// The residual of one edge at the given poses (Ceres' pose_graph_3d convention):
+/// r = [R_aᵀ (p_b − p_a) − p̂_ab ; 2 vec(q̂_ab (q_a⁻¹ q_b)⁻¹)].
+Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& world_from_a,
+                                         const Rigid3d& world_from_b);
+
+/// ½ Σ rᵀ Ω r over all edges (no robust loss): the cost convention of Ceres' example and of
+/// the published benchmark values.
+double GraphCost(const PoseGraph& graph);
+
+/// True when `m` is symmetric (to 1e-9 relative) and positive definite.
+bool IsSymmetricPositiveDefinite(const Matrix6d& m);
+
+}  // namespace sewer3d

@@ -1,0 +1,225 @@
+#include "sewer3d/posegraph/pose_graph.hpp"
+
+#include <ceres/gradient_checker.h>
+#include <ceres/manifold.h>
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include "sewer3d/posegraph/edge_cost.hpp"
+#include "sewer3d/posegraph/solver.hpp"
+
+namespace sewer3d {
+namespace {
+
+Rigid3d RandomPose(std::mt19937& rng, double spread_mm) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  return {Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)),
+          Eigen::Vector3d(n(rng), n(rng), n(rng)) * spread_mm};
+}
+
+Rigid3d Perturb(const Rigid3d& pose, std::mt19937& rng, double rot_rad, double trans_mm) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  const Eigen::Vector3d w(n(rng) * rot_rad, n(rng) * rot_rad, n(rng) * rot_rad);
+  const Eigen::Quaterniond dq(Eigen::AngleAxisd(w.norm(), w.normalized()));
+  return {pose.rotation * dq, pose.translation + Eigen::Vector3d(n(rng), n(rng), n(rng)) * trans_mm};
+}
+
+Matrix6d RandomInformation(std::mt19937& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  Matrix6d a;
+  for (int i = 0; i < 36; ++i) a(i) = n(rng);
+  return a * a.transpose() + Matrix6d::Identity();
+}
+
+double RotationErrorDeg(const Rigid3d& a, const Rigid3d& b) {
+  return a.rotation.angularDistance(b.rotation) * 180.0 / M_PI;
+}
+
+// A ring of poses with odometry and a few loop closures, measured exactly from `truth`.
+PoseGraph RingGraph(const std::vector<Rigid3d>& truth, std::mt19937& rng, double rot_noise,
+                    double trans_noise) {
+  PoseGraph graph;
+  for (size_t i = 0; i < truth.size(); ++i) graph.SetNode(static_cast<int>(i), truth[i]);
+  const int n = static_cast<int>(truth.size());
+  auto add = [&](int a, int b) {
+    PoseEdge e;
+    e.from = a;
+    e.to = b;
+    e.a_from_b = Perturb(truth[a].Inverse() * truth[b], rng, rot_noise, trans_noise);
+    e.information.diagonal() << 1, 1, 1, 400, 400, 400;
+    graph.AddEdge(e);
+  };
+  for (int i = 0; i + 1 < n; ++i) add(i, i + 1);
+  for (int i = 0; i + 5 < n; i += 3) add(i, i + 5);
+  add(n - 1, 0);
+  return graph;
+}
+
+TEST(EdgeCost, JacobiansMatchFiniteDifferences) {
+  std::mt19937 rng(1);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Rigid3d a = RandomPose(rng, 100.0), b = RandomPose(rng, 100.0);
+    const Rigid3d measured = Perturb(a.Inverse() * b, rng, 0.05, 2.0);
+    std::unique_ptr<ceres::CostFunction> cost(
+        EdgeCost::Create(measured, SqrtInformation(RandomInformation(rng))));
+    ceres::EigenQuaternionManifold quaternion;
+    const std::vector<const ceres::Manifold*> manifolds = {nullptr, &quaternion, nullptr,
+                                                           &quaternion};
+    ceres::GradientChecker checker(cost.get(), &manifolds, ceres::NumericDiffOptions());
+    const double* parameters[] = {a.translation.data(), a.rotation.coeffs().data(),
+                                  b.translation.data(), b.rotation.coeffs().data()};
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, 1e-7, &results)) << results.error_log;
+  }
+}
+
+TEST(EdgeCost, AgreesWithEdgeResidualAndVanishesAtTheMeasurement) {
+  std::mt19937 rng(2);
+  const Rigid3d a = RandomPose(rng, 50.0), b = RandomPose(rng, 50.0);
+  PoseEdge edge;
+  edge.a_from_b = a.Inverse() * b;
+  EXPECT_LT(EdgeResidual(edge, a, b).norm(), 1e-12);
+  edge.a_from_b = Perturb(edge.a_from_b, rng, 0.01, 1.0);
+  const Matrix6d sqrt_info = SqrtInformation(edge.information);
+  std::unique_ptr<ceres::CostFunction> cost(EdgeCost::Create(edge.a_from_b, sqrt_info));
+  const double* parameters[] = {a.translation.data(), a.rotation.coeffs().data(),
+                                b.translation.data(), b.rotation.coeffs().data()};
+  Eigen::Matrix<double, 6, 1> r;
+  ASSERT_TRUE(cost->Evaluate(parameters, r.data(), nullptr));
+  EXPECT_LT((r - sqrt_info * EdgeResidual(edge, a, b)).norm(), 1e-12);
+}
+
+TEST(Optimise, ConvergesFromLargePerturbationsToTheOptimumNearTheTruth) {
+  std::mt19937 rng(3);
+  std::vector<Rigid3d> truth;
+  for (int i = 0; i < 40; ++i) {
+    const double angle = 2.0 * M_PI * i / 40;
+    truth.push_back({Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())),
+                     Eigen::Vector3d(500.0 * std::cos(angle), 500.0 * std::sin(angle), 0.0)});
+  }
+  // Edge noise 0.002 rad per axis and 0.5 mm: the optimum itself lies off the truth.
+  const PoseGraph measured = RingGraph(truth, rng, 0.002, 0.5);
+  PoseGraph from_truth = measured, perturbed = measured;
+  for (int i = 1; i < 40; ++i) perturbed.mutable_node(i) = Perturb(truth[i], rng, 0.2, 30.0);
+  PoseGraphOptions options;
+  options.init = PoseGraphInit::kGiven;
+  const PoseGraphReport reference = OptimisePoseGraph(from_truth, options);
+  const PoseGraphReport report = OptimisePoseGraph(perturbed, options);
+  ASSERT_TRUE(report.usable && reference.usable) << report.termination;
+  EXPECT_LT(report.final_cost, 1e-3 * report.initial_cost);
+  EXPECT_NEAR(report.final_cost, reference.final_cost, 1e-6 * reference.final_cost);
+  for (int i = 0; i < 40; ++i) {
+    // Same optimum from 11° / 30 mm perturbations as from the truth.
+    EXPECT_LT((perturbed.node(i).translation - from_truth.node(i).translation).norm(), 0.01);
+    EXPECT_LT(RotationErrorDeg(perturbed.node(i), from_truth.node(i)), 1e-3);
+    // The optimum's distance to the truth: a random walk over <= 20 edges of 0.2° each,
+    // shortened by the loop closures; 3 sigma is about 2.7° and 24 mm at 500 mm.
+    EXPECT_LT(RotationErrorDeg(from_truth.node(i), truth[i]), 2.7) << i;
+    EXPECT_LT((from_truth.node(i).translation - truth[i].translation).norm(), 24.0) << i;
+  }
+  // Node 0 holds the gauge.
+  EXPECT_LT((perturbed.node(0).translation - truth[0].translation).norm(), 1e-12);
+}
+
+TEST(Chordal, ExactOnNoiseFreeGraphsFromArbitraryStart) {
+  std::mt19937 rng(4);
+  std::vector<Rigid3d> truth;
+  for (int i = 0; i < 30; ++i) truth.push_back(RandomPose(rng, 200.0));
+  PoseGraph graph = RingGraph(truth, rng, 0.0, 0.0);
+  for (int i = 1; i < 30; ++i) graph.mutable_node(i) = RandomPose(rng, 200.0);
+  ASSERT_TRUE(ChordalInitialisation(graph));
+  for (int i = 0; i < 30; ++i) {
+    EXPECT_LT((graph.node(i).translation - truth[i].translation).norm(), 1e-6);
+    EXPECT_LT(RotationErrorDeg(graph.node(i), truth[i]), 1e-6);
+  }
+  EXPECT_LT(GraphCost(graph), 1e-12);
+}
+
+TEST(Chordal, RefusesDisconnectedGraph) {
+  std::mt19937 rng(5);
+  std::vector<Rigid3d> truth;
+  for (int i = 0; i < 10; ++i) truth.push_back(RandomPose(rng, 100.0));
+  PoseGraph graph = RingGraph(truth, rng, 0.0, 0.0);
+  graph.SetNode(99, RandomPose(rng, 10.0));  // no edge reaches it
+  const Rigid3d before = graph.node(3);
+  EXPECT_FALSE(ChordalInitialisation(graph));
+  EXPECT_LT((graph.node(3).translation - before.translation).norm(), 1e-12);
+}
+
+TEST(Optimise, HuberLossResistsAWrongRegistration) {
+  std::mt19937 rng(6);
+  std::vector<Rigid3d> truth;
+  for (int i = 0; i < 20; ++i) {
+    truth.push_back({Eigen::Quaterniond::Identity(), Eigen::Vector3d(100.0 * i, 0.0, 0.0)});
+  }
+  // Returns the graph's poses after optimisation, with or without an 80 mm wrong edge.
+  auto solve = [&](double huber, bool with_wrong_edge) {
+    std::mt19937 local(7);
+    PoseGraph graph = RingGraph(truth, local, 0.001, 0.2);
+    if (with_wrong_edge) {
+      PoseEdge wrong;
+      wrong.from = 2;
+      wrong.to = 12;
+      wrong.a_from_b = {Eigen::Quaterniond::Identity(), Eigen::Vector3d(1080.0, 0.0, 0.0)};
+      wrong.information.diagonal() << 1, 1, 1, 400, 400, 400;
+      graph.AddEdge(wrong);
+    }
+    PoseGraphOptions options;
+    options.huber_delta = huber;
+    OptimisePoseGraph(graph, options);
+    return graph;
+  };
+  auto max_distance = [](const PoseGraph& a, const PoseGraph& b) {
+    double worst = 0.0;
+    for (const auto& [id, pose] : a.nodes()) {
+      worst = std::max(worst, (pose.translation - b.node(id).translation).norm());
+    }
+    return worst;
+  };
+  const PoseGraph clean = solve(0.0, false);
+  // The wrong edge drags a plain least-squares solution by many millimetres. A Huber loss
+  // (scale 1 sigma) caps the edge's pull at 1 sigma instead of 80, so the displacement it
+  // causes shrinks accordingly (the chain responds nearly linearly).
+  const double plain = max_distance(solve(0.0, true), clean);
+  const double robust = max_distance(solve(1.0, true), clean);
+  EXPECT_GT(plain, 20.0);
+  EXPECT_LT(robust, plain / 20.0) << "plain " << plain;
+}
+
+TEST(PoseGraph, RegularisationEdgeKeepsAStraightPipeStraight) {
+  // Odometry-like chain whose edges all carry the same small yaw bias: the chain curls.
+  // A regularisation edge first -> last ("the pipe is straight") pulls it back.
+  std::mt19937 rng(8);
+  PoseGraph graph;
+  const int n = 11;
+  const Rigid3d step(Eigen::Quaterniond(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ())),
+                     Eigen::Vector3d(100.0, 0.0, 0.0));
+  Rigid3d pose;
+  for (int i = 0; i < n; ++i) {
+    graph.SetNode(i, pose);
+    pose = pose * step;
+  }
+  for (int i = 0; i + 1 < n; ++i) {
+    PoseEdge e;
+    e.from = i;
+    e.to = i + 1;
+    e.a_from_b = step;
+    graph.AddEdge(e);
+  }
+  Matrix6d covariance = Matrix6d::Identity();
+  covariance.diagonal() << 1.0, 1.0, 1.0, 1e-6, 1e-6, 1e-6;  // 1 mm, 0.06°
+  graph.AddRegularisationEdge(0, n - 1, {Eigen::Quaterniond::Identity(), Eigen::Vector3d(1000.0, 0, 0)},
+                              covariance);
+  EXPECT_EQ(graph.edges().back().kind, EdgeKind::kRegularisation);
+  const double lateral_before = std::abs(graph.node(n - 1).translation.y());
+  OptimisePoseGraph(graph, PoseGraphOptions{});
+  EXPECT_GT(lateral_before, 20.0);
+  EXPECT_LT(std::abs(graph.node(n - 1).translation.y()), 1.0);
+  EXPECT_LT(RotationErrorDeg(graph.node(n - 1), Rigid3d()), 0.1);
+  EXPECT_THROW(graph.AddRegularisationEdge(0, 99, Rigid3d(), covariance), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sewer3d

@@ -1,0 +1,239 @@
+#include "sewer3d/posegraph/solver.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
+#include <Eigen/SparseCholesky>
+#include <chrono>
+#include <unordered_map>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/posegraph/edge_cost.hpp"
+
+namespace sewer3d {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+/// Node ids -> dense indices, with the anchored (fixed) nodes marked.
+struct Indexing {
+  std::unordered_map<int, int> index_of_id;
+  std::vector<int> id_of_index;
+  std::vector<int> free_index;  // per node index: position among free nodes, or -1 if anchored
+  int free_count = 0;
+};
+
+Indexing MakeIndexing(const PoseGraph& graph) {
+  Indexing ix;
+  for (const auto& [id, pose] : graph.nodes()) {
+    ix.index_of_id[id] = static_cast<int>(ix.id_of_index.size());
+    ix.id_of_index.push_back(id);
+  }
+  ix.free_index.assign(ix.id_of_index.size(), 0);
+  std::vector<int> anchors = graph.fixed_nodes();
+  if (anchors.empty() && !graph.nodes().empty()) anchors.push_back(graph.nodes().begin()->first);
+  for (int id : anchors) ix.free_index[ix.index_of_id.at(id)] = -1;
+  for (auto& f : ix.free_index) f = f < 0 ? -1 : ix.free_count++;
+  return ix;
+}
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+void AddBlock(Triplets& t, int row_block, int col_block, const Eigen::Matrix3d& m) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) t.emplace_back(3 * row_block + r, 3 * col_block + c, m(r, c));
+  }
+}
+
+/// Assembles and solves H x = B for a problem with residuals e = x_b − M x_a − c, weight W,
+/// anchored nodes known. `known(i)` gives the fixed value (3 x k) of an anchored node.
+template <class EdgeTerms, class Known>
+std::optional<Eigen::MatrixXd> SolveLinear(const PoseGraph& graph, const Indexing& ix, int rhs_cols,
+                                           EdgeTerms&& terms, Known&& known) {
+  const int n = 3 * ix.free_count;
+  Triplets triplets;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, rhs_cols);
+  for (const PoseEdge& e : graph.edges()) {
+    const int a = ix.index_of_id.at(e.from), b = ix.index_of_id.at(e.to);
+    Eigen::Matrix3d m, w;
+    Eigen::MatrixXd c;  // 3 x rhs_cols
+    terms(e, a, m, w, c);
+    const int fa = ix.free_index[a], fb = ix.free_index[b];
+    // Normal equations of e = x_b − M x_a − c with weight W.
+    if (fa >= 0) {
+      AddBlock(triplets, fa, fa, m.transpose() * w * m);
+      rhs.middleRows<3>(3 * fa) -= m.transpose() * w * c;
+    }
+    if (fb >= 0) {
+      AddBlock(triplets, fb, fb, w);
+      rhs.middleRows<3>(3 * fb) += w * c;
+    }
+    if (fa >= 0 && fb >= 0) {
+      AddBlock(triplets, fa, fb, -m.transpose() * w);
+      AddBlock(triplets, fb, fa, -w * m);
+    } else if (fa >= 0) {
+      rhs.middleRows<3>(3 * fa) += m.transpose() * w * known(b);
+    } else if (fb >= 0) {
+      rhs.middleRows<3>(3 * fb) += w * m * known(a);
+    }
+  }
+  Eigen::SparseMatrix<double> h(n, n);
+  h.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(h);
+  if (ldlt.info() != Eigen::Success) return std::nullopt;
+  Eigen::MatrixXd x = ldlt.solve(rhs);
+  if (ldlt.info() != Eigen::Success || !x.allFinite()) return std::nullopt;
+  // A disconnected graph leaves a singular H; LDLT may still "succeed" with zero pivots.
+  if ((h * x - rhs).norm() > 1e-6 * std::max(1.0, rhs.norm())) return std::nullopt;
+  return x;
+}
+
+Eigen::Matrix3d ProjectToRotation(const Eigen::Matrix3d& m) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  return svd.matrixU() * d * svd.matrixV().transpose();
+}
+
+}  // namespace
+
+Matrix6d SqrtInformation(const Matrix6d& information) {
+  const Eigen::LLT<Matrix6d> llt(information);
+  SEWER3D_CHECK(llt.info() == Eigen::Success, "information not positive definite");
+  return llt.matrixU();
+}
+
+void PoseGraphOptions::Check() const {
+  SEWER3D_CHECK(max_iterations > 0, "max_iterations " << max_iterations);
+  SEWER3D_CHECK(num_threads > 0, "num_threads " << num_threads);
+  SEWER3D_CHECK(std::isfinite(huber_delta), "huber_delta");
+}
+
+bool ChordalInitialisation(PoseGraph& graph) {
+  const Indexing ix = MakeIndexing(graph);
+  if (ix.free_count == 0) return true;
+  std::vector<Eigen::Matrix3d> rotation(ix.id_of_index.size());
+  for (size_t i = 0; i < rotation.size(); ++i) {
+    rotation[i] = graph.node(ix.id_of_index[i]).RotationMatrix();
+  }
+  // Rotations: each row r_k of every R solves the same system x_b = R̂ᵀ x_a (x = r_kᵀ), so one
+  // factorisation serves three right-hand sides (the rows of the anchors' rotations).
+  const auto rows = SolveLinear(
+      graph, ix, 3,
+      [](const PoseEdge& e, int, Eigen::Matrix3d& m, Eigen::Matrix3d& w, Eigen::MatrixXd& c) {
+        m = e.a_from_b.RotationMatrix().transpose();
+        w = Eigen::Matrix3d::Identity() * (e.information.bottomRightCorner<3, 3>().trace() / 3.0);
+        c = Eigen::MatrixXd::Zero(3, 3);
+      },
+      [&](int i) -> Eigen::MatrixXd { return rotation[i].transpose(); });
+  if (!rows) return false;
+  for (size_t i = 0; i < rotation.size(); ++i) {
+    const int f = ix.free_index[i];
+    if (f >= 0) rotation[i] = ProjectToRotation(rows->middleRows<3>(3 * f).transpose());
+  }
+  // Positions: p_b − p_a = R_a p̂_ab, weighted by the translation information in world axes.
+  const auto positions = SolveLinear(
+      graph, ix, 1,
+      [&](const PoseEdge& e, int a, Eigen::Matrix3d& m, Eigen::Matrix3d& w, Eigen::MatrixXd& c) {
+        m = Eigen::Matrix3d::Identity();
+        const Eigen::Matrix3d omega = e.information.topLeftCorner<3, 3>();
+        w = rotation[a] * (0.5 * (omega + omega.transpose())) * rotation[a].transpose();
+        c = rotation[a] * e.a_from_b.translation;
+      },
+      [&](int i) -> Eigen::MatrixXd { return graph.node(ix.id_of_index[i]).translation; });
+  if (!positions) return false;
+  for (size_t i = 0; i < rotation.size(); ++i) {
+    const int f = ix.free_index[i];
+    if (f < 0) continue;
+    graph.mutable_node(ix.id_of_index[i]) =
+        Rigid3d(rotation[i], Eigen::Vector3d(positions->middleRows<3>(3 * f)));
+  }
+  return true;
+}
+
+PoseGraphReport OptimisePoseGraph(PoseGraph& graph, const PoseGraphOptions& options) {
+  options.Check();
+  PoseGraphReport report;
+  report.nodes = static_cast<int>(graph.nodes().size());
+  report.edges = static_cast<int>(graph.edges().size());
+  report.given_cost = GraphCost(graph);
+  report.init_used = "given";
+
+  const auto init_start = Clock::now();
+  if (options.init != PoseGraphInit::kGiven) {
+    PoseGraph chordal = graph;
+    if (ChordalInitialisation(chordal)) {
+      const double chordal_cost = GraphCost(chordal);
+      if (options.init == PoseGraphInit::kChordal || chordal_cost < report.given_cost) {
+        graph = std::move(chordal);
+        report.init_used = "chordal";
+      }
+    } else if (options.init == PoseGraphInit::kChordal) {
+      report.termination = "chordal initialisation failed: graph not connected to its anchor";
+      report.init_seconds = Seconds(init_start);
+      report.initial_cost = report.final_cost = report.given_cost;
+      return report;
+    }
+  }
+  report.init_seconds = Seconds(init_start);
+  report.initial_cost = GraphCost(graph);
+
+  // Parameter blocks: contiguous copies of each node's position and quaternion (x y z w).
+  const Indexing ix = MakeIndexing(graph);
+  const size_t count = ix.id_of_index.size();
+  std::vector<Eigen::Vector3d> p(count);
+  std::vector<Eigen::Quaterniond> q(count);
+  for (size_t i = 0; i < count; ++i) {
+    const Rigid3d& pose = graph.node(ix.id_of_index[i]);
+    p[i] = pose.translation;
+    q[i] = pose.rotation;
+  }
+  ceres::Problem problem;
+  for (const PoseEdge& e : graph.edges()) {
+    const int a = ix.index_of_id.at(e.from), b = ix.index_of_id.at(e.to);
+    const double delta = e.huber_delta > 0.0 ? e.huber_delta : options.huber_delta;
+    ceres::LossFunction* loss = delta > 0.0 ? new ceres::HuberLoss(delta) : nullptr;
+    problem.AddResidualBlock(EdgeCost::Create(e.a_from_b, SqrtInformation(e.information)), loss,
+                             p[a].data(), q[a].coeffs().data(), p[b].data(),
+                             q[b].coeffs().data());
+  }
+  for (size_t i = 0; i < count; ++i) {
+    if (!problem.HasParameterBlock(p[i].data())) continue;
+    problem.SetManifold(q[i].coeffs().data(), new ceres::EigenQuaternionManifold);
+    if (ix.free_index[i] < 0) {
+      problem.SetParameterBlockConstant(p[i].data());
+      problem.SetParameterBlockConstant(q[i].coeffs().data());
+    }
+  }
+  ceres::Solver::Options solver_options;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver_options.num_threads = options.num_threads;
+  solver_options.function_tolerance = options.function_tolerance;
+  solver_options.gradient_tolerance = options.gradient_tolerance;
+  solver_options.parameter_tolerance = options.parameter_tolerance;
+  ceres::Solver::Summary summary;
+  const auto solve_start = Clock::now();
+  if (problem.NumResidualBlocks() > 0) ceres::Solve(solver_options, &problem, &summary);
+  report.solve_seconds = Seconds(solve_start);
+
+  bool finite = true;
+  for (size_t i = 0; i < count; ++i) finite = finite && p[i].allFinite() && q[i].coeffs().allFinite();
+  if (finite) {  // a diverged solve leaves the initial poses in place
+    for (size_t i = 0; i < count; ++i) graph.mutable_node(ix.id_of_index[i]) = Rigid3d(q[i], p[i]);
+  }
+  report.final_cost = GraphCost(graph);
+  report.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
+  report.termination = problem.NumResidualBlocks() == 0
+                           ? "no edges"
+                           : ceres::TerminationTypeToString(summary.termination_type) +
+                                 std::string(": ") + summary.message;
+  report.usable = finite && (problem.NumResidualBlocks() == 0 || summary.IsSolutionUsable());
+  return report;
+}
+
+}  // namespace sewer3d
