@@ -1,0 +1,24 @@
+#pragma once
+/// \file
+/// Procedural albedo of sewer materials, in linear RGB [0, 1], as a function of 2-D surface
+/// coordinates (mm). Deterministic for a seed.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+
+#include "sewer3d/sim/scene.hpp"
+
+namespace sewer3d {
+
+/// Albedo at surface coordinates `p_mm`:
+/// - concrete: grey cement (~0.45) with multi-scale mottling, aggregate grains 1–8 mm of
+///   varying brightness, and large brownish stains;
+/// - vitrified clay: glazed reddish brown (~0.35, 0.2, 0.12) with faint streaks;
+/// - plastic: nearly uniform light orange-grey with 1 % low-frequency variation.
+Eigen::Vector3d MaterialAlbedo(Material material, std::uint64_t seed, const Eigen::Vector2d& p_mm);
+
+/// Deterministic hash of integers to a uniform double in [0, 1).
+double HashUniform(std::uint64_t a, std::uint64_t b = 0, std::uint64_t c = 0, std::uint64_t d = 0);
+
+}  // namespace sewer3d

@@ -1,0 +1,231 @@
+#include "sewer3d/sim/renderer.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/sim/material.hpp"
+
+namespace sewer3d {
+namespace {
+
+constexpr double kReferenceDistanceMm = 150.0;
+
+// Standard normal from two hashed uniforms (Box–Muller).
+double HashNormal(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
+  const double u1 = std::max(HashUniform(a, b, c, 11), 1e-300);
+  const double u2 = HashUniform(a, b, c, 12);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
+// Thin-lens circle of confusion (diameter, px) of a point at depth z for a lens focused at
+// focus_mm with focal length f_px (pixels) and aperture diameter aperture_mm.
+double CircleOfConfusionPx(double f_px, double aperture_mm, double focus_mm, double z_mm) {
+  return f_px * aperture_mm * std::abs(1.0 / z_mm - 1.0 / focus_mm);
+}
+
+// Everything fixed for one frame.
+struct Setup {
+  const ModuleDescription& module;
+  const BinaryArray& pattern;
+  const Scene& scene;
+  const RenderOptions& o;
+  CameraModel camera, projector;
+  Eigen::Matrix3d projector_rotation;
+  double camera_aperture_mm, projector_aperture_mm;
+  cv::Mat2d corner_rays;  // normalised (x, y) at pixel corners; NaN where not invertible
+
+  Setup(const ModuleDescription& m, const BinaryArray& p, const Scene& s, const RenderOptions& opt)
+      : module(m), pattern(p), scene(s), o(opt), camera(m.camera), projector(m.projector),
+        projector_rotation(m.projector_from_camera.RotationMatrix()) {
+    const double pitch_mm = o.sensor_width_mm / m.camera.width;
+    camera_aperture_mm = o.camera_f_number > 0 ? m.camera.fx * pitch_mm / o.camera_f_number : 0.0;
+    projector_aperture_mm =
+        o.projector_f_number > 0 ? m.projector.fx * pitch_mm / o.projector_f_number : 0.0;
+    corner_rays.create(m.camera.height + 1, m.camera.width + 1);
+    for (int v = 0; v <= m.camera.height; ++v) {
+      for (int u = 0; u <= m.camera.width; ++u) {
+        const auto xy = camera.Unproject({u - 0.5, v - 0.5});
+        corner_rays(v, u) = xy ? cv::Vec2d(xy->x(), xy->y()) : cv::Vec2d(NAN, NAN);
+      }
+    }
+  }
+
+  // Spot irradiance profile at a projector pixel: tiled disks blurred by optics and defocus.
+  double SpotProfile(const Eigen::Vector2d& uv, double sigma_px) const {
+    const PatternLayout& layout = module.pattern;
+    const double radius = 0.5 * layout.spot_diameter_px;
+    const double reach = radius + 4.0 * sigma_px;
+    const int c_lo = static_cast<int>(std::floor((uv.x() - layout.offset_px.x() + 0.5 - reach) / layout.pitch_px - 0.5));
+    const int c_hi = static_cast<int>(std::ceil((uv.x() - layout.offset_px.x() + 0.5 + reach) / layout.pitch_px - 0.5));
+    const int r_lo = static_cast<int>(std::floor((uv.y() - layout.offset_px.y() + 0.5 - reach) / layout.pitch_px - 0.5));
+    const int r_hi = static_cast<int>(std::ceil((uv.y() - layout.offset_px.y() + 0.5 + reach) / layout.pitch_px - 0.5));
+    double value = 0.0;
+    const double inv = 1.0 / (std::sqrt(2.0) * sigma_px);
+    for (int r = r_lo; r <= r_hi; ++r) {
+      for (int c = c_lo; c <= c_hi; ++c) {
+        if (!pattern.tiled(r, c)) continue;
+        const double rho = (uv - layout.ElementCentre(r, c)).norm();
+        value += 0.5 * std::erfc((rho - radius) * inv);  // disk edge convolved with a Gaussian
+      }
+    }
+    return std::min(value, 1.0);
+  }
+};
+
+struct Sample {
+  double pattern = 0.0;
+  Eigen::Vector3d texture = Eigen::Vector3d::Zero();
+};
+
+Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+             const Eigen::Vector3d& rig_shift, double cos_alpha) {
+  Sample out;
+  const auto hit = Intersect(s.scene, origin, direction);
+  if (!hit) return out;
+  const RenderOptions& o = s.o;
+  const Eigen::Vector3d albedo = MaterialAlbedo(s.scene.material, s.scene.material_seed, hit->surface_mm);
+  const double grey = albedo.mean();
+  const double vignetting = o.vignetting ? std::pow(cos_alpha, 4) : 1.0;
+  // Texture light: a ring around the camera pupil, treated as a point source there.
+  const Eigen::Vector3d to_light = rig_shift - hit->point;
+  const double d_light = to_light.norm();
+  const double cos_light = std::max(0.0, hit->normal.dot(to_light) / d_light);
+  const double falloff = std::pow(kReferenceDistanceMm / d_light, 2) * cos_light;
+  out.texture = (albedo / 0.5) * (o.texture_level * falloff * cos_alpha * cos_alpha + o.ambient_level);
+  out.texture *= vignetting;
+  // Pattern light from the projector.
+  const Eigen::Vector3d p_rig = hit->point - rig_shift;
+  const Eigen::Vector3d p_projector = s.projector_rotation * p_rig + s.module.projector_from_camera.translation;
+  double pattern = o.ambient_level;
+  const auto uv = s.projector.Project(p_projector);
+  if (uv) {
+    const Eigen::Vector3d projector_centre = s.module.projector_from_camera.Inverse().translation + rig_shift;
+    const Eigen::Vector3d to_projector = projector_centre - hit->point;
+    const double d_projector = to_projector.norm();
+    const double cos_in = std::max(0.0, hit->normal.dot(to_projector) / d_projector);
+    const double cos_beta = p_projector.z() / p_projector.norm();
+    const double coc = s.projector_aperture_mm > 0
+                           ? CircleOfConfusionPx(s.module.projector.fx, s.projector_aperture_mm,
+                                                 o.projector_focus_mm, p_projector.z())
+                           : 0.0;
+    const double sigma = std::sqrt(o.projector_psf_px * o.projector_psf_px + std::pow(coc / 2.5, 2));
+    const double lens = o.vignetting ? std::pow(cos_beta, 4) : 1.0;
+    pattern += o.pattern_level * s.SpotProfile(*uv, sigma) * lens *
+               std::pow(kReferenceDistanceMm / d_projector, 2) * cos_in;
+  }
+  out.pattern = (grey / 0.5) * pattern * vignetting;
+  return out;
+}
+
+std::uint16_t Digitise(double signal, const SensorModel& sensor, std::uint64_t seed,
+                       std::uint64_t pixel, std::uint64_t channel) {
+  double electrons = std::max(0.0, signal) * sensor.full_well_e;
+  if (sensor.noise) {
+    electrons += std::sqrt(electrons) * HashNormal(seed, pixel, channel);
+    electrons += sensor.read_noise_e * HashNormal(seed, pixel, channel + 100);
+  }
+  const double max_dn = (1 << sensor.bits) - 1;
+  return static_cast<std::uint16_t>(std::clamp(std::round(electrons / sensor.full_well_e * max_dn), 0.0, max_dn));
+}
+
+}  // namespace
+
+void RenderOptions::Check() const {
+  SEWER3D_CHECK(supersampling >= 1 && supersampling <= 16, "supersampling " << supersampling);
+  SEWER3D_CHECK(sensor_width_mm > 0.0, "sensor width");
+  SEWER3D_CHECK(camera_f_number >= 0.0 && projector_f_number >= 0.0, "f-number");
+  SEWER3D_CHECK(camera_focus_mm > 0.0 && projector_focus_mm > 0.0, "focus distance");
+  SEWER3D_CHECK(projector_psf_px > 0.0, "projector_psf_px must be positive");
+  SEWER3D_CHECK(texture_level >= 0.0 && pattern_level >= 0.0 && ambient_level >= 0.0, "light level");
+  SEWER3D_CHECK(speed_mm_s >= 0.0 && exposure_ms >= 0.0, "motion");
+  SEWER3D_CHECK(motion_direction.norm() > 0.0, "motion direction");
+  SEWER3D_CHECK(sensor.bits >= 8 && sensor.bits <= 12, "bits " << sensor.bits << " (8..12)");
+  SEWER3D_CHECK(sensor.full_well_e > 0.0 && sensor.read_noise_e >= 0.0, "sensor");
+}
+
+RenderOptions RenderOptions::Ideal() {
+  RenderOptions o;
+  o.camera_f_number = 0.0;
+  o.projector_f_number = 0.0;
+  o.ambient_level = 0.0;
+  o.vignetting = false;
+  o.sensor.noise = false;
+  o.supersampling = 4;
+  return o;
+}
+
+RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pattern,
+                          const Scene& scene, const RenderOptions& o) {
+  module.Check();
+  scene.Check();
+  o.Check();
+  const Setup setup(module, pattern, scene, o);
+  const int w = module.camera.width, h = module.camera.height, n = o.supersampling;
+  RenderedFrame frame;
+  frame.pattern_signal.create(h, w);
+  frame.texture_signal.create(h, w);
+  frame.pattern.create(h, w);
+  frame.texture.create(h, w);
+  frame.truth_depth.create(h, w);
+  const Eigen::Vector3d motion = o.motion_direction.normalized() * (o.speed_mm_s * o.exposure_ms * 1e-3);
+
+  tbb::parallel_for(0, h, [&](int v) {
+    for (int u = 0; u < w; ++u) {
+      const std::uint64_t pixel = static_cast<std::uint64_t>(v) * w + u;
+      const auto centre_ray = setup.camera.Unproject({double(u), double(v)});
+      float depth = NAN;
+      if (centre_ray) {
+        const auto hit = Intersect(scene, Eigen::Vector3d::Zero(),
+                                   Eigen::Vector3d(centre_ray->x(), centre_ray->y(), 1.0));
+        if (hit) depth = static_cast<float>(hit->point.z());
+      }
+      frame.truth_depth(v, u) = depth;
+      const cv::Vec2d c00 = setup.corner_rays(v, u), c10 = setup.corner_rays(v, u + 1);
+      const cv::Vec2d c01 = setup.corner_rays(v + 1, u), c11 = setup.corner_rays(v + 1, u + 1);
+      Sample sum;
+      if (std::isfinite(c00[0] + c10[0] + c01[0] + c11[0])) {
+        for (int k = 0; k < n * n; ++k) {
+          // Stratified position in the pixel; the aperture sample uses a scrambled stratum.
+          const double sx = (k % n + HashUniform(o.seed, pixel, k, 1)) / n;
+          const double sy = (k / n + HashUniform(o.seed, pixel, k, 2)) / n;
+          const cv::Vec2d xy = (1 - sx) * (1 - sy) * c00 + sx * (1 - sy) * c10 +
+                               (1 - sx) * sy * c01 + sx * sy * c11;
+          Eigen::Vector3d direction(xy[0], xy[1], 1.0);
+          const double cos_alpha = 1.0 / direction.norm();
+          const double tau = n * n > 1 ? (k + HashUniform(o.seed, pixel, k, 3)) / (n * n) : 0.5;
+          const Eigen::Vector3d shift = motion * (tau - 0.5);
+          Eigen::Vector3d origin = shift;
+          if (setup.camera_aperture_mm > 0.0) {
+            // Thin lens: rays through the aperture converge on the plane of focus.
+            const int kk = static_cast<int>(HashUniform(o.seed, pixel, 7) * n * n + k) % (n * n);
+            const double radius = 0.5 * setup.camera_aperture_mm *
+                                  std::sqrt((kk % n + HashUniform(o.seed, pixel, k, 4)) / n);
+            const double angle = 2.0 * std::numbers::pi * (kk / n + HashUniform(o.seed, pixel, k, 5)) / n;
+            const Eigen::Vector3d lens(radius * std::cos(angle), radius * std::sin(angle), 0.0);
+            const Eigen::Vector3d focus = direction * o.camera_focus_mm;
+            origin += lens;
+            direction = focus - lens;
+          }
+          const Sample s = Shade(setup, origin, direction, shift, cos_alpha);
+          sum.pattern += s.pattern;
+          sum.texture += s.texture;
+        }
+      }
+      const double pattern_signal = sum.pattern / (n * n);
+      const Eigen::Vector3d texture_signal = sum.texture / (n * n);
+      frame.pattern_signal(v, u) = static_cast<float>(pattern_signal);
+      frame.texture_signal(v, u) = cv::Vec3f(texture_signal.x(), texture_signal.y(), texture_signal.z());
+      frame.pattern(v, u) = Digitise(pattern_signal, o.sensor, o.seed, pixel, 0);
+      frame.texture(v, u) = cv::Vec3w(Digitise(texture_signal.x(), o.sensor, o.seed, pixel, 1),
+                                      Digitise(texture_signal.y(), o.sensor, o.seed, pixel, 2),
+                                      Digitise(texture_signal.z(), o.sensor, o.seed, pixel, 3));
+    }
+  });
+  frame.samples = static_cast<std::int64_t>(w) * h * n * n;
+  return frame;
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,169 @@
+#include "sewer3d/sim/renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+
+namespace sewer3d {
+namespace {
+
+ModuleDescription SmallModule() {
+  DefaultModuleOptions options;
+  options.camera_width = 648;
+  options.camera_height = 486;
+  return MakeDefaultModule(options);
+}
+
+// Intensity centroid of `image` in a (2r+1)² window around `centre`.
+std::optional<Eigen::Vector2d> Centroid(const cv::Mat1f& image, const Eigen::Vector2d& centre, int r) {
+  const int cu = static_cast<int>(std::round(centre.x())), cv_ = static_cast<int>(std::round(centre.y()));
+  if (cu - r < 0 || cv_ - r < 0 || cu + r >= image.cols || cv_ + r >= image.rows) return std::nullopt;
+  double sum = 0, su = 0, sv = 0;
+  for (int v = cv_ - r; v <= cv_ + r; ++v) {
+    for (int u = cu - r; u <= cu + r; ++u) {
+      sum += image(v, u);
+      su += image(v, u) * u;
+      sv += image(v, u) * v;
+    }
+  }
+  if (sum <= 0) return std::nullopt;
+  return Eigen::Vector2d(su / sum, sv / sum);
+}
+
+TEST(Renderer, IdealSpotsLieOnTheProjectedElementCentres) {
+  const ModuleDescription module = SmallModule();
+  const BinaryArray pattern = DefaultPatternArray();
+  Scene plane;
+  plane.distance_mm = 140.0;
+  plane.tilt_deg = 10.0;
+  plane.material = Material::kPlastic;
+  RenderOptions options = RenderOptions::Ideal();
+  options.supersampling = 8;
+  const RenderedFrame frame = RenderFrame(module, pattern, plane, options);
+
+  // Independent geometry: projector ray through each spot's element centre, meet the plane,
+  // project into the camera.
+  const CameraModel camera(module.camera), projector(module.projector);
+  const Rigid3d camera_from_projector = module.projector_from_camera.Inverse();
+  double worst = 0.0;
+  int checked = 0;
+  for (int r = 0; r < module.projector.height / 8; ++r) {
+    for (int c = 0; c < module.projector.width / 8; ++c) {
+      if (!pattern.tiled(r, c)) continue;
+      const auto ray_p = projector.Ray(module.pattern.ElementCentre(r, c));
+      if (!ray_p) continue;
+      const Eigen::Vector3d origin = camera_from_projector.translation;
+      const Eigen::Vector3d direction = camera_from_projector.rotation * *ray_p;
+      const auto hit = Intersect(plane, origin, direction);
+      if (!hit) continue;
+      const auto expected = camera.Project(hit->point);
+      if (!expected) continue;
+      const auto centroid = Centroid(frame.pattern_signal, *expected, 5);
+      if (!centroid) continue;
+      worst = std::max(worst, (*centroid - *expected).norm());
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 500);
+  EXPECT_LT(worst, 0.05);
+}
+
+TEST(Renderer, TruthDepthMatchesAnalyticSurfaces) {
+  const ModuleDescription module = SmallModule();
+  const CameraModel camera(module.camera);
+  RenderOptions options = RenderOptions::Ideal();
+  options.supersampling = 1;
+  Scene plane;
+  plane.distance_mm = 90.0;
+  plane.tilt_deg = -15.0;
+  const cv::Mat1f plane_depth = RenderFrame(module, DefaultPatternArray(), plane, options).truth_depth;
+  Scene cylinder;
+  cylinder.type = Scene::Type::kCylinder;
+  cylinder.diameter_mm = 200.0;
+  cylinder.axis_point_mm = {5.0, 0.0, 15.0};
+  const cv::Mat1f cylinder_depth = RenderFrame(module, DefaultPatternArray(), cylinder, options).truth_depth;
+  double worst_plane = 0.0, worst_cylinder = 0.0;
+  for (int v = 0; v < module.camera.height; v += 7) {
+    for (int u = 0; u < module.camera.width; u += 7) {
+      const Eigen::Vector2d xy = *camera.Unproject({double(u), double(v)});
+      const double tan_tilt = std::tan(-15.0 * M_PI / 180.0);
+      worst_plane = std::max(worst_plane, std::abs(plane_depth(v, u) - 90.0 / (1.0 - xy.y() * tan_tilt)));
+      // (z x − 5)² + (z − 15)² = 100², far root.
+      const double a = xy.x() * xy.x() + 1, b = -2 * (5 * xy.x() + 15), c = 25 + 225 - 10000.0;
+      const double z = (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+      worst_cylinder = std::max(worst_cylinder, std::abs(cylinder_depth(v, u) - z));
+    }
+  }
+  // float32 storage: 1e-4 mm is ~1.5 ulp at 225 mm.
+  EXPECT_LT(worst_plane, 1e-4);
+  EXPECT_LT(worst_cylinder, 1e-4);
+}
+
+TEST(Renderer, ProjectorDefocusGrowsAwayFromFocus) {
+  const ModuleDescription module = SmallModule();
+  RenderOptions options = RenderOptions::Ideal();
+  options.projector_focus_mm = 112.5;
+  // Spot size: pixels above half of the local maximum, per 16 x 16 tile holding light.
+  auto spread = [&](double distance) {
+    Scene plane;
+    plane.distance_mm = distance;
+    plane.material = Material::kPlastic;
+    const cv::Mat1f image = RenderFrame(module, DefaultPatternArray(), plane, options).pattern_signal;
+    double area = 0.0;
+    int tiles = 0;
+    for (int v = 0; v + 16 <= image.rows; v += 16) {
+      for (int u = 0; u + 16 <= image.cols; u += 16) {
+        const cv::Mat1f tile = image(cv::Rect(u, v, 16, 16));
+        double max_value;
+        cv::minMaxLoc(tile, nullptr, &max_value);
+        if (max_value <= 0.0) continue;
+        area += cv::countNonZero(tile > 0.5 * max_value);
+        ++tiles;
+      }
+    }
+    return area / tiles;
+  };
+  // Thin lens, f/2: circle of confusion f·D·|1/75 − 1/112.5| ≈ 3.7 projector px at 75 mm.
+  options.projector_f_number = 2.0;
+  // A 4 px disk blurred by sigma 1.46 px: its half-maximum area grows by about half.
+  EXPECT_GT(spread(75.0), 1.3 * spread(112.5));
+}
+
+TEST(Renderer, DeterministicForASeedAndNoiseMatchesTheSensorModel) {
+  const ModuleDescription module = SmallModule();
+  Scene plane;
+  plane.distance_mm = 150.0;
+  plane.material = Material::kPlastic;
+  RenderOptions options;
+  options.supersampling = 1;
+  const RenderedFrame a = RenderFrame(module, DefaultPatternArray(), plane, options);
+  const RenderedFrame b = RenderFrame(module, DefaultPatternArray(), plane, options);
+  EXPECT_EQ(cv::norm(a.texture, b.texture, cv::NORM_INF), 0.0);
+  options.seed = 2;
+  const RenderedFrame c = RenderFrame(module, DefaultPatternArray(), plane, options);
+  EXPECT_GT(cv::norm(a.texture, c.texture, cv::NORM_INF), 0.0);
+  // Noise in a flat region: residual of DN against the expected signal, green channel.
+  double sum = 0, sum2 = 0, expected_var = 0;
+  int count = 0;
+  for (int v = 200; v < 280; ++v) {
+    for (int u = 280; u < 360; ++u) {
+      const double signal = a.texture_signal(v, u)[1];
+      const double dn = a.texture(v, u)[1];
+      const double r = dn - signal * 255.0;
+      sum += r;
+      sum2 += r * r;
+      const double e = signal * options.sensor.full_well_e;
+      expected_var += (e + 9.0) / std::pow(options.sensor.full_well_e / 255.0, 2) + 1.0 / 12.0;
+      ++count;
+    }
+  }
+  const double measured = std::sqrt(sum2 / count), expected = std::sqrt(expected_var / count);
+  EXPECT_NEAR(measured, expected, 0.1 * expected);  // 6400 samples: ~1 % statistical error
+  EXPECT_NEAR(sum / count, 0.0, 0.1);
+}
+
+}  // namespace
+}  // namespace sewer3d

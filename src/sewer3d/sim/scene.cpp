@@ -1,0 +1,208 @@
+#include "sewer3d/sim/scene.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "sewer3d/core/check.hpp"
+
+namespace sewer3d {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// Orthonormal frame of a cylinder: e1 = camera z made perpendicular to the axis (clock 0),
+// e2 = axis x e1 ... chosen so that clock increases toward camera +x.
+struct CylinderFrame {
+  Eigen::Vector3d a, e1, e2, c;
+  double radius;
+};
+
+CylinderFrame FrameOf(const Scene& s) {
+  CylinderFrame f;
+  f.a = s.axis.normalized();
+  f.c = s.axis_point_mm;
+  f.e1 = (Eigen::Vector3d::UnitZ() - f.a.z() * f.a).normalized();
+  f.e2 = f.a.cross(f.e1);
+  if (f.e2.dot(Eigen::Vector3d::UnitX()) < 0) f.e2 = -f.e2;
+  f.radius = 0.5 * s.diameter_mm;
+  return f;
+}
+
+// Far root of |w⊥ + t d⊥| = r (origin inside the cylinder).
+std::optional<double> CylinderRoot(const CylinderFrame& f, const Eigen::Vector3d& o,
+                                   const Eigen::Vector3d& d, double r) {
+  const Eigen::Vector3d w = o - f.c;
+  const Eigen::Vector3d wp = w - w.dot(f.a) * f.a, dp = d - d.dot(f.a) * f.a;
+  const double A = dp.squaredNorm(), B = 2.0 * wp.dot(dp), C = wp.squaredNorm() - r * r;
+  const double disc = B * B - 4.0 * A * C;
+  if (A <= 0.0 || disc < 0.0) return std::nullopt;
+  const double t = (-B + std::sqrt(disc)) / (2.0 * A);
+  if (!(t > 0.0)) return std::nullopt;
+  return t;
+}
+
+// Cylinder coordinates of a point: clock angle (rad), station (mm), distance from the axis.
+void ToCylinder(const CylinderFrame& f, const Eigen::Vector3d& x, double& clock, double& station,
+                double& rho) {
+  const Eigen::Vector3d w = x - f.c;
+  station = w.dot(f.a);
+  const Eigen::Vector3d radial = w - station * f.a;
+  rho = radial.norm();
+  clock = std::atan2(radial.dot(f.e2), radial.dot(f.e1));
+}
+
+double WrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
+
+double FeatureDisplacement(const WallFeature& ft, double radius, double clock, double station) {
+  const double ds = station - ft.station_mm;
+  const double arc = WrapAngle(clock - ft.clock_deg * kDeg) * radius;
+  switch (ft.type) {
+    case WallFeature::Type::kJoint: {
+      // Next section (station beyond the joint) displaced laterally by offset toward clock;
+      // an open gap of the given width and depth at the joint.
+      double d = 0.0;
+      if (ds > 0.5 * ft.gap_mm) d += ft.offset_mm * std::cos(clock - ft.clock_deg * kDeg);
+      if (std::abs(ds) <= 0.5 * ft.gap_mm) d -= ft.height_mm;
+      return d;
+    }
+    case WallFeature::Type::kBump: {
+      const double r2 = ds * ds + arc * arc;
+      return ft.height_mm * std::exp(-0.5 * r2 / (ft.radius_mm * ft.radius_mm));
+    }
+    case WallFeature::Type::kPit: {
+      const double q = (ds * ds + arc * arc) / (ft.radius_mm * ft.radius_mm);
+      return q < 1.0 ? -ft.height_mm * (1.0 - q) : 0.0;
+    }
+    case WallFeature::Type::kCrack: {
+      const double ca = std::cos(ft.angle_deg * kDeg), sa = std::sin(ft.angle_deg * kDeg);
+      const double along = ds * ca + arc * sa, across = -ds * sa + arc * ca;
+      if (std::abs(along) > 0.5 * ft.length_mm) return 0.0;
+      const double q = std::abs(across) / (0.5 * ft.width_mm);
+      return q < 1.0 ? -ft.height_mm * (1.0 - q) : 0.0;
+    }
+  }
+  return 0.0;
+}
+
+std::optional<SurfaceHit> IntersectPlane(const Scene& s, const Eigen::Vector3d& o,
+                                         const Eigen::Vector3d& d) {
+  const Eigen::Vector3d n =
+      Eigen::AngleAxisd(s.tilt_deg * kDeg, Eigen::Vector3d::UnitX()) * Eigen::Vector3d(0, 0, -1);
+  const Eigen::Vector3d p0(0.0, 0.0, s.distance_mm);
+  const double denom = d.dot(n);
+  if (std::abs(denom) < 1e-15) return std::nullopt;
+  const double t = (p0 - o).dot(n) / denom;
+  if (!(t > 0.0)) return std::nullopt;
+  SurfaceHit hit;
+  hit.t = t;
+  hit.point = o + t * d;
+  hit.normal = denom < 0 ? n : -n;
+  // In-plane coordinates: camera x and the tilted y direction.
+  const Eigen::Vector3d ey = n.cross(Eigen::Vector3d::UnitX()).normalized();
+  hit.surface_mm = {hit.point.x(), (hit.point - p0).dot(ey)};
+  return hit;
+}
+
+}  // namespace
+
+void Scene::Check() const {
+  SEWER3D_CHECK(type != Type::kPlane || distance_mm > 0.0, "plane distance " << distance_mm);
+  SEWER3D_CHECK(std::abs(tilt_deg) < 89.0, "tilt " << tilt_deg);
+  SEWER3D_CHECK(type == Type::kPlane || diameter_mm > 0.0, "diameter " << diameter_mm);
+  SEWER3D_CHECK(axis.norm() > 0.0 && axis.allFinite(), "axis");
+  SEWER3D_CHECK(type == Type::kPlane || std::abs(axis.normalized().z()) < 0.99,
+                "cylinder axis nearly along the optical axis");
+  if (type != Type::kPlane) {
+    const CylinderFrame f = FrameOf(*this);
+    const Eigen::Vector3d w = -f.c;
+    const double rho = (w - w.dot(f.a) * f.a).norm();
+    SEWER3D_CHECK(rho < f.radius, "camera outside the cylinder (decentring " << rho << " mm)");
+  }
+  for (const auto& ft : features) {
+    SEWER3D_CHECK(ft.gap_mm >= 0.0 && ft.width_mm >= 0.0 && ft.length_mm >= 0.0, "feature size");
+    SEWER3D_CHECK(ft.type != WallFeature::Type::kBump || ft.radius_mm > 0.0, "bump radius");
+    SEWER3D_CHECK(ft.type != WallFeature::Type::kPit || ft.radius_mm > 0.0, "pit radius");
+    SEWER3D_CHECK(ft.type != WallFeature::Type::kCrack || ft.width_mm > 0.0, "crack width");
+  }
+}
+
+double WallDisplacementMm(const Scene& scene, double clock_rad, double station_mm) {
+  double d = 0.0;
+  for (const auto& ft : scene.features) {
+    d += FeatureDisplacement(ft, 0.5 * scene.diameter_mm, clock_rad, station_mm);
+  }
+  return d;
+}
+
+std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o,
+                                    const Eigen::Vector3d& d) {
+  if (scene.type == Scene::Type::kPlane) return IntersectPlane(scene, o, d);
+  const CylinderFrame f = FrameOf(scene);
+  SurfaceHit hit;
+  if (scene.type == Scene::Type::kCylinder || scene.features.empty()) {
+    const auto t = CylinderRoot(f, o, d, f.radius);
+    if (!t) return std::nullopt;
+    hit.t = *t;
+  } else {
+    // Displaced wall: radius(clock, station) = R − δ. Bracket between the extreme radii and
+    // refine g(t) = ρ(t) − radius(t) by the Illinois variant of regula falsi.
+    double max_in = 0.0, max_out = 0.0;
+    for (const auto& ft : scene.features) {
+      max_in += std::max({ft.height_mm, std::abs(ft.offset_mm), 0.0});
+      max_out += std::max(ft.height_mm, 0.0) + std::abs(ft.offset_mm);
+    }
+    auto g = [&](double t) {
+      double clock, station, rho;
+      ToCylinder(f, o + t * d, clock, station, rho);
+      return rho - (f.radius - WallDisplacementMm(scene, clock, station));
+    };
+    const auto lo_t = CylinderRoot(f, o, d, std::max(1e-3, f.radius - max_in - 1e-6));
+    const auto hi_t = CylinderRoot(f, o, d, f.radius + max_out + 1e-6);
+    if (!lo_t || !hi_t) return std::nullopt;
+    double a = *lo_t, b = *hi_t, ga = g(a), gb = g(b);
+    if (ga > 0.0) {
+      hit.t = a;
+    } else {
+      int side = 0;
+      double t = a;
+      for (int it = 0; it < 60 && b - a > 1e-9; ++it) {
+        t = (a * gb - b * ga) / (gb - ga);
+        if (!(t > a && t < b)) t = 0.5 * (a + b);
+        const double gt = g(t);
+        if (gt > 0.0) {
+          b = t, gb = gt;
+          if (side == -1) ga *= 0.5;
+          side = -1;
+        } else {
+          a = t, ga = gt;
+          if (side == 1) gb *= 0.5;
+          side = 1;
+        }
+        if (std::abs(gt) < 1e-10) break;
+      }
+      hit.t = t;
+    }
+  }
+  hit.point = o + hit.t * d;
+  double clock, station, rho;
+  ToCylinder(f, hit.point, clock, station, rho);
+  const Eigen::Vector3d radial_dir = std::cos(clock) * f.e1 + std::sin(clock) * f.e2;
+  Eigen::Vector3d normal = -radial_dir;  // facing the axis
+  if (scene.type == Scene::Type::kPipeWall && !scene.features.empty()) {
+    // Tilt the normal by the displacement gradient (central differences, 0.05 mm).
+    constexpr double h = 0.05;
+    const double dd_ds = (WallDisplacementMm(scene, clock, station + h) -
+                          WallDisplacementMm(scene, clock, station - h)) / (2 * h);
+    const double dd_darc = (WallDisplacementMm(scene, clock + h / rho, station) -
+                            WallDisplacementMm(scene, clock - h / rho, station)) / (2 * h);
+    const Eigen::Vector3d tangent = -std::sin(clock) * f.e1 + std::cos(clock) * f.e2;
+    normal = (normal - dd_ds * f.a - dd_darc * tangent).normalized();
+  }
+  hit.normal = normal.dot(d) < 0 ? normal : -normal;
+  hit.surface_mm = {clock * f.radius, station};
+  return hit;
+}
+
+}  // namespace sewer3d

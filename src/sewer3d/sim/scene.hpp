@@ -1,0 +1,66 @@
+#pragma once
+/// \file
+/// Virtual surfaces seen by one module (docs/simulator.md): a plane, the inside of a cylinder,
+/// and a pipe-wall patch (cylinder plus displacement features). All in the camera frame, mm.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sewer3d {
+
+enum class Material { kConcrete, kVitrifiedClay, kPlastic };
+
+/// A displacement of the pipe wall. Positions: station along the axis (mm) and clock angle
+/// (deg, 0 = where the camera's optical axis meets the wall, increasing toward camera +x).
+struct WallFeature {
+  enum class Type { kJoint, kBump, kPit, kCrack };
+  Type type = Type::kJoint;
+  double station_mm = 0.0;
+  double clock_deg = 0.0;
+  double gap_mm = 0.0;     ///< joint: width of the open gap
+  double offset_mm = 0.0;  ///< joint: radial displacement of the next section, inward at clock
+  double height_mm = 0.0;  ///< bump: intrusion height; pit / crack / joint gap: depth
+  double radius_mm = 0.0;  ///< bump: Gaussian sigma; pit: radius
+  double width_mm = 0.0;   ///< crack: width
+  double length_mm = 0.0;  ///< crack: length
+  double angle_deg = 0.0;  ///< crack: direction on the unrolled wall (0 = along the axis)
+};
+
+struct Scene {
+  enum class Type { kPlane, kCylinder, kPipeWall };
+  Type type = Type::kPlane;
+  Material material = Material::kConcrete;
+  std::uint64_t material_seed = 1;
+  // Plane: crosses the optical axis at distance_mm, normal tilted by tilt_deg about camera x.
+  double distance_mm = 140.0;
+  double tilt_deg = 0.0;
+  // Cylinder / pipe wall: inner diameter, axis direction (camera frame) and the axis's offset
+  // from the camera centre (decentring), as a point on the axis.
+  double diameter_mm = 300.0;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitY();
+  Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();
+  std::vector<WallFeature> features;  ///< pipe wall only
+
+  void Check() const;
+};
+
+/// Where a ray meets the surface.
+struct SurfaceHit {
+  double t = 0.0;                  ///< ray parameter (direction need not be unit)
+  Eigen::Vector3d point;           ///< camera frame, mm
+  Eigen::Vector3d normal;          ///< unit, facing the ray origin
+  Eigen::Vector2d surface_mm;      ///< 2-D surface coordinates for textures (unrolled wall)
+};
+
+/// First intersection with t > 0 of origin + t * direction; nullopt when the ray misses.
+std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& origin,
+                                    const Eigen::Vector3d& direction);
+
+/// Radial displacement of the pipe wall toward the axis (mm) at a clock angle and station.
+double WallDisplacementMm(const Scene& scene, double clock_rad, double station_mm);
+
+}  // namespace sewer3d

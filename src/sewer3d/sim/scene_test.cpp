@@ -1,0 +1,82 @@
+#include "sewer3d/sim/scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace sewer3d {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+TEST(Scene, TiltedPlaneMatchesClosedForm) {
+  Scene s;
+  s.distance_mm = 90.0;
+  s.tilt_deg = 20.0;
+  for (double y : {-0.5, 0.0, 0.3, 0.7}) {
+    const auto hit = Intersect(s, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, y, 1.0));
+    ASSERT_TRUE(hit.has_value());
+    // Plane z = d + y_world tan(tilt): along the ray t = d / (1 − y tan(tilt)).
+    EXPECT_NEAR(hit->point.z(), 90.0 / (1.0 - y * std::tan(20.0 * kDeg)), 1e-9);
+    EXPECT_NEAR(hit->normal.norm(), 1.0, 1e-12);
+    EXPECT_LT(hit->normal.z(), 0.0);  // faces the camera
+  }
+}
+
+TEST(Scene, DecentredCylinderMatchesClosedForm) {
+  Scene s;
+  s.type = Scene::Type::kCylinder;
+  s.diameter_mm = 300.0;
+  s.axis_point_mm = {10.0, 0.0, 20.0};  // camera 22 mm off the axis
+  for (double x : {-0.7, 0.0, 0.4}) {
+    const auto hit = Intersect(s, Eigen::Vector3d::Zero(), Eigen::Vector3d(x, 0.3, 1.0));
+    ASSERT_TRUE(hit.has_value());
+    // (t x − 10)² + (t − 20)² = 150², far root.
+    const double a = x * x + 1, b = -2 * (10 * x + 20), c = 100 + 400 - 22500;
+    const double t = (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+    EXPECT_NEAR(hit->point.z(), t, 1e-9);
+    EXPECT_NEAR(std::hypot(hit->point.x() - 10.0, hit->point.z() - 20.0), 150.0, 1e-9);
+  }
+}
+
+TEST(Scene, PipeWallFollowsItsDisplacementField) {
+  Scene s;
+  s.type = Scene::Type::kPipeWall;
+  s.diameter_mm = 300.0;
+  WallFeature joint;
+  joint.type = WallFeature::Type::kJoint;
+  joint.station_mm = 0.0;
+  joint.gap_mm = 4.0;
+  joint.height_mm = 3.0;
+  joint.offset_mm = 5.0;
+  WallFeature bump;
+  bump.type = WallFeature::Type::kBump;
+  bump.station_mm = -40.0;
+  bump.height_mm = 8.0;
+  bump.radius_mm = 6.0;
+  s.features = {joint, bump};
+  // Beyond the joint at clock 0 the wall is 5 mm closer; in the gap 3 mm deeper; on the bump
+  // top 8 mm closer.
+  auto radius_at = [&](double y) {
+    const auto hit = Intersect(s, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, y, 1.0));
+    EXPECT_TRUE(hit.has_value());
+    return std::hypot(hit->point.x(), hit->point.z());
+  };
+  EXPECT_NEAR(radius_at(0.3), 145.0, 1e-6);   // station ~ +45 mm
+  EXPECT_NEAR(radius_at(-0.07), 150.0, 1e-3);  // station ~ −10 mm, plain wall
+  EXPECT_NEAR(radius_at(0.0), 153.0, 1e-6);   // in the gap
+  EXPECT_NEAR(radius_at(-40.0 / 142.0), 142.0, 0.05);  // bump top (station −40)
+  EXPECT_NEAR(WallDisplacementMm(s, 0.0, -40.0), 8.0, 1e-12);
+}
+
+TEST(Scene, RejectsCameraOutsideCylinder) {
+  Scene s;
+  s.type = Scene::Type::kCylinder;
+  s.diameter_mm = 100.0;
+  s.axis_point_mm = {0.0, 0.0, 80.0};
+  EXPECT_THROW(s.Check(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sewer3d
