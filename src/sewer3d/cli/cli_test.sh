@@ -19,7 +19,7 @@ expect_error() {
 }
 
 expect_ok "$bin" --help
-for sub in module pattern describe posegraph; do
+for sub in module pattern describe posegraph simulate; do
   grep -q "$sub" "$tmp/out" || fail "--help does not list $sub"
 done
 for sub in module pattern describe posegraph; do
@@ -56,6 +56,28 @@ grep -q '"valid": true' "$tmp/p/small.json" || fail "pattern report not valid"
 head -c 100 "$tmp/m/pattern.png" >"$tmp/m/cut.png"
 sed 's/"pattern.png"/"cut.png"/' "$tmp/m/module.json" >"$tmp/m/cut.json"
 expect_error "cut.png" "$bin" describe --module "$tmp/m/cut.json"
+
+# Simulation (reduced module from above).
+expect_ok "$bin" simulate frame --help
+grep -q -- "--scene" "$tmp/out" || fail "simulate frame --help shows no --scene"
+expect_ok "$bin" simulate frame --module "$tmp/m/module.json" --scene plane --distance-mm 90 \
+  --out "$tmp/s/plane" --supersampling 1
+for f in pattern.png texture.png truth_depth.tiff depth_preview.png scene.json; do
+  [ -s "$tmp/s/plane/$f" ] || fail "simulate did not write $f"
+done
+grep -q '"seed"' "$tmp/s/plane/scene.json" || fail "scene.json lacks the seed"
+cat >"$tmp/s/wall.json" <<'JSON'
+{"type": "pipe_wall", "diameter_mm": 250, "material": "vitrified_clay",
+ "features": [{"type": "joint", "station_mm": 20, "gap_mm": 4, "height_mm": 2, "offset_mm": 3}]}
+JSON
+expect_ok "$bin" simulate frame --module "$tmp/m/module.json" --scene "$tmp/s/wall.json" \
+  --out "$tmp/s/wall" --supersampling 1 --bits 10
+grep -q vitrified_clay "$tmp/s/wall/scene.json" || fail "scene file not used"
+echo '{"type": "torus"}' >"$tmp/s/bad.json"
+expect_error "'type'" "$bin" simulate frame --module "$tmp/m/module.json" --scene "$tmp/s/bad.json" --out "$tmp/s/x"
+echo '{"type": "cylinder", "diameter_mm": 100, "axis_point_mm": [0, 0, 80]}' >"$tmp/s/outside.json"
+expect_error "camera outside" "$bin" simulate frame --module "$tmp/m/module.json" --scene "$tmp/s/outside.json" --out "$tmp/s/x"
+expect_error "error" "$bin" simulate frame --module "$tmp/nothing.json" --out "$tmp/s/x"
 
 # Pose graphs.
 data=${SEWER3D_DATA:?set SEWER3D_DATA to tests/data}

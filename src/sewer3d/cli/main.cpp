@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
       sewer3d::cli::AddPatternCommand(app),
       sewer3d::cli::AddDescribeCommand(app),
       sewer3d::cli::AddPoseGraphCommand(app),
+      sewer3d::cli::AddSimulateCommand(app),
   };
   try {
     app.parse(argc, argv);
@@ -41,7 +42,9 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) {
       for (const auto& c : commands) {
         if (c.app->parsed()) {
-          std::cout << c.app->help();
+          const CLI::App* deepest = c.app;
+          for (const CLI::App* sub : c.app->get_subcommands()) deepest = sub;
+          std::cout << deepest->help();
           return 0;
         }
       }

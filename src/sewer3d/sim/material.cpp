@@ -41,9 +41,10 @@ double Fbm(std::uint64_t seed, double x, double y, int octaves) {
   return sum / norm;
 }
 
-// Aggregate grains: a jittered grid of discs (cell 6 mm) with random size and brightness.
+// Aggregate grains: a jittered grid of irregular grains (cell 5 mm, radius 0.4–2.5 mm) a
+// little brighter or darker than the cement around them.
 double Aggregate(std::uint64_t seed, const Eigen::Vector2d& p) {
-  constexpr double kCell = 6.0;
+  constexpr double kCell = 5.0;
   const double cx = std::floor(p.x() / kCell), cy = std::floor(p.y() / kCell);
   double shade = 0.0;
   for (int dj = -1; dj <= 1; ++dj) {
@@ -52,11 +53,14 @@ double Aggregate(std::uint64_t seed, const Eigen::Vector2d& p) {
       const auto j = static_cast<std::uint64_t>(static_cast<std::int64_t>(cy) + dj);
       const Eigen::Vector2d centre((cx + di + HashUniform(seed, i, j, 1)) * kCell,
                                    (cy + dj + HashUniform(seed, i, j, 2)) * kCell);
-      const double radius = 0.5 + 3.5 * HashUniform(seed, i, j, 3) * HashUniform(seed, i, j, 4);
-      const double r = (p - centre).norm() / radius;
+      const double radius = 0.4 + 2.1 * HashUniform(seed, i, j, 3) * HashUniform(seed, i, j, 4);
+      // Irregular outline: the radius wobbles with the direction.
+      const Eigen::Vector2d d = p - centre;
+      const double wobble = 0.75 + 0.5 * ValueNoise(seed + i * 31 + j, 2.0 + std::atan2(d.y(), d.x()), 0.5);
+      const double r = d.norm() / (radius * wobble);
       if (r < 1.0) {
-        const double edge = std::min(1.0, (1.0 - r) * radius * 4.0);  // ~0.25 mm soft rim
-        shade = (HashUniform(seed, i, j, 5) - 0.45) * 0.5 * edge;
+        const double edge = std::min(1.0, (1.0 - r) * radius * 3.0);
+        shade = (HashUniform(seed, i, j, 5) - 0.5) * 0.16 * edge;
       }
     }
   }
@@ -75,7 +79,7 @@ Eigen::Vector3d MaterialAlbedo(Material material, std::uint64_t seed, const Eige
     case Material::kConcrete: {
       const double mottling = Fbm(seed, p.x() / 3.0, p.y() / 3.0, 4) - 0.5;  // 3 mm and finer
       const double stain = std::max(0.0, Fbm(seed + 7, p.x() / 60.0, p.y() / 60.0, 2) - 0.55);
-      const double grey = 0.45 + 0.18 * mottling + Aggregate(seed + 13, p);
+      const double grey = 0.45 + 0.22 * mottling + Aggregate(seed + 13, p);
       const Eigen::Vector3d base(grey, grey * 0.98, grey * 0.94);
       const Eigen::Vector3d stained = base.cwiseProduct(Eigen::Vector3d(0.75, 0.65, 0.5));
       const double w = std::min(1.0, stain * 4.0);

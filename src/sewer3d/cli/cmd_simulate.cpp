@@ -1,0 +1,128 @@
+// `sewer3d simulate frame`: renders one module's pattern and texture images of a scene.
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <filesystem>
+#include <sstream>
+
+#include "sewer3d/cli/command.hpp"
+#include "sewer3d/io/module_io.hpp"
+#include "sewer3d/io/scene_io.hpp"
+#include "sewer3d/sim/renderer.hpp"
+
+namespace sewer3d::cli {
+namespace {
+
+// The pipe-wall preset: a DN300 wall with a displaced open joint, an intrusion, a pit and a
+// crack, all inside the default module's field of view.
+std::vector<WallFeature> PipeWallPreset() {
+  std::vector<WallFeature> f(4);
+  f[0].type = WallFeature::Type::kJoint;
+  f[0].station_mm = 45.0;
+  f[0].gap_mm = 6.0;
+  f[0].height_mm = 4.0;
+  f[0].offset_mm = 5.0;
+  f[1].type = WallFeature::Type::kBump;
+  f[1].station_mm = 10.0;
+  f[1].clock_deg = -18.0;
+  f[1].height_mm = 6.0;
+  f[1].radius_mm = 6.0;
+  f[2].type = WallFeature::Type::kPit;
+  f[2].station_mm = 0.0;
+  f[2].clock_deg = 15.0;
+  f[2].height_mm = 4.0;
+  f[2].radius_mm = 10.0;
+  f[3].type = WallFeature::Type::kCrack;
+  f[3].station_mm = 90.0;
+  f[3].clock_deg = -5.0;
+  f[3].height_mm = 2.0;
+  f[3].width_mm = 1.0;
+  f[3].length_mm = 60.0;
+  f[3].angle_deg = 70.0;
+  return f;
+}
+
+}  // namespace
+
+Command AddSimulateCommand(CLI::App& app) {
+  struct Args {
+    std::string module, scene = "plane", out, material = "concrete";
+    double distance = 140.0, tilt = 0.0, diameter = 300.0;
+    std::vector<double> decentre{0.0, 0.0};
+    bool ideal = false;
+    RenderOptions render;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* sim = app.add_subcommand("simulate", "Render simulated captures");
+  sim->require_subcommand(1);
+  CLI::App* frame = sim->add_subcommand("frame", "Render one module's pattern and texture images of a scene");
+  frame->add_option("--module", args->module, "module.json")->required()->check(CLI::ExistingFile);
+  frame->add_option("--scene", args->scene, "plane, cylinder, pipe-wall, or a scene JSON file")
+      ->capture_default_str();
+  frame->add_option("--out", args->out, "Output folder")->required();
+  frame->add_option("--seed", args->render.seed, "Noise / sampling seed")->capture_default_str();
+  frame->add_option("--material", args->material, "concrete, vitrified_clay or plastic")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"concrete", "vitrified_clay", "plastic"}));
+  frame->add_option("--distance-mm", args->distance, "plane: distance along the optical axis")
+      ->capture_default_str()->check(CLI::Range(10.0, 5000.0));
+  frame->add_option("--tilt-deg", args->tilt, "plane: tilt about the camera x axis")
+      ->capture_default_str()->check(CLI::Range(-80.0, 80.0));
+  frame->add_option("--diameter-mm", args->diameter, "cylinder / pipe-wall: inner diameter")
+      ->capture_default_str()->check(CLI::Range(20.0, 5000.0));
+  frame->add_option("--decentre-mm", args->decentre, "cylinder / pipe-wall: axis offset (x z) from the camera")
+      ->expected(2);
+  frame->add_option("--supersampling", args->render.supersampling, "S x S samples per pixel")
+      ->capture_default_str()->check(CLI::Range(1, 16));
+  frame->add_option("--bits", args->render.sensor.bits, "ADC bits (8..12)")
+      ->capture_default_str()->check(CLI::Range(8, 12));
+  frame->add_option("--speed-mm-s", args->render.speed_mm_s, "Rig speed along the carrier axis (motion blur)")
+      ->capture_default_str()->check(CLI::Range(0.0, 10000.0));
+  frame->add_option("--exposure-ms", args->render.exposure_ms, "Exposure time")
+      ->capture_default_str()->check(CLI::Range(0.0, 1000.0));
+  frame->add_flag("--ideal", args->ideal, "No noise, defocus, ambient light or vignetting");
+  return {sim, [args, frame] {
+            if (!frame->parsed()) return 2;
+            const LoadedModule loaded = LoadModule(args->module);
+            Scene scene;
+            if (args->scene == "plane" || args->scene == "cylinder" || args->scene == "pipe-wall") {
+              scene.type = args->scene == "plane"      ? Scene::Type::kPlane
+                           : args->scene == "cylinder" ? Scene::Type::kCylinder
+                                                       : Scene::Type::kPipeWall;
+              scene.material = args->material == "plastic"          ? Material::kPlastic
+                               : args->material == "vitrified_clay" ? Material::kVitrifiedClay
+                                                                    : Material::kConcrete;
+              scene.distance_mm = args->distance;
+              scene.tilt_deg = args->tilt;
+              scene.diameter_mm = args->diameter;
+              scene.axis_point_mm = {args->decentre[0], 0.0, args->decentre[1]};
+              if (scene.type == Scene::Type::kPipeWall) scene.features = PipeWallPreset();
+              scene.Check();
+            } else {
+              scene = ReadScene(args->scene);
+            }
+            RenderOptions options = args->render;
+            if (args->ideal) {
+              const RenderOptions ideal = RenderOptions::Ideal();
+              options.camera_f_number = ideal.camera_f_number;
+              options.projector_f_number = ideal.projector_f_number;
+              options.ambient_level = ideal.ambient_level;
+              options.vignetting = ideal.vignetting;
+              options.sensor.noise = false;
+            }
+            const auto start = std::chrono::steady_clock::now();
+            const RenderedFrame rendered = RenderFrame(loaded.module, loaded.pattern, scene, options);
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            WriteRenderedFrame(args->out, rendered, scene, options, args->module);
+            fmt::print("rendered {}x{} px, {} samples in {:.2f} s ({:.1f} M samples/s)\n",
+                       loaded.module.camera.width, loaded.module.camera.height, rendered.samples,
+                       seconds, rendered.samples / seconds * 1e-6);
+            fmt::print("wrote {}/pattern.png, texture.png, truth_depth.tiff, depth_preview.png, scene.json\n",
+                       args->out);
+            return 0;
+          }};
+}
+
+}  // namespace sewer3d::cli

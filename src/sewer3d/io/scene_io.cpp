@@ -1,0 +1,233 @@
+#include "sewer3d/io/scene_io.hpp"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "sewer3d/io/file_error.hpp"
+
+namespace sewer3d {
+namespace {
+
+using nlohmann::json;
+
+const char* MaterialName(Material m) {
+  switch (m) {
+    case Material::kConcrete: return "concrete";
+    case Material::kVitrifiedClay: return "vitrified_clay";
+    case Material::kPlastic: return "plastic";
+  }
+  return "concrete";
+}
+const char* TypeName(Scene::Type t) {
+  switch (t) {
+    case Scene::Type::kPlane: return "plane";
+    case Scene::Type::kCylinder: return "cylinder";
+    case Scene::Type::kPipeWall: return "pipe_wall";
+  }
+  return "plane";
+}
+const char* FeatureName(WallFeature::Type t) {
+  switch (t) {
+    case WallFeature::Type::kJoint: return "joint";
+    case WallFeature::Type::kBump: return "bump";
+    case WallFeature::Type::kPit: return "pit";
+    case WallFeature::Type::kCrack: return "crack";
+  }
+  return "joint";
+}
+
+class Reader {
+ public:
+  explicit Reader(const std::filesystem::path& path) : path_(path) {}
+  [[noreturn]] void Fail(const std::string& field, const std::string& problem) const {
+    throw FileError(path_, "field '" + field + "' " + problem);
+  }
+  double Number(const json& j, const char* key, const std::string& prefix, double fallback) const {
+    const auto it = j.find(key);
+    if (it == j.end()) return fallback;
+    if (!it->is_number() || !std::isfinite(it->get<double>())) Fail(prefix + key, "must be a finite number");
+    return it->get<double>();
+  }
+  Eigen::Vector3d Vector(const json& j, const char* key, const Eigen::Vector3d& fallback) const {
+    const auto it = j.find(key);
+    if (it == j.end()) return fallback;
+    if (!it->is_array() || it->size() != 3) Fail(key, "must be an array of 3 numbers");
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) {
+      if (!(*it)[i].is_number()) Fail(key, "must be an array of 3 numbers");
+      v[i] = (*it)[i].get<double>();
+    }
+    return v;
+  }
+  std::string Text(const json& j, const char* key, const std::string& prefix, const std::string& fallback) const {
+    const auto it = j.find(key);
+    if (it == j.end()) return fallback;
+    if (!it->is_string()) Fail(prefix + key, "must be a string");
+    return it->get<std::string>();
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path.string(), image);
+  } catch (const cv::Exception& e) {
+    throw FileError(path, std::string("cannot write image: ") + e.err);
+  }
+  if (!ok) throw FileError(path, "cannot write image");
+}
+
+}  // namespace
+
+Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw FileError(path, std::string("invalid JSON: ") + e.what());
+  }
+  if (!j.is_object()) throw FileError(path, "must hold a JSON object");
+  const Reader in(path);
+  Scene s;
+  const std::string type = in.Text(j, "type", "", "");
+  if (type == "plane") s.type = Scene::Type::kPlane;
+  else if (type == "cylinder") s.type = Scene::Type::kCylinder;
+  else if (type == "pipe_wall") s.type = Scene::Type::kPipeWall;
+  else in.Fail("type", "must be plane, cylinder or pipe_wall, got '" + type + "'");
+  const std::string material = in.Text(j, "material", "", "concrete");
+  if (material == "concrete") s.material = Material::kConcrete;
+  else if (material == "vitrified_clay") s.material = Material::kVitrifiedClay;
+  else if (material == "plastic") s.material = Material::kPlastic;
+  else in.Fail("material", "must be concrete, vitrified_clay or plastic, got '" + material + "'");
+  s.material_seed = static_cast<std::uint64_t>(in.Number(j, "material_seed", "", 1.0));
+  s.distance_mm = in.Number(j, "distance_mm", "", s.distance_mm);
+  s.tilt_deg = in.Number(j, "tilt_deg", "", s.tilt_deg);
+  s.diameter_mm = in.Number(j, "diameter_mm", "", s.diameter_mm);
+  s.axis = in.Vector(j, "axis", s.axis);
+  s.axis_point_mm = in.Vector(j, "axis_point_mm", s.axis_point_mm);
+  if (const auto it = j.find("features"); it != j.end()) {
+    if (!it->is_array()) in.Fail("features", "must be an array");
+    for (size_t i = 0; i < it->size(); ++i) {
+      const json& f = (*it)[i];
+      const std::string prefix = "features[" + std::to_string(i) + "].";
+      if (!f.is_object()) in.Fail(prefix, "must be an object");
+      WallFeature ft;
+      const std::string kind = in.Text(f, "type", prefix, "");
+      if (kind == "joint") ft.type = WallFeature::Type::kJoint;
+      else if (kind == "bump") ft.type = WallFeature::Type::kBump;
+      else if (kind == "pit") ft.type = WallFeature::Type::kPit;
+      else if (kind == "crack") ft.type = WallFeature::Type::kCrack;
+      else in.Fail(prefix + "type", "must be joint, bump, pit or crack, got '" + kind + "'");
+      ft.station_mm = in.Number(f, "station_mm", prefix, 0.0);
+      ft.clock_deg = in.Number(f, "clock_deg", prefix, 0.0);
+      ft.gap_mm = in.Number(f, "gap_mm", prefix, 0.0);
+      ft.offset_mm = in.Number(f, "offset_mm", prefix, 0.0);
+      ft.height_mm = in.Number(f, "height_mm", prefix, 0.0);
+      ft.radius_mm = in.Number(f, "radius_mm", prefix, 0.0);
+      ft.width_mm = in.Number(f, "width_mm", prefix, 0.0);
+      ft.length_mm = in.Number(f, "length_mm", prefix, 0.0);
+      ft.angle_deg = in.Number(f, "angle_deg", prefix, 0.0);
+      s.features.push_back(ft);
+    }
+  }
+  try {
+    s.Check();
+  } catch (const std::invalid_argument& e) {
+    throw FileError(path, std::string("inconsistent scene: ") + e.what());
+  }
+  return s;
+}
+
+Scene ReadScene(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || !file) throw FileError(path, "cannot open file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return ParseScene(text.str(), path);
+}
+
+std::string SceneToJson(const Scene& s) {
+  json j;
+  j["type"] = TypeName(s.type);
+  j["material"] = MaterialName(s.material);
+  j["material_seed"] = s.material_seed;
+  if (s.type == Scene::Type::kPlane) {
+    j["distance_mm"] = s.distance_mm;
+    j["tilt_deg"] = s.tilt_deg;
+  } else {
+    j["diameter_mm"] = s.diameter_mm;
+    j["axis"] = {s.axis.x(), s.axis.y(), s.axis.z()};
+    j["axis_point_mm"] = {s.axis_point_mm.x(), s.axis_point_mm.y(), s.axis_point_mm.z()};
+    j["features"] = json::array();
+    for (const auto& f : s.features) {
+      j["features"].push_back({{"type", FeatureName(f.type)}, {"station_mm", f.station_mm},
+                               {"clock_deg", f.clock_deg}, {"gap_mm", f.gap_mm},
+                               {"offset_mm", f.offset_mm}, {"height_mm", f.height_mm},
+                               {"radius_mm", f.radius_mm}, {"width_mm", f.width_mm},
+                               {"length_mm", f.length_mm}, {"angle_deg", f.angle_deg}});
+    }
+  }
+  return j.dump(2);
+}
+
+void WriteRenderedFrame(const std::filesystem::path& dir, const RenderedFrame& frame,
+                        const Scene& scene, const RenderOptions& o,
+                        const std::filesystem::path& module_path) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw FileError(dir, "cannot create folder: " + ec.message());
+  const int bits = o.sensor.bits;
+  cv::Mat pattern;
+  if (bits == 8) frame.pattern.convertTo(pattern, CV_8U);
+  else pattern = frame.pattern;
+  WriteImage(dir / "pattern.png", pattern);
+  cv::Mat texture8, bgr;
+  frame.texture.convertTo(texture8, CV_8U, 255.0 / ((1 << bits) - 1));
+  cv::cvtColor(texture8, bgr, cv::COLOR_RGB2BGR);
+  WriteImage(dir / "texture.png", bgr);
+  WriteImage(dir / "truth_depth.tiff", frame.truth_depth);
+  // A colour-mapped depth preview a person can look at (near = red, far = blue).
+  cv::Mat1b depth8(frame.truth_depth.size(), 0);
+  double lo = 1e300, hi = -1e300;
+  for (float z : frame.truth_depth) {
+    if (std::isfinite(z)) lo = std::min<double>(lo, z), hi = std::max<double>(hi, z);
+  }
+  for (int v = 0; v < depth8.rows; ++v) {
+    for (int u = 0; u < depth8.cols; ++u) {
+      const float z = frame.truth_depth(v, u);
+      if (std::isfinite(z) && hi > lo) depth8(v, u) = cv::saturate_cast<std::uint8_t>(255.0 * (hi - z) / (hi - lo));
+    }
+  }
+  cv::Mat depth_colour;
+  cv::applyColorMap(depth8, depth_colour, cv::COLORMAP_TURBO);
+  WriteImage(dir / "depth_preview.png", depth_colour);
+
+  json doc;
+  doc["scene"] = json::parse(SceneToJson(scene));
+  doc["seed"] = o.seed;
+  doc["module"] = module_path.string();
+  doc["render"] = {{"supersampling", o.supersampling}, {"sensor_width_mm", o.sensor_width_mm},
+                   {"camera_f_number", o.camera_f_number}, {"camera_focus_mm", o.camera_focus_mm},
+                   {"projector_f_number", o.projector_f_number},
+                   {"projector_focus_mm", o.projector_focus_mm},
+                   {"projector_psf_px", o.projector_psf_px}, {"texture_level", o.texture_level},
+                   {"pattern_level", o.pattern_level}, {"ambient_level", o.ambient_level},
+                   {"vignetting", o.vignetting}, {"speed_mm_s", o.speed_mm_s},
+                   {"exposure_ms", o.exposure_ms},
+                   {"motion_direction", {o.motion_direction.x(), o.motion_direction.y(), o.motion_direction.z()}},
+                   {"full_well_e", o.sensor.full_well_e}, {"read_noise_e", o.sensor.read_noise_e},
+                   {"bits", o.sensor.bits}, {"noise", o.sensor.noise}};
+  doc["depth_range_mm"] = {lo, hi};
+  std::ofstream file(dir / "scene.json");
+  if (!file) throw FileError(dir / "scene.json", "cannot open for writing");
+  file << doc.dump(2) << "\n";
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,25 @@
+#pragma once
+/// \file
+/// Scene JSON (docs/simulator.md) and the files of a rendered frame. Errors are FileError.
+
+#include <filesystem>
+#include <string>
+
+#include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/sim/scene.hpp"
+
+namespace sewer3d {
+
+/// Parses a scene JSON document; `path` names the source in messages.
+Scene ParseScene(const std::string& json_text, const std::filesystem::path& path);
+Scene ReadScene(const std::filesystem::path& path);
+std::string SceneToJson(const Scene& scene);
+
+/// Writes pattern.png (8-bit, or 16-bit holding the DN when bits > 8), texture.png (8-bit
+/// colour), truth_depth.tiff (float32 z mm, NaN where no surface), depth_preview.png, and
+/// scene.json (the scene exactly as rendered, the render options, the seed, the module path).
+void WriteRenderedFrame(const std::filesystem::path& dir, const RenderedFrame& frame,
+                        const Scene& scene, const RenderOptions& options,
+                        const std::filesystem::path& module_path);
+
+}  // namespace sewer3d
