@@ -50,6 +50,7 @@ Command AddSimulateCommand(CLI::App& app) {
     std::string module, scene = "plane", out, material = "concrete";
     double distance = 140.0, tilt = 0.0, diameter = 300.0;
     std::vector<double> decentre{0.0, 0.0};
+    std::vector<double> axis{0.0, 1.0, 0.0};
     bool ideal = false;
     RenderOptions render;
   };
@@ -73,6 +74,8 @@ Command AddSimulateCommand(CLI::App& app) {
       ->capture_default_str()->check(CLI::Range(20.0, 5000.0));
   frame->add_option("--decentre-mm", args->decentre, "cylinder / pipe-wall: axis offset (x z) from the camera")
       ->expected(2);
+  frame->add_option("--axis", args->axis, "cylinder / pipe-wall: axis direction (x y z, camera frame)")
+      ->expected(3);
   frame->add_option("--supersampling", args->render.supersampling, "S x S samples per pixel")
       ->capture_default_str()->check(CLI::Range(1, 16));
   frame->add_option("--bits", args->render.sensor.bits, "ADC bits (8..12)")
@@ -97,6 +100,7 @@ Command AddSimulateCommand(CLI::App& app) {
               scene.tilt_deg = args->tilt;
               scene.diameter_mm = args->diameter;
               scene.axis_point_mm = {args->decentre[0], 0.0, args->decentre[1]};
+              scene.axis = {args->axis[0], args->axis[1], args->axis[2]};
               if (scene.type == Scene::Type::kPipeWall) scene.features = PipeWallPreset();
               scene.Check();
             } else {

@@ -56,6 +56,7 @@ double Aggregate(std::uint64_t seed, const Eigen::Vector2d& p) {
       const double radius = 0.4 + 2.1 * HashUniform(seed, i, j, 3) * HashUniform(seed, i, j, 4);
       // Irregular outline: the radius wobbles with the direction.
       const Eigen::Vector2d d = p - centre;
+      if (d.squaredNorm() > 1.5625 * radius * radius) continue;  // beyond the largest wobble
       const double wobble = 0.75 + 0.5 * ValueNoise(seed + i * 31 + j, 2.0 + std::atan2(d.y(), d.x()), 0.5);
       const double r = d.norm() / (radius * wobble);
       if (r < 1.0) {

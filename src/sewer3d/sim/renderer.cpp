@@ -67,7 +67,9 @@ struct Setup {
     for (int r = r_lo; r <= r_hi; ++r) {
       for (int c = c_lo; c <= c_hi; ++c) {
         if (!pattern.tiled(r, c)) continue;
-        const double rho = (uv - layout.ElementCentre(r, c)).norm();
+        const double rho2 = (uv - layout.ElementCentre(r, c)).squaredNorm();
+        if (rho2 > reach * reach) continue;  // erfc below 3e-8
+        const double rho = std::sqrt(rho2);
         value += 0.5 * std::erfc((rho - radius) * inv);  // disk edge convolved with a Gaussian
       }
     }

@@ -67,6 +67,8 @@ TEST(Renderer, IdealSpotsLieOnTheProjectedElementCentres) {
       ++checked;
     }
   }
+  RecordProperty("worst_centroid_error_px", std::to_string(worst));
+  RecordProperty("spots_checked", checked);
   EXPECT_GT(checked, 500);
   EXPECT_LT(worst, 0.05);
 }
@@ -98,6 +100,8 @@ TEST(Renderer, TruthDepthMatchesAnalyticSurfaces) {
     }
   }
   // float32 storage: 1e-4 mm is ~1.5 ulp at 225 mm.
+  RecordProperty("worst_plane_depth_error_mm", std::to_string(worst_plane));
+  RecordProperty("worst_cylinder_depth_error_mm", std::to_string(worst_cylinder));
   EXPECT_LT(worst_plane, 1e-4);
   EXPECT_LT(worst_cylinder, 1e-4);
 }
