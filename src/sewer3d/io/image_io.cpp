@@ -20,7 +20,9 @@ void EnsureParent(const std::filesystem::path& path) {
   if (ec) throw FileError(path.parent_path(), "cannot create folder: " + ec.message());
 }
 
-void Write(const std::filesystem::path& path, const cv::Mat& image) {
+}  // namespace
+
+void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
   EnsureParent(path);
   bool ok = false;
   try {
@@ -30,8 +32,6 @@ void Write(const std::filesystem::path& path, const cv::Mat& image) {
   }
   if (!ok) throw FileError(path, "cannot write image");
 }
-
-}  // namespace
 
 BinaryArray ReadPatternMatrix(const std::filesystem::path& path) {
   std::error_code ec;
@@ -74,7 +74,7 @@ void WritePatternMatrix(const std::filesystem::path& path, const BinaryArray& ar
   for (int r = 0; r < array.rows; ++r) {
     for (int c = 0; c < array.cols; ++c) image(r, c) = array.at(r, c) ? 255 : 0;
   }
-  Write(path, image);
+  WriteImage(path, image);
 }
 
 void WritePatternPreview(const std::filesystem::path& path, const BinaryArray& array, int scale,
@@ -90,7 +90,7 @@ void WritePatternPreview(const std::filesystem::path& path, const BinaryArray& a
   for (int c = 0; c <= array.cols; c += window) {
     cv::line(image, {c * scale, 0}, {c * scale, image.rows}, cv::Scalar(0, 120, 255), 1);
   }
-  Write(path, image);
+  WriteImage(path, image);
 }
 
 }  // namespace sewer3d

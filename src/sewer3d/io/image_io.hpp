@@ -3,10 +3,14 @@
 /// Reading and writing images and pattern matrices. Errors are FileError.
 
 #include <filesystem>
+#include <opencv2/core/mat.hpp>
 
 #include "sewer3d/pattern/binary_array.hpp"
 
 namespace sewer3d {
+
+/// Writes any image OpenCV can encode (format from the extension); creates parent folders.
+void WriteImage(const std::filesystem::path& path, const cv::Mat& image);
 
 /// Reads a pattern matrix PNG (one pixel per element, non-zero = spot, DESIGN.md contract).
 /// Colour images count a pixel as a spot when any channel is non-zero.

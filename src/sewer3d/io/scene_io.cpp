@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
 
 namespace sewer3d {
 namespace {
@@ -72,16 +73,6 @@ class Reader {
  private:
   std::filesystem::path path_;
 };
-
-void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception& e) {
-    throw FileError(path, std::string("cannot write image: ") + e.err);
-  }
-  if (!ok) throw FileError(path, "cannot write image");
-}
 
 }  // namespace
 
