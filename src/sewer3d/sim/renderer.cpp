@@ -103,7 +103,8 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
   const Eigen::Vector3d p_projector = s.projector_rotation * p_rig + s.module.projector_from_camera.translation;
   double pattern = o.ambient_level;
   const auto uv = s.projector.Project(p_projector);
-  if (uv) {
+  const auto& pi = s.module.projector;
+  if (uv && uv->x() >= -0.5 && uv->y() >= -0.5 && uv->x() <= pi.width - 0.5 && uv->y() <= pi.height - 0.5) {
     const Eigen::Vector3d projector_centre = s.module.projector_from_camera.Inverse().translation + rig_shift;
     const Eigen::Vector3d to_projector = projector_centre - hit->point;
     const double d_projector = to_projector.norm();

@@ -51,8 +51,8 @@ TEST(Renderer, IdealSpotsLieOnTheProjectedElementCentres) {
   const Rigid3d camera_from_projector = module.projector_from_camera.Inverse();
   double worst = 0.0;
   int checked = 0;
-  for (int r = 0; r < module.projector.height / 8; ++r) {
-    for (int c = 0; c < module.projector.width / 8; ++c) {
+  for (int r = 0; r <= module.projector.height / 8; ++r) {
+    for (int c = 0; c <= module.projector.width / 8; ++c) {
       if (!pattern.tiled(r, c)) continue;
       const auto ray_p = projector.Ray(module.pattern.ElementCentre(r, c));
       if (!ray_p) continue;

@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// Niblack local thresholding (paper §decode: robust to cracks and contrasted texture):
+/// a pixel is foreground when I > m + k·s, m and s the mean and standard deviation over a
+/// w × w window. Box sums by running sums (O(1) per pixel, independent of w); the buffers live
+/// in the binariser and are reused from frame to frame.
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace sewer3d {
+
+struct NiblackOptions {
+  int window = 21;           ///< odd window side, px (about 2.5 spot pitches)
+  double k = 0.3;            ///< weight of the local standard deviation
+  /// Foreground also needs I − m ≥ min_contrast (image units), which keeps flat dark
+  /// background (where s is only noise) from turning into speckle.
+  double min_contrast = 4.0;
+  void Check() const;
+};
+
+class NiblackBinariser {
+ public:
+  explicit NiblackBinariser(const NiblackOptions& options);
+
+  /// Binarises an 8-bit or 16-bit single-channel image into `mask` (0 / 255, same size).
+  /// Windows are clipped at the image border.
+  void Apply(const cv::Mat& image, cv::Mat1b& mask);
+
+  /// Local mean of the last image (valid after Apply), for contrast-weighted centroids.
+  const cv::Mat1f& local_mean() const { return mean_; }
+
+ private:
+  NiblackOptions options_;
+  cv::Mat1f mean_;
+  std::vector<double> column_sum_, column_sum2_;
+  std::vector<std::uint16_t> row_values_;
+};
+
+}  // namespace sewer3d

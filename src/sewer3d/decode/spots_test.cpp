@@ -1,0 +1,113 @@
+#include "sewer3d/decode/spots.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/decode/niblack.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/sim/renderer.hpp"
+
+namespace sewer3d {
+namespace {
+
+TEST(Niblack, MatchesBruteForceWindowStatistics) {
+  std::mt19937 rng(1);
+  cv::Mat1w image(37, 53);
+  for (auto& x : image) x = static_cast<std::uint16_t>(rng() % 1024);
+  NiblackOptions options;
+  options.window = 7;
+  options.k = 0.4;
+  options.min_contrast = 2.0;
+  NiblackBinariser binariser(options);
+  cv::Mat1b mask;
+  binariser.Apply(image, mask);
+  for (int v = 0; v < image.rows; ++v) {
+    for (int u = 0; u < image.cols; ++u) {
+      double s = 0, s2 = 0;
+      int n = 0;
+      for (int y = std::max(0, v - 3); y <= std::min(image.rows - 1, v + 3); ++y) {
+        for (int x = std::max(0, u - 3); x <= std::min(image.cols - 1, u + 3); ++x) {
+          s += image(y, x);
+          s2 += double(image(y, x)) * image(y, x);
+          ++n;
+        }
+      }
+      const double mean = s / n, sd = std::sqrt(std::max(0.0, s2 / n - mean * mean));
+      const bool expected = image(v, u) > std::max(mean + 0.4 * sd, mean + 2.0);
+      ASSERT_EQ(mask(v, u) != 0, expected) << v << "," << u;
+      ASSERT_NEAR(binariser.local_mean()(v, u), mean, 1e-3);
+    }
+  }
+}
+
+TEST(Spots, FindsRenderedSpotsWithSubpixelPrecision) {
+  DefaultModuleOptions module_options;
+  module_options.camera_width = 648;
+  module_options.camera_height = 486;
+  const ModuleDescription module = MakeDefaultModule(module_options);
+  const BinaryArray pattern = DefaultPatternArray();
+  Scene plane;
+  plane.distance_mm = 130.0;
+  plane.tilt_deg = 8.0;
+  RenderOptions options;  // realistic: noise, defocus, vignetting, concrete texture
+  options.sensor.bits = 10;
+  const RenderedFrame frame = RenderFrame(module, pattern, plane, options);
+
+  NiblackBinariser binariser(NiblackOptions{});
+  cv::Mat1b mask;
+  binariser.Apply(frame.pattern, mask);
+  const std::vector<Spot> spots = DetectSpots(frame.pattern, mask, binariser.local_mean(), SpotOptions{});
+
+  // Expected centres: projector ray through each element centre -> plane -> camera.
+  const CameraModel camera(module.camera), projector(module.projector);
+  const Rigid3d camera_from_projector = module.projector_from_camera.Inverse();
+  std::vector<Eigen::Vector2d> expected, expected_anywhere;
+  for (int r = 0; r <= module.projector.height / 8; ++r) {
+    for (int c = 0; c <= module.projector.width / 8; ++c) {
+      if (!pattern.tiled(r, c)) continue;
+      const auto ray = projector.Ray(module.pattern.ElementCentre(r, c));
+      if (!ray) continue;
+      const auto hit = Intersect(plane, camera_from_projector.translation, camera_from_projector.rotation * *ray);
+      if (!hit) continue;
+      const auto px = camera.Project(hit->point);
+      if (px) expected_anywhere.push_back(*px);
+      if (px && px->x() > 4 && px->y() > 4 && px->x() < module.camera.width - 5 &&
+          px->y() < module.camera.height - 5) {
+        expected.push_back(*px);
+      }
+    }
+  }
+  ASSERT_GT(expected.size(), 500u);
+  int found = 0;
+  double sum2 = 0.0;
+  for (const auto& e : expected) {
+    double best = 1e9;
+    for (const auto& s : spots) best = std::min(best, (s.centre_px - e).norm());
+    if (best < 1.5) {
+      ++found;
+      sum2 += best * best;
+    }
+  }
+  const double rms = std::sqrt(sum2 / std::max(found, 1));
+  RecordProperty("found", found);
+  RecordProperty("expected", static_cast<int>(expected.size()));
+  RecordProperty("rms_px", std::to_string(rms));
+  EXPECT_GT(found, 0.97 * expected.size());
+  EXPECT_LT(rms, 0.15);  // 10-bit noise, defocus and texture-modulated spots
+  // Spurious detections: interior spots near no projected element.
+  int spurious = 0;
+  for (const auto& sp : spots) {
+    const Eigen::Vector2d& c = sp.centre_px;
+    if (c.x() < 5 || c.y() < 5 || c.x() > module.camera.width - 6 || c.y() > module.camera.height - 6) continue;
+    double best = 1e9;
+    for (const auto& e : expected_anywhere) best = std::min(best, (c - e).norm());
+    spurious += best > 1.5;
+  }
+  RecordProperty("spurious", spurious);
+  EXPECT_LT(spurious, 0.01 * expected.size());
+}
+
+}  // namespace
+}  // namespace sewer3d

@@ -1,0 +1,22 @@
+#pragma once
+/// \file
+/// Linear (DLT) triangulation of a camera–projector correspondence (Hartley & Zisserman,
+/// 2nd ed., §12.2, p. 312), in normalised coordinates (distortion already removed).
+
+#include <Eigen/Core>
+
+#include <optional>
+
+#include "sewer3d/core/rigid3.hpp"
+
+namespace sewer3d {
+
+/// The point X (camera frame, mm) seen at normalised camera coordinates `camera_xy` and
+/// normalised projector coordinates `projector_xy`, with P_camera = [I | 0] and
+/// P_projector = [R | t] = projector_from_camera. Solves A X = 0 (four rows, x × (P X) = 0)
+/// by SVD. nullopt when the rays are parallel or the point lies behind either centre.
+std::optional<Eigen::Vector3d> TriangulateDlt(const Eigen::Vector2d& camera_xy,
+                                              const Eigen::Vector2d& projector_xy,
+                                              const Rigid3d& projector_from_camera);
+
+}  // namespace sewer3d
