@@ -1,0 +1,70 @@
+// Decode stages on a full 2592 x 1944 pattern image (default module, DN300 concrete cylinder,
+// realistic noise), next to OpenCV's ximgproc::niBlackThreshold and connectedComponentsWithStats.
+#include <benchmark/benchmark.h>
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/ximgproc.hpp>
+
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/decode/niblack.hpp"
+#include "sewer3d/decode/spots.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/sim/renderer.hpp"
+
+namespace sewer3d {
+namespace {
+
+const cv::Mat1b& PatternImage() {
+  static const cv::Mat1b image = [] {
+    Scene scene;
+    scene.type = Scene::Type::kCylinder;
+    scene.diameter_mm = 300.0;
+    RenderOptions options;
+    options.supersampling = 1;
+    const RenderedFrame frame = RenderFrame(MakeDefaultModule({}), DefaultPatternArray(), scene, options);
+    cv::Mat1b out;
+    frame.pattern.convertTo(out, CV_8U);
+    return out;
+  }();
+  return image;
+}
+
+void BM_NiblackRunningSums(benchmark::State& state) {
+  const cv::Mat1b& image = PatternImage();  // rendered once, outside the timing
+  NiblackBinariser binariser(NiblackOptions{});
+  cv::Mat1b mask;
+  for (auto _ : state) binariser.Apply(image, mask);
+  state.SetItemsProcessed(state.iterations() * PatternImage().total());
+}
+BENCHMARK(BM_NiblackRunningSums)->Unit(benchmark::kMillisecond);
+
+void BM_NiblackOpenCV(benchmark::State& state) {
+  cv::Mat mask;
+  for (auto _ : state) {
+    cv::ximgproc::niBlackThreshold(PatternImage(), mask, 255, cv::THRESH_BINARY, 21, 0.3);
+  }
+  state.SetItemsProcessed(state.iterations() * PatternImage().total());
+}
+BENCHMARK(BM_NiblackOpenCV)->Unit(benchmark::kMillisecond);
+
+void BM_SpotCentres(benchmark::State& state) {
+  NiblackBinariser binariser(NiblackOptions{});
+  cv::Mat1b mask;
+  binariser.Apply(PatternImage(), mask);
+  std::size_t spots = 0;
+  for (auto _ : state) spots = DetectSpots(PatternImage(), mask, binariser.local_mean(), SpotOptions{}).size();
+  state.counters["spots"] = static_cast<double>(spots);
+}
+BENCHMARK(BM_SpotCentres)->Unit(benchmark::kMillisecond);
+
+void BM_ConnectedComponentsOpenCV(benchmark::State& state) {
+  NiblackBinariser binariser(NiblackOptions{});
+  cv::Mat1b mask;
+  binariser.Apply(PatternImage(), mask);
+  cv::Mat labels, stats, centroids;
+  for (auto _ : state) cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+}
+BENCHMARK(BM_ConnectedComponentsOpenCV)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace sewer3d
