@@ -1,0 +1,61 @@
+#pragma once
+/// \file
+/// Recovery of the projected spot lattice in the camera image (paper §decode): every spot
+/// gets integer lattice coordinates (row, col) in projector element units, consistent within
+/// its connected group. Locally the lattice is affine: a neighbour at displacement d sits at
+/// (i, j) with d ≈ i·b + j·a, a and b the camera images of one projector column and row step.
+/// They are refined per spot from its neighbours, starting from the module's prediction, so
+/// lens distortion, perspective and depth changes bend the lattice without breaking it.
+
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "sewer3d/decode/spots.hpp"
+
+namespace sewer3d {
+
+struct LatticeOptions {
+  /// Neighbours considered for the local lattice: isolated spots can leave gaps of three
+  /// elements, and perspective stretches an 8 px pitch to ~9 px, so 4 steps.
+  double max_neighbour_px = 36.0;
+  double max_residual = 0.25;      ///< |d − (i b + j a)| limit, in lattice steps
+  int max_edge_steps = 3;          ///< longest edge used for labelling, in lattice steps
+  void Check() const;
+};
+
+/// Predicted camera-image lattice steps at a pixel: a = +1 projector column, b = +1 row.
+struct LatticeSteps {
+  Eigen::Vector2d column_step;
+  Eigen::Vector2d row_step;
+};
+
+struct LatticeLabels {
+  std::vector<int> group;            ///< per spot: connected group id, −1 if unlabelled
+  std::vector<Eigen::Vector2i> node; ///< per spot: (row, col) lattice coordinates in its group
+  std::vector<LatticeSteps> steps;   ///< per spot: refined local steps
+  int groups = 0;
+  int conflicts = 0;                 ///< edges that disagreed with an earlier labelling
+};
+
+/// Labels spots by breadth-first propagation over neighbour edges that fit the local lattice.
+/// `predict(p)` gives the expected steps at camera pixel p (from the module geometry).
+template <class Predict>
+LatticeLabels LabelLattice(const std::vector<Spot>& spots, const LatticeOptions& options,
+                           Predict&& predict);
+
+/// Non-template core: steps predicted per spot are passed in.
+LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
+                                    const std::vector<LatticeSteps>& predicted,
+                                    const LatticeOptions& options);
+
+template <class Predict>
+LatticeLabels LabelLattice(const std::vector<Spot>& spots, const LatticeOptions& options,
+                           Predict&& predict) {
+  std::vector<LatticeSteps> predicted;
+  predicted.reserve(spots.size());
+  for (const Spot& s : spots) predicted.push_back(predict(s.centre_px));
+  return LabelLatticeWithSteps(spots, predicted, options);
+}
+
+}  // namespace sewer3d

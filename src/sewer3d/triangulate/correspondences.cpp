@@ -1,0 +1,147 @@
+#include "sewer3d/triangulate/correspondences.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/triangulate/dlt.hpp"
+
+namespace sewer3d {
+
+void TriangulationOptions::Check() const {
+  SEWER3D_CHECK(z_min_mm > 0.0 && z_max_mm > z_min_mm, "depth range");
+  SEWER3D_CHECK(max_reprojection_px > 0.0, "max_reprojection_px");
+}
+
+std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& module,
+                                                       int array_rows, int array_cols,
+                                                       const std::vector<CodedObservation>& observations,
+                                                       const TriangulationOptions& options,
+                                                       TriangulationStats* stats) {
+  options.Check();
+  TriangulationStats local;
+  TriangulationStats& st = stats ? *stats : local;
+  const CameraModel camera(module.camera), projector(module.projector);
+  const PatternLayout& layout = module.pattern;
+  const double pitch = layout.pitch_px;
+  std::vector<TriangulatedPoint> points;
+  points.reserve(observations.size());
+  for (size_t k = 0; k < observations.size(); ++k) {
+    const CodedObservation& o = observations[k];
+    const auto xy = camera.Unproject(o.camera_px);
+    if (!xy) {
+      ++st.unprojectable;
+      continue;
+    }
+    const Eigen::Vector3d ray(xy->x(), xy->y(), 1.0);
+    // Projector region the epipolar curve covers over the depth range (sampled: distortion
+    // bends it slightly).
+    double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
+    for (int i = 0; i <= 8; ++i) {
+      const double inv_z = 1.0 / options.z_max_mm + (1.0 / options.z_min_mm - 1.0 / options.z_max_mm) * i / 8.0;
+      const auto uv = projector.Project(module.projector_from_camera * (ray / inv_z));
+      if (!uv) continue;
+      u_lo = std::min(u_lo, uv->x()), u_hi = std::max(u_hi, uv->x());
+      v_lo = std::min(v_lo, uv->y()), v_hi = std::max(v_hi, uv->y());
+    }
+    if (u_lo > u_hi) {
+      ++st.no_element;
+      continue;
+    }
+    // Element indices whose centres lie in the region (one pitch of margin), congruent to
+    // the decoded position.
+    auto first = [&](double lo, double offset, int mod, int period) {
+      const int index = static_cast<int>(std::floor((lo - pitch - offset + 0.5) / pitch - 0.5));
+      return index + ((mod - index) % period + period) % period;
+    };
+    const int r_start = first(v_lo, layout.offset_px.y(), o.row_mod, array_rows);
+    const int c_start = first(u_lo, layout.offset_px.x(), o.col_mod, array_cols);
+    TriangulatedPoint best;
+    int passing = 0;
+    best.reprojection_px = 1e300;
+    for (int r = r_start; layout.ElementCentre(r, 0).y() <= v_hi + pitch; r += array_rows) {
+      for (int c = c_start; layout.ElementCentre(0, c).x() <= u_hi + pitch; c += array_cols) {
+        const Eigen::Vector2d centre = layout.ElementCentre(r, c);
+        const auto projector_xy = projector.Unproject(centre);
+        if (!projector_xy) continue;
+        const auto x = TriangulateDlt(*xy, *projector_xy, module.projector_from_camera);
+        if (!x || x->z() < options.z_min_mm || x->z() > options.z_max_mm) continue;
+        const auto back_camera = camera.Project(*x);
+        const auto back_projector = projector.Project(module.projector_from_camera * *x);
+        if (!back_camera || !back_projector) continue;
+        const double error = std::max((*back_camera - o.camera_px).norm(), (*back_projector - centre).norm());
+        if (error > options.max_reprojection_px) continue;
+        ++passing;
+        if (error < best.reprojection_px) {
+          best.observation = static_cast<int>(k);
+          best.point_mm = *x;
+          best.row = r;
+          best.col = c;
+          best.reprojection_px = error;
+        }
+      }
+    }
+    if (passing == 0) {
+      ++st.no_element;
+    } else if (passing > 1) {
+      ++st.ambiguous;
+    } else {
+      points.push_back(best);
+    }
+  }
+  return points;
+}
+
+int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
+                        const std::vector<CodedObservation>& observations, double radius_px,
+                        double min_step_mm, double fraction) {
+  // Bucket points on a grid of radius-sized cells.
+  std::unordered_map<long long, std::vector<int>> cells;
+  auto cell_of = [&](const Eigen::Vector2d& p) {
+    return std::make_pair(static_cast<int>(std::floor(p.x() / radius_px)),
+                          static_cast<int>(std::floor(p.y() / radius_px)));
+  };
+  auto key = [](int x, int y) { return (static_cast<long long>(x) << 32) ^ static_cast<unsigned>(y); };
+  for (size_t i = 0; i < points.size(); ++i) {
+    const auto [x, y] = cell_of(observations[points[i].observation].camera_px);
+    cells[key(x, y)].push_back(static_cast<int>(i));
+  }
+  std::vector<char> keep(points.size(), 1);
+  std::vector<double> depths;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d& p = observations[points[i].observation].camera_px;
+    const auto [cx, cy] = cell_of(p);
+    depths.clear();
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const auto it = cells.find(key(cx + dx, cy + dy));
+        if (it == cells.end()) continue;
+        for (int j : it->second) {
+          if (j == static_cast<int>(i)) continue;
+          if ((observations[points[j].observation].camera_px - p).norm() <= radius_px) {
+            depths.push_back(points[j].point_mm.z());
+          }
+        }
+      }
+    }
+    if (depths.size() < 2) {  // an isolated decode has nothing to confirm it
+      keep[i] = 0;
+      continue;
+    }
+    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+    const double median = depths[depths.size() / 2];
+    const double z = points[i].point_mm.z();
+    if (std::abs(z - median) > std::max(min_step_mm, fraction * z)) keep[i] = 0;
+  }
+  std::vector<TriangulatedPoint> kept;
+  kept.reserve(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (keep[i]) kept.push_back(points[i]);
+  }
+  const int removed = static_cast<int>(points.size() - kept.size());
+  points = std::move(kept);
+  return removed;
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,56 @@
+#pragma once
+/// \file
+/// From decoded spots to 3D points: the epipolar constraint of the module picks the pattern
+/// tile (paper §decode) and rejects wrong decodes; DLT triangulates (paper §triangulate).
+
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "sewer3d/camera/module.hpp"
+
+namespace sewer3d {
+
+/// A camera spot whose array position is known modulo the array size.
+struct CodedObservation {
+  Eigen::Vector2d camera_px;
+  int row_mod = 0;
+  int col_mod = 0;
+};
+
+struct TriangulationOptions {
+  double z_min_mm = 40.0;           ///< depth range searched along each camera ray
+  double z_max_mm = 400.0;
+  double max_reprojection_px = 1.0; ///< in camera and projector, for the chosen element
+  void Check() const;
+};
+
+struct TriangulatedPoint {
+  int observation = 0;         ///< index into the observations
+  Eigen::Vector3d point_mm;    ///< camera frame
+  int row = 0, col = 0;        ///< projector element (absolute)
+  double reprojection_px = 0;  ///< worst of camera and projector
+};
+
+struct TriangulationStats {
+  int unprojectable = 0;       ///< camera pixel beyond the lens's fold
+  int no_element = 0;          ///< no tile of the decoded position fits the epipolar line
+  int ambiguous = 0;           ///< more than one tile fits
+};
+
+std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& module,
+                                                       int array_rows, int array_cols,
+                                                       const std::vector<CodedObservation>& observations,
+                                                       const TriangulationOptions& options,
+                                                       TriangulationStats* stats);
+
+/// Removes points whose depth disagrees with the median depth of their image neighbours
+/// (within `radius_px`) by more than max(min_step_mm, fraction · z), and points with fewer
+/// than two neighbours:
+/// a wrong decode lands tens of millimetres off the surface, while real steps (joints) are a
+/// few millimetres. Returns the number removed.
+int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
+                        const std::vector<CodedObservation>& observations, double radius_px = 30.0,
+                        double min_step_mm = 5.0, double fraction = 0.05);
+
+}  // namespace sewer3d
