@@ -19,7 +19,7 @@ expect_error() {
 }
 
 expect_ok "$bin" --help
-for sub in module pattern describe posegraph simulate; do
+for sub in module pattern describe posegraph simulate reconstruct; do
   grep -q "$sub" "$tmp/out" || fail "--help does not list $sub"
 done
 for sub in module pattern describe posegraph; do
@@ -78,6 +78,22 @@ expect_error "'type'" "$bin" simulate frame --module "$tmp/m/module.json" --scen
 echo '{"type": "cylinder", "diameter_mm": 100, "axis_point_mm": [0, 0, 80]}' >"$tmp/s/outside.json"
 expect_error "camera outside" "$bin" simulate frame --module "$tmp/m/module.json" --scene "$tmp/s/outside.json" --out "$tmp/s/x"
 expect_error "error" "$bin" simulate frame --module "$tmp/nothing.json" --out "$tmp/s/x"
+
+# Reconstruction of the simulated plane.
+expect_ok "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/s/plane/pattern.png" \
+  --texture "$tmp/s/plane/texture.png" --out "$tmp/r/plane"
+for f in cloud.ply depth.tiff depth.png report.json; do
+  [ -s "$tmp/r/plane/$f" ] || fail "reconstruct did not write $f"
+done
+grep -q '"points"' "$tmp/r/plane/report.json" || fail "report lacks points"
+# Blank, wrong-size, truncated and non-image inputs: one-line errors, no crash.
+"$bin" simulate frame --module "$tmp/m/module.json" --scene plane --distance-mm 2000 \
+  --out "$tmp/s/far" --supersampling 1 >/dev/null 2>&1
+expect_error "no spot pattern" "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/s/far/pattern.png" --out "$tmp/r/far"
+expect_error "but the module's camera is" "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/m/pattern.png" --out "$tmp/r/x"
+head -c 2000 "$tmp/s/plane/pattern.png" >"$tmp/r/cut.png"
+expect_error "truncated" "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/r/cut.png" --out "$tmp/r/x"
+expect_error "cannot decode" "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/m/module.json" --out "$tmp/r/x"
 
 # Pose graphs.
 data=${SEWER3D_DATA:?set SEWER3D_DATA to tests/data}

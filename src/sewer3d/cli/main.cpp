@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
       sewer3d::cli::AddDescribeCommand(app),
       sewer3d::cli::AddPoseGraphCommand(app),
       sewer3d::cli::AddSimulateCommand(app),
+      sewer3d::cli::AddReconstructCommand(app),
   };
   try {
     app.parse(argc, argv);

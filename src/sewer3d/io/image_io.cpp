@@ -33,7 +33,7 @@ void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
   if (!ok) throw FileError(path, "cannot write image");
 }
 
-BinaryArray ReadPatternMatrix(const std::filesystem::path& path) {
+cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw FileError(path, "no such file");
   std::ifstream file(path, std::ios::binary);
@@ -49,11 +49,42 @@ BinaryArray ReadPatternMatrix(const std::filesystem::path& path) {
   }
   cv::Mat image;
   try {
-    image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+    image = cv::imdecode(bytes, imread_flags);
   } catch (const cv::Exception& e) {
     throw FileError(path, std::string("cannot decode image: ") + e.err);
   }
   if (image.empty()) throw FileError(path, "cannot decode image (not an image, or truncated)");
+  return image;
+}
+
+cv::Mat ReadGreyImage(const std::filesystem::path& path) {
+  cv::Mat image = ReadImage(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE);
+  if (image.depth() != CV_8U && image.depth() != CV_16U) {
+    throw FileError(path, "expected an 8-bit or 16-bit image");
+  }
+  return image;
+}
+
+void WriteDepthPreview(const std::filesystem::path& path, const cv::Mat1f& depth_mm) {
+  double lo = 1e300, hi = -1e300;
+  for (float z : depth_mm) {
+    if (std::isfinite(z)) lo = std::min<double>(lo, z), hi = std::max<double>(hi, z);
+  }
+  cv::Mat1b scaled(depth_mm.size(), 0);
+  for (int v = 0; v < scaled.rows; ++v) {
+    for (int u = 0; u < scaled.cols; ++u) {
+      const float z = depth_mm(v, u);
+      if (std::isfinite(z) && hi > lo) scaled(v, u) = cv::saturate_cast<std::uint8_t>(1 + 254.0 * (hi - z) / (hi - lo));
+    }
+  }
+  cv::Mat colour;
+  cv::applyColorMap(scaled, colour, cv::COLORMAP_TURBO);
+  colour.setTo(cv::Scalar::all(0), scaled == 0);
+  WriteImage(path, colour);
+}
+
+BinaryArray ReadPatternMatrix(const std::filesystem::path& path) {
+  cv::Mat image = ReadImage(path, cv::IMREAD_UNCHANGED);
   if (image.channels() > 1) {
     std::vector<cv::Mat> channels;
     cv::split(image, channels);

@@ -12,6 +12,16 @@ namespace sewer3d {
 /// Writes any image OpenCV can encode (format from the extension); creates parent folders.
 void WriteImage(const std::filesystem::path& path, const cv::Mat& image);
 
+/// Reads an image file (OpenCV imread flags), with a clear error for missing, truncated or
+/// undecodable files.
+cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags);
+
+/// Reads a camera image as one grey channel, 8 or 16 bits (colour is converted).
+cv::Mat ReadGreyImage(const std::filesystem::path& path);
+
+/// Writes a colour-mapped picture of a depth map (near red, far blue, NaN black).
+void WriteDepthPreview(const std::filesystem::path& path, const cv::Mat1f& depth_mm);
+
 /// Reads a pattern matrix PNG (one pixel per element, non-zero = spot, DESIGN.md contract).
 /// Colour images count a pixel as a spot when any channel is non-zero.
 BinaryArray ReadPatternMatrix(const std::filesystem::path& path);

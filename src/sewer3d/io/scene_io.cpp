@@ -184,21 +184,11 @@ void WriteRenderedFrame(const std::filesystem::path& dir, const RenderedFrame& f
   cv::cvtColor(texture8, bgr, cv::COLOR_RGB2BGR);
   WriteImage(dir / "texture.png", bgr);
   WriteImage(dir / "truth_depth.tiff", frame.truth_depth);
-  // A colour-mapped depth preview a person can look at (near = red, far = blue).
-  cv::Mat1b depth8(frame.truth_depth.size(), 0);
+  WriteDepthPreview(dir / "depth_preview.png", frame.truth_depth);
   double lo = 1e300, hi = -1e300;
   for (float z : frame.truth_depth) {
     if (std::isfinite(z)) lo = std::min<double>(lo, z), hi = std::max<double>(hi, z);
   }
-  for (int v = 0; v < depth8.rows; ++v) {
-    for (int u = 0; u < depth8.cols; ++u) {
-      const float z = frame.truth_depth(v, u);
-      if (std::isfinite(z) && hi > lo) depth8(v, u) = cv::saturate_cast<std::uint8_t>(255.0 * (hi - z) / (hi - lo));
-    }
-  }
-  cv::Mat depth_colour;
-  cv::applyColorMap(depth8, depth_colour, cv::COLORMAP_TURBO);
-  WriteImage(dir / "depth_preview.png", depth_colour);
 
   json doc;
   doc["scene"] = json::parse(SceneToJson(scene));

@@ -19,8 +19,11 @@ struct CodedObservation {
 };
 
 struct TriangulationOptions {
-  double z_min_mm = 40.0;           ///< depth range searched along each camera ray
-  double z_max_mm = 400.0;
+  /// Depth range searched along each camera ray: the working range (75–225 mm) with margin.
+  /// Its disparity must stay below the array's width (the default module: 191 of 200
+  /// columns), or two tiles fit one ray.
+  double z_min_mm = 65.0;
+  double z_max_mm = 250.0;
   double max_reprojection_px = 1.0; ///< in camera and projector, for the chosen element
   void Check() const;
 };
