@@ -6,10 +6,12 @@
 #include <opencv2/ximgproc.hpp>
 
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/decode/decoder.hpp"
 #include "sewer3d/decode/niblack.hpp"
 #include "sewer3d/decode/spots.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/triangulate/correspondences.hpp"
 
 namespace sewer3d {
 namespace {
@@ -65,6 +67,31 @@ void BM_ConnectedComponentsOpenCV(benchmark::State& state) {
   for (auto _ : state) cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
 }
 BENCHMARK(BM_ConnectedComponentsOpenCV)->Unit(benchmark::kMillisecond);
+
+void BM_DecodeAndTriangulate(benchmark::State& state) {
+  const cv::Mat1b& image = PatternImage();
+  const ModuleDescription module = MakeDefaultModule({});
+  const BinaryArray pattern = DefaultPatternArray();
+  Decoder decoder(module, pattern, PatternConstraints{}, DecoderOptions{});
+  std::size_t points = 0;
+  DecodeResult last;
+  for (auto _ : state) {
+    last = decoder.Decode(image);
+    std::vector<CodedObservation> observations;
+    for (const SpotCode& c : last.codes) observations.push_back({last.spots[c.spot].centre_px, c.row, c.col});
+    auto triangulated = TriangulateObservations(module, pattern.rows, pattern.cols, observations,
+                                                TriangulationOptions{}, nullptr);
+    RejectDepthOutliers(triangulated, observations);
+    points = triangulated.size();
+  }
+  state.counters["spots"] = static_cast<double>(last.spots.size());
+  state.counters["points"] = static_cast<double>(points);
+  state.counters["binarise_ms"] = last.seconds_binarise * 1e3;
+  state.counters["spots_ms"] = last.seconds_spots * 1e3;
+  state.counters["lattice_ms"] = last.seconds_lattice * 1e3;
+  state.counters["codewords_ms"] = last.seconds_codewords * 1e3;
+}
+BENCHMARK(BM_DecodeAndTriangulate)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace sewer3d
