@@ -91,22 +91,26 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   labels.steps.resize(n);
   const SpotGrid grid(spots, options.max_neighbour_px);
   std::vector<std::vector<int>> neighbours(n);
-  std::vector<Eigen::Vector2d> positions;
   for (int i = 0; i < n; ++i) {
-    positions.clear();
     grid.ForEachNear(spots[i].centre_px, options.max_neighbour_px, [&](int j) {
-      if (j != i) {
-        neighbours[i].push_back(j);
-        positions.push_back(spots[j].centre_px);
-      }
+      if (j != i) neighbours[i].push_back(j);
     });
-    labels.steps[i] = Refine(spots[i].centre_px, positions, predicted[i], options.max_residual);
   }
+  std::vector<Eigen::Vector2d> positions;
+  // Steps change smoothly over the surface: a spot reached from a labelled neighbour starts
+  // its refinement from that neighbour's steps, which follow oblique walls far better than
+  // the module's fronto-parallel prediction.
+  auto refine = [&](int i, const LatticeSteps& start) {
+    positions.clear();
+    for (int j : neighbours[i]) positions.push_back(spots[j].centre_px);
+    labels.steps[i] = Refine(spots[i].centre_px, positions, start, options.max_residual);
+  };
   std::deque<int> queue;
   for (int seed = 0; seed < n; ++seed) {
     if (labels.group[seed] >= 0) continue;
     const int group = labels.groups++;
     labels.group[seed] = group;
+    refine(seed, predicted[seed]);
     queue.push_back(seed);
     while (!queue.empty()) {
       const int i = queue.front();
@@ -125,6 +129,7 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
         if (labels.group[j] < 0) {
           labels.group[j] = group;
           labels.node[j] = node;
+          refine(j, labels.steps[i]);
           queue.push_back(j);
         } else if (labels.group[j] == group && labels.node[j] != node) {
           ++labels.conflicts;
