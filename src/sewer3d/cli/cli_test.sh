@@ -19,7 +19,7 @@ expect_error() {
 }
 
 expect_ok "$bin" --help
-for sub in module pattern describe posegraph simulate reconstruct; do
+for sub in module pattern describe posegraph simulate reconstruct evaluate; do
   grep -q "$sub" "$tmp/out" || fail "--help does not list $sub"
 done
 for sub in module pattern describe posegraph; do
@@ -86,6 +86,11 @@ for f in cloud.ply depth.tiff depth.png report.json; do
   [ -s "$tmp/r/plane/$f" ] || fail "reconstruct did not write $f"
 done
 grep -q '"points"' "$tmp/r/plane/report.json" || fail "report lacks points"
+expect_ok "$bin" evaluate plane --cloud "$tmp/r/plane/cloud.ply" --truth "$tmp/s/plane/scene.json"
+grep -q "RMS" "$tmp/out" || fail "evaluate prints no RMS"
+grep -Eq "plane at (89\.9[5-9]|90\.0[0-4])" "$tmp/out" || fail "evaluate does not find the 90 mm plane: $(cat "$tmp/out")"
+expect_error "cylinder\|points" "$bin" evaluate cylinder --cloud "$tmp/r/plane/cloud.ply" --inner-fraction 0.05
+expect_error "surface" "$bin" evaluate sphere --cloud "$tmp/r/plane/cloud.ply"
 # Blank, wrong-size, truncated and non-image inputs: one-line errors, no crash.
 "$bin" simulate frame --module "$tmp/m/module.json" --scene plane --distance-mm 2000 \
   --out "$tmp/s/far" --supersampling 1 >/dev/null 2>&1

@@ -141,6 +141,14 @@ Scene ReadScene(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec) || !file) throw FileError(path, "cannot open file");
   std::ostringstream text;
   text << file.rdbuf();
+  try {
+    const json doc = json::parse(text.str());
+    if (doc.is_object() && doc.contains("scene") && doc["scene"].is_object()) {
+      return ParseScene(doc["scene"].dump(), path);
+    }
+  } catch (const json::parse_error&) {
+    // ParseScene reports it.
+  }
   return ParseScene(text.str(), path);
 }
 

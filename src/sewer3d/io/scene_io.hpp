@@ -12,6 +12,7 @@ namespace sewer3d {
 
 /// Parses a scene JSON document; `path` names the source in messages.
 Scene ParseScene(const std::string& json_text, const std::filesystem::path& path);
+/// Reads a scene file, or the scene.json of a rendered frame (whose "scene" member it uses).
 Scene ReadScene(const std::filesystem::path& path);
 std::string SceneToJson(const Scene& scene);
 

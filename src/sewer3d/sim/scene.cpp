@@ -136,6 +136,19 @@ double WallDisplacementMm(const Scene& scene, double clock_rad, double station_m
   return d;
 }
 
+double DistanceToSurfaceMm(const Scene& scene, const Eigen::Vector3d& point) {
+  if (scene.type == Scene::Type::kPlane) {
+    const Eigen::Vector3d n =
+        Eigen::AngleAxisd(scene.tilt_deg * kDeg, Eigen::Vector3d::UnitX()) * Eigen::Vector3d(0, 0, -1);
+    return std::abs(n.dot(point - Eigen::Vector3d(0.0, 0.0, scene.distance_mm)));
+  }
+  const CylinderFrame f = FrameOf(scene);
+  double clock, station, rho;
+  ToCylinder(f, point, clock, station, rho);
+  const double displacement = scene.type == Scene::Type::kPipeWall ? WallDisplacementMm(scene, clock, station) : 0.0;
+  return std::abs(rho - (f.radius - displacement));
+}
+
 std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o,
                                     const Eigen::Vector3d& d) {
   if (scene.type == Scene::Type::kPlane) return IntersectPlane(scene, o, d);

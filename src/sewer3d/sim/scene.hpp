@@ -60,6 +60,10 @@ struct SurfaceHit {
 std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& origin,
                                     const Eigen::Vector3d& direction);
 
+/// Distance (mm) from a camera-frame point to the surface: exact for planes and cylinders;
+/// for a pipe wall, the radial distance to the displaced wall at the point's clock and station.
+double DistanceToSurfaceMm(const Scene& scene, const Eigen::Vector3d& point);
+
 /// Radial displacement of the pipe wall toward the axis (mm) at a clock angle and station.
 double WallDisplacementMm(const Scene& scene, double clock_rad, double station_mm);
 
