@@ -46,7 +46,12 @@ Command AddReconstructCommand(CLI::App& app) {
               texture = ReadImage(args->texture, cv::IMREAD_COLOR);
               if (texture.size() != image.size()) throw FileError(args->texture, "texture size differs from the pattern image");
             }
-            PatternConstraints constraints;  // the array's windows wrap (torus), as sewer3d ships them
+            PatternConstraints constraints;
+            try {
+              constraints = InferConstraints(loaded.pattern);
+            } catch (const std::invalid_argument& e) {
+              throw FileError(loaded.pattern_file, std::string("cannot decode with this pattern: ") + e.what());
+            }
             Decoder decoder(module, loaded.pattern, constraints, DecoderOptions{});
             const DecodeResult decoded = decoder.Decode(image);
             std::vector<CodedObservation> observations;

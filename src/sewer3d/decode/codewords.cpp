@@ -59,7 +59,7 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
     }
     if (observable) {
       ++st.windows_read;
-      if (const auto match = codebook.Decode(code, 1)) {
+      if (const auto match = codebook.Decode(code, codebook.min_hamming() >= 3 ? 1 : 0)) {
         ++st.windows_decoded;
         st.bits_corrected += match->corrected_bits;
         result.decoded = true;

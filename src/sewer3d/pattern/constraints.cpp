@@ -64,6 +64,25 @@ PatternReport VerifyPattern(const BinaryArray& array, const PatternConstraints& 
   return report;
 }
 
+PatternConstraints InferConstraints(const BinaryArray& array, int window) {
+  PatternConstraints c;
+  c.window = window;
+  c.min_hamming = 1;
+  c.min_weight = 0;
+  c.isolated = false;
+  PatternReport report = VerifyPattern(array, c);
+  if (report.duplicate_pairs > 0 || report.windows == 0) {
+    c.torus = false;
+    report = VerifyPattern(array, c);
+  }
+  SEWER3D_CHECK(report.windows > 0 && report.duplicate_pairs == 0,
+                "the pattern's " << window << "x" << window << " windows are not unique");
+  c.min_hamming = report.min_hamming_found;
+  c.min_weight = report.min_weight_found;
+  c.isolated = report.adjacent_spot_pairs == 0;
+  return c;
+}
+
 std::string Describe(const PatternReport& r) {
   std::ostringstream out;
   out << r.rows << "x" << r.cols << ", " << r.windows << " windows, min Hamming "

@@ -43,6 +43,11 @@ int WindowCount(int rows, int cols, const PatternConstraints& constraints);
 /// Checks every constraint by brute force (all pairs of windows). Independent of the search.
 PatternReport VerifyPattern(const BinaryArray& array, const PatternConstraints& constraints);
 
+/// The constraints an existing array satisfies, for decoding a module file's matrix: torus
+/// when its wrap-around windows are unique, else plain; the minimum distance and weight
+/// found. Throws std::invalid_argument when even the plain windows repeat.
+PatternConstraints InferConstraints(const BinaryArray& array, int window = 6);
+
 /// One-line summary such as "8x168 torus, 1344 windows, min Hamming 3, ...".
 std::string Describe(const PatternReport& report);
 

@@ -52,5 +52,21 @@ TEST(VerifyPattern, TorusAndPlainWindowCounts) {
   EXPECT_EQ(WindowCount(8, 100, PatternConstraints{}), 800);
 }
 
+TEST(InferConstraints, TorusForTheShippedArrayPlainOtherwise) {
+  const PatternConstraints shipped = InferConstraints(DefaultPatternArray());
+  EXPECT_TRUE(shipped.torus);
+  EXPECT_EQ(shipped.min_hamming, 3);
+  EXPECT_GE(shipped.min_weight, 4);
+  EXPECT_TRUE(shipped.isolated);
+  // Cut to 6 x 120 the array's wrap-around windows change, but its inner windows stay unique.
+  BinaryArray cut(6, 120);
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 120; ++c) cut.set(r, c, DefaultPatternArray().at(r, c));
+  }
+  const PatternConstraints inferred = InferConstraints(cut);
+  EXPECT_EQ(VerifyPattern(cut, inferred).valid, true);
+  EXPECT_THROW(InferConstraints(BinaryArray(6, 20)), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace sewer3d
