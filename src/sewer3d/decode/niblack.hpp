@@ -35,7 +35,6 @@ class NiblackBinariser {
   NiblackOptions options_;
   cv::Mat1f mean_;
   std::vector<double> column_sum_, column_sum2_;
-  std::vector<std::uint16_t> row_values_;
 };
 
 }  // namespace sewer3d
