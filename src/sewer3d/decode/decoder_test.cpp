@@ -45,6 +45,14 @@ Outcome DecodeRender(const ModuleDescription& module, const Scene& scene, std::u
   return out;
 }
 
+void Record(const Outcome& o) {
+  ::testing::Test::RecordProperty("spots", o.spots);
+  ::testing::Test::RecordProperty("decoded", o.decoded);
+  ::testing::Test::RecordProperty("points", o.points);
+  ::testing::Test::RecordProperty("rms_mm", std::to_string(o.rms_to_truth_mm));
+  ::testing::Test::RecordProperty("max_mm", std::to_string(o.max_to_truth_mm));
+}
+
 ModuleDescription Module(int width) {
   DefaultModuleOptions options;
   options.camera_width = width;
@@ -56,11 +64,7 @@ TEST(Decoder, PlaneAt90mmDecodesAndTriangulates) {
   Scene plane;
   plane.distance_mm = 90.0;
   const Outcome o = DecodeRender(Module(648), plane, 1);
-  RecordProperty("spots", o.spots);
-  RecordProperty("decoded", o.decoded);
-  RecordProperty("points", o.points);
-  RecordProperty("rms_mm", std::to_string(o.rms_to_truth_mm));
-  RecordProperty("max_mm", std::to_string(o.max_to_truth_mm));
+  Record(o);
   EXPECT_GT(o.decoded, 0.95 * o.spots);
   EXPECT_GT(o.points, 0.95 * o.spots);
   EXPECT_EQ(o.wrong, 0);
@@ -73,11 +77,7 @@ TEST(Decoder, Dn300CylinderDecodesAndTriangulates) {
   cylinder.diameter_mm = 300.0;
   cylinder.axis_point_mm = {8.0, 0.0, -10.0};
   const Outcome o = DecodeRender(Module(648), cylinder, 2);
-  RecordProperty("spots", o.spots);
-  RecordProperty("decoded", o.decoded);
-  RecordProperty("points", o.points);
-  RecordProperty("rms_mm", std::to_string(o.rms_to_truth_mm));
-  RecordProperty("max_mm", std::to_string(o.max_to_truth_mm));
+  Record(o);
   EXPECT_GT(o.points, 0.93 * o.spots);
   EXPECT_EQ(o.wrong, 0);
   EXPECT_LT(o.rms_to_truth_mm, 0.1);
