@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
 # Quick start, step 1: install dependencies, build, run the main job.
-# Today the main job writes the default module (module.json + pattern) and describes it.
+# The main job today: write the default module, render one module's capture of a DN300
+# concrete pipe wall (joint, intrusion, pit, crack), reconstruct it and check it against the
+# truth. Later stages extend it to the full six-module run and the pipe model.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 bash scripts/build.sh
-out=${1:-out/default_module}
-./build/sewer3d module --out "$out"
-./build/sewer3d describe --module "$out/module.json" >/dev/null
-echo "demo: done; see $out/ (module.json, pattern.png, pattern.json, pattern_preview.png)"
+out=${1:-out/demo}
+bin=./build/sewer3d
+"$bin" module --out "$out/module"
+"$bin" simulate frame --module "$out/module/module.json" --scene pipe-wall --diameter-mm 300 \
+  --supersampling 2 --out "$out/capture"
+"$bin" reconstruct --module "$out/module/module.json" --image "$out/capture/pattern.png" \
+  --texture "$out/capture/texture.png" --out "$out/reconstruction"
+"$bin" evaluate cylinder --cloud "$out/reconstruction/cloud.ply" --truth "$out/capture/scene.json"
+echo "demo: done; look at $out/capture/texture.png, pattern.png and $out/reconstruction/depth.png"

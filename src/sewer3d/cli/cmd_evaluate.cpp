@@ -58,13 +58,15 @@ Command AddEvaluateCommand(CLI::App& app) {
             if (!args->truth.empty()) {
               const Scene scene = ReadScene(args->truth);
               double sum2 = 0.0, worst = 0.0;
+              int beyond_1mm = 0;
               for (const auto& p : all) {
                 const double d = DistanceToSurfaceMm(scene, p);
                 sum2 += d * d;
                 worst = std::max(worst, d);
+                beyond_1mm += d > 1.0;
               }
-              fmt::print("truth      all {} points to the true surface: RMS {:.4f} mm, max {:.4f} mm\n", all.size(),
-                         std::sqrt(sum2 / all.size()), worst);
+              fmt::print("truth      all {} points to the true surface: RMS {:.4f} mm, max {:.4f} mm, {} farther than 1 mm\n",
+                         all.size(), std::sqrt(sum2 / all.size()), worst, beyond_1mm);
             }
             return 0;
           }};
