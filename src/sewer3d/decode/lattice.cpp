@@ -2,7 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <deque>
+#include <queue>
 #include <unordered_map>
 
 #include "sewer3d/core/check.hpp"
@@ -105,38 +105,63 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
     for (int j : neighbours[i]) positions.push_back(spots[j].centre_px);
     labels.steps[i] = Refine(spots[i].centre_px, positions, start, options.max_residual);
   };
-  std::deque<int> queue;
+  // An edge i -> j predicted with i's steps: the integer offset and how far from it.
+  struct Edge {
+    double residual;
+    int from, to;
+    Eigen::Vector2i offset;
+    bool operator>(const Edge& other) const { return residual > other.residual; }
+  };
+  auto edges_of = [&](int i, auto&& emit) {
+    Eigen::Matrix2d basis;
+    basis << labels.steps[i].row_step, labels.steps[i].column_step;
+    const Eigen::Matrix2d inverse = basis.inverse();
+    for (int j : neighbours[i]) {
+      const Eigen::Vector2d ij_real = inverse * (spots[j].centre_px - spots[i].centre_px);
+      const Eigen::Vector2d ij = ij_real.array().round();
+      const double residual = (ij_real - ij).norm();
+      if (residual > options.max_residual) continue;
+      // Far edges amplify any error of the local affine model (curved surfaces, depth
+      // changes): beyond three steps a 17 % scale error already picks the wrong node.
+      if (ij.cwiseAbs().maxCoeff() > options.max_edge_steps) continue;
+      emit(Edge{residual, i, j, Eigen::Vector2i(int(ij.x()), int(ij.y()))});
+    }
+  };
+  // Best-first growth (Prim's order): the most reliable edges label first, so a bad edge can
+  // only label a spot no good edge reaches, and seams between propagation fronts fall on
+  // the poorest edges.
+  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> frontier;
   for (int seed = 0; seed < n; ++seed) {
     if (labels.group[seed] >= 0) continue;
     const int group = labels.groups++;
     labels.group[seed] = group;
     refine(seed, predicted[seed]);
-    queue.push_back(seed);
-    while (!queue.empty()) {
-      const int i = queue.front();
-      queue.pop_front();
-      Eigen::Matrix2d basis;
-      basis << labels.steps[i].row_step, labels.steps[i].column_step;
-      const Eigen::Matrix2d inverse = basis.inverse();
-      for (int j : neighbours[i]) {
-        const Eigen::Vector2d ij_real = inverse * (spots[j].centre_px - spots[i].centre_px);
-        const Eigen::Vector2d ij = ij_real.array().round();
-        if ((ij_real - ij).norm() > options.max_residual) continue;
-        // Far edges amplify any error of the local affine model (curved surfaces, depth
-        // changes): beyond three steps a 17 % scale error already picks the wrong node.
-        if (ij.cwiseAbs().maxCoeff() > options.max_edge_steps) continue;
-        const Eigen::Vector2i node = labels.node[i] + Eigen::Vector2i(int(ij.x()), int(ij.y()));
-        if (labels.group[j] < 0) {
-          labels.group[j] = group;
-          labels.node[j] = node;
-          refine(j, labels.steps[i]);
-          queue.push_back(j);
-        } else if (labels.group[j] == group && labels.node[j] != node) {
-          ++labels.conflicts;
-        }
-      }
+    edges_of(seed, [&](const Edge& e) { frontier.push(e); });
+    while (!frontier.empty()) {
+      const Edge e = frontier.top();
+      frontier.pop();
+      if (labels.group[e.to] >= 0) continue;
+      labels.group[e.to] = group;
+      labels.node[e.to] = labels.node[e.from] + e.offset;
+      refine(e.to, labels.steps[e.from]);
+      edges_of(e.to, [&](const Edge& next) {
+        if (labels.group[next.to] < 0) frontier.push(next);
+      });
     }
   }
+  // A spot whose label most of its good edges contradict sits on a seam: unlabel it rather
+  // than let it corrupt the windows around it.
+  std::vector<int> contradicted;
+  for (int i = 0; i < n; ++i) {
+    int agree = 0, disagree = 0;
+    edges_of(i, [&](const Edge& e) {
+      if (labels.group[e.to] != labels.group[i]) return;
+      (labels.node[e.to] == labels.node[i] + e.offset ? agree : disagree) += 1;
+    });
+    labels.conflicts += disagree;
+    if (disagree > agree) contradicted.push_back(i);
+  }
+  for (int i : contradicted) labels.group[i] = -1;
   return labels;
 }
 

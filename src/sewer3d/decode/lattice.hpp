@@ -35,7 +35,7 @@ struct LatticeLabels {
   std::vector<Eigen::Vector2i> node; ///< per spot: (row, col) lattice coordinates in its group
   std::vector<LatticeSteps> steps;   ///< per spot: refined local steps
   int groups = 0;
-  int conflicts = 0;                 ///< edges that disagreed with an earlier labelling
+  int conflicts = 0;                 ///< good edges whose offset contradicts the labels
 };
 
 /// Labels spots by breadth-first propagation over neighbour edges that fit the local lattice.
