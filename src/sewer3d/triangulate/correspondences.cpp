@@ -25,6 +25,27 @@ std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& 
   const CameraModel camera(module.camera), projector(module.projector);
   const PatternLayout& layout = module.pattern;
   const double pitch = layout.pitch_px;
+  // Undistorted projector coordinates of each element centre inside the projector image,
+  // computed once (NaN: not yet, or outside the image / beyond the lens's fold).
+  const int element_cols = static_cast<int>(std::ceil(module.projector.width / pitch)) + 1;
+  const int element_rows = static_cast<int>(std::ceil(module.projector.height / pitch)) + 1;
+  std::vector<Eigen::Vector2d> element_xy(static_cast<size_t>(element_cols) * element_rows,
+                                          Eigen::Vector2d::Constant(std::nan("")));
+  std::vector<char> element_done(element_xy.size(), 0);
+  auto element = [&](int r, int c) -> const Eigen::Vector2d* {
+    if (r < 0 || c < 0 || r >= element_rows || c >= element_cols) return nullptr;
+    const size_t k = static_cast<size_t>(r) * element_cols + c;
+    if (!element_done[k]) {
+      element_done[k] = 1;
+      const Eigen::Vector2d centre = layout.ElementCentre(r, c);
+      const bool inside = centre.x() >= -0.5 && centre.y() >= -0.5 &&
+                          centre.x() <= module.projector.width - 0.5 && centre.y() <= module.projector.height - 0.5;
+      if (inside) {
+        if (const auto xy = projector.Unproject(centre)) element_xy[k] = *xy;
+      }
+    }
+    return std::isnan(element_xy[k].x()) ? nullptr : &element_xy[k];
+  };
   std::vector<TriangulatedPoint> points;
   points.reserve(observations.size());
   for (size_t k = 0; k < observations.size(); ++k) {
@@ -38,8 +59,8 @@ std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& 
     // Projector region the epipolar curve covers over the depth range (sampled: distortion
     // bends it slightly).
     double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
-    for (int i = 0; i <= 8; ++i) {
-      const double inv_z = 1.0 / options.z_max_mm + (1.0 / options.z_min_mm - 1.0 / options.z_max_mm) * i / 8.0;
+    for (int i = 0; i <= 2; ++i) {  // ends and middle; the one-pitch margin covers the bend
+      const double inv_z = 1.0 / options.z_max_mm + (1.0 / options.z_min_mm - 1.0 / options.z_max_mm) * i / 2.0;
       const auto uv = projector.Project(module.projector_from_camera * (ray / inv_z));
       if (!uv) continue;
       u_lo = std::min(u_lo, uv->x()), u_hi = std::max(u_hi, uv->x());
@@ -63,7 +84,7 @@ std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& 
     for (int r = r_start; layout.ElementCentre(r, 0).y() <= v_hi + pitch; r += array_rows) {
       for (int c = c_start; layout.ElementCentre(0, c).x() <= u_hi + pitch; c += array_cols) {
         const Eigen::Vector2d centre = layout.ElementCentre(r, c);
-        const auto projector_xy = projector.Unproject(centre);
+        const Eigen::Vector2d* projector_xy = element(r, c);
         if (!projector_xy) continue;
         const auto x = TriangulateDlt(*xy, *projector_xy, module.projector_from_camera);
         if (!x || x->z() < options.z_min_mm || x->z() > options.z_max_mm) continue;
