@@ -8,6 +8,7 @@
 #include "sewer3d/decode/niblack.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/sim/spot_truth.hpp"
 
 namespace sewer3d {
 namespace {
@@ -61,22 +62,11 @@ TEST(Spots, FindsRenderedSpotsWithSubpixelPrecision) {
   const std::vector<Spot> spots = DetectSpots(frame.pattern, mask, binariser.local_mean(), SpotOptions{});
 
   // Expected centres: projector ray through each element centre -> plane -> camera.
-  const CameraModel camera(module.camera), projector(module.projector);
-  const Rigid3d camera_from_projector = module.projector_from_camera.Inverse();
-  std::vector<Eigen::Vector2d> expected, expected_anywhere;
-  for (int r = 0; r <= module.projector.height / 8; ++r) {
-    for (int c = 0; c <= module.projector.width / 8; ++c) {
-      if (!pattern.tiled(r, c)) continue;
-      const auto ray = projector.Ray(module.pattern.ElementCentre(r, c));
-      if (!ray) continue;
-      const auto hit = Intersect(plane, camera_from_projector.translation, camera_from_projector.rotation * *ray);
-      if (!hit) continue;
-      const auto px = camera.Project(hit->point);
-      if (px) expected_anywhere.push_back(*px);
-      if (px && px->x() > 4 && px->y() > 4 && px->x() < module.camera.width - 5 &&
-          px->y() < module.camera.height - 5) {
-        expected.push_back(*px);
-      }
+  const std::vector<Eigen::Vector2d> expected_anywhere = ProjectedSpotCentres(module, pattern, plane);
+  std::vector<Eigen::Vector2d> expected;
+  for (const auto& px : expected_anywhere) {
+    if (px.x() > 4 && px.y() > 4 && px.x() < module.camera.width - 5 && px.y() < module.camera.height - 5) {
+      expected.push_back(px);
     }
   }
   ASSERT_GT(expected.size(), 500u);

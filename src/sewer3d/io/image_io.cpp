@@ -65,7 +65,7 @@ cv::Mat ReadGreyImage(const std::filesystem::path& path) {
   return image;
 }
 
-void WriteDepthPreview(const std::filesystem::path& path, const cv::Mat1f& depth_mm) {
+std::pair<double, double> WriteDepthPreview(const std::filesystem::path& path, const cv::Mat1f& depth_mm) {
   double lo = 1e300, hi = -1e300;
   for (float z : depth_mm) {
     if (std::isfinite(z)) lo = std::min<double>(lo, z), hi = std::max<double>(hi, z);
@@ -81,6 +81,7 @@ void WriteDepthPreview(const std::filesystem::path& path, const cv::Mat1f& depth
   cv::applyColorMap(scaled, colour, cv::COLORMAP_TURBO);
   colour.setTo(cv::Scalar::all(0), scaled == 0);
   WriteImage(path, colour);
+  return {lo, hi};
 }
 
 BinaryArray ReadPatternMatrix(const std::filesystem::path& path) {

@@ -3,6 +3,7 @@
 /// Reading and writing images and pattern matrices. Errors are FileError.
 
 #include <filesystem>
+#include <utility>
 #include <opencv2/core/mat.hpp>
 
 #include "sewer3d/pattern/binary_array.hpp"
@@ -19,8 +20,9 @@ cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags);
 /// Reads a camera image as one grey channel, 8 or 16 bits (colour is converted).
 cv::Mat ReadGreyImage(const std::filesystem::path& path);
 
-/// Writes a colour-mapped picture of a depth map (near red, far blue, NaN black).
-void WriteDepthPreview(const std::filesystem::path& path, const cv::Mat1f& depth_mm);
+/// Writes a colour-mapped picture of a depth map (near red, far blue, NaN black); returns the
+/// depth range it mapped (min, max; min > max when no depth is finite).
+std::pair<double, double> WriteDepthPreview(const std::filesystem::path& path, const cv::Mat1f& depth_mm);
 
 /// Reads a pattern matrix PNG (one pixel per element, non-zero = spot, DESIGN.md contract).
 /// Colour images count a pixel as a spot when any channel is non-zero.

@@ -192,11 +192,7 @@ void WriteRenderedFrame(const std::filesystem::path& dir, const RenderedFrame& f
   cv::cvtColor(texture8, bgr, cv::COLOR_RGB2BGR);
   WriteImage(dir / "texture.png", bgr);
   WriteImage(dir / "truth_depth.tiff", frame.truth_depth);
-  WriteDepthPreview(dir / "depth_preview.png", frame.truth_depth);
-  double lo = 1e300, hi = -1e300;
-  for (float z : frame.truth_depth) {
-    if (std::isfinite(z)) lo = std::min<double>(lo, z), hi = std::max<double>(hi, z);
-  }
+  const auto [lo, hi] = WriteDepthPreview(dir / "depth_preview.png", frame.truth_depth);
 
   json doc;
   doc["scene"] = json::parse(SceneToJson(scene));

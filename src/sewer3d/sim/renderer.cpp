@@ -34,12 +34,14 @@ struct Setup {
   const RenderOptions& o;
   CameraModel camera, projector;
   Eigen::Matrix3d projector_rotation;
+  Eigen::Vector3d projector_centre;  // camera frame, rig at rest
   double camera_aperture_mm, projector_aperture_mm;
   cv::Mat2d corner_rays;  // normalised (x, y) at pixel corners; NaN where not invertible
 
   Setup(const ModuleDescription& m, const BinaryArray& p, const Scene& s, const RenderOptions& opt)
       : module(m), pattern(p), scene(s), o(opt), camera(m.camera), projector(m.projector),
-        projector_rotation(m.projector_from_camera.RotationMatrix()) {
+        projector_rotation(m.projector_from_camera.RotationMatrix()),
+        projector_centre(m.projector_from_camera.Inverse().translation) {
     const double pitch_mm = o.sensor_width_mm / m.camera.width;
     camera_aperture_mm = o.camera_f_number > 0 ? m.camera.fx * pitch_mm / o.camera_f_number : 0.0;
     projector_aperture_mm =
@@ -105,7 +107,7 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
   const auto uv = s.projector.Project(p_projector);
   const auto& pi = s.module.projector;
   if (uv && uv->x() >= -0.5 && uv->y() >= -0.5 && uv->x() <= pi.width - 0.5 && uv->y() <= pi.height - 0.5) {
-    const Eigen::Vector3d projector_centre = s.module.projector_from_camera.Inverse().translation + rig_shift;
+    const Eigen::Vector3d projector_centre = s.projector_centre + rig_shift;
     const Eigen::Vector3d to_projector = projector_centre - hit->point;
     const double d_projector = to_projector.norm();
     const double cos_in = std::max(0.0, hit->normal.dot(to_projector) / d_projector);

@@ -7,6 +7,7 @@
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/material.hpp"
+#include "sewer3d/sim/spot_truth.hpp"
 
 namespace sewer3d {
 namespace {
@@ -47,26 +48,13 @@ TEST(Renderer, IdealSpotsLieOnTheProjectedElementCentres) {
 
   // Independent geometry: projector ray through each spot's element centre, meet the plane,
   // project into the camera.
-  const CameraModel camera(module.camera), projector(module.projector);
-  const Rigid3d camera_from_projector = module.projector_from_camera.Inverse();
   double worst = 0.0;
   int checked = 0;
-  for (int r = 0; r <= module.projector.height / 8; ++r) {
-    for (int c = 0; c <= module.projector.width / 8; ++c) {
-      if (!pattern.tiled(r, c)) continue;
-      const auto ray_p = projector.Ray(module.pattern.ElementCentre(r, c));
-      if (!ray_p) continue;
-      const Eigen::Vector3d origin = camera_from_projector.translation;
-      const Eigen::Vector3d direction = camera_from_projector.rotation * *ray_p;
-      const auto hit = Intersect(plane, origin, direction);
-      if (!hit) continue;
-      const auto expected = camera.Project(hit->point);
-      if (!expected) continue;
-      const auto centroid = Centroid(frame.pattern_signal, *expected, 5);
-      if (!centroid) continue;
-      worst = std::max(worst, (*centroid - *expected).norm());
-      ++checked;
-    }
+  for (const Eigen::Vector2d& expected : ProjectedSpotCentres(module, pattern, plane)) {
+    const auto centroid = Centroid(frame.pattern_signal, expected, 5);
+    if (!centroid) continue;
+    worst = std::max(worst, (*centroid - expected).norm());
+    ++checked;
   }
   RecordProperty("worst_centroid_error_px", std::to_string(worst));
   RecordProperty("spots_checked", checked);
