@@ -15,9 +15,12 @@ std::vector<Eigen::Vector2d> ProjectedSpotCentres(const ModuleDescription& modul
   for (int r = 0; r <= rows; ++r) {
     for (int c = 0; c <= cols; ++c) {
       if (!pattern.tiled(r, c)) continue;
+      // Only whole spots: one cut by the projector image's edge has no meaningful centre. The
+      // margin includes a pixel for the optics' blur around the disk.
       const Eigen::Vector2d centre = module.pattern.ElementCentre(r, c);
-      if (centre.x() < -0.5 || centre.y() < -0.5 || centre.x() > module.projector.width - 0.5 ||
-          centre.y() > module.projector.height - 0.5) {
+      const double a = 0.5 * module.pattern.spot_diameter_px + 1.0;
+      if (centre.x() - a < -0.5 || centre.y() - a < -0.5 || centre.x() + a > module.projector.width - 0.5 ||
+          centre.y() + a > module.projector.height - 0.5) {
         continue;
       }
       const auto ray = projector.Ray(centre);

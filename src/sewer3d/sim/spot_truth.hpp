@@ -14,7 +14,7 @@
 
 namespace sewer3d {
 
-/// Camera pixels of the spot elements whose centres lie inside the projector image and whose
+/// Camera pixels of the spot elements whose whole disk (plus a pixel of blur) lies inside the projector image and whose
 /// rays meet the scene and project into the camera (the pixel may lie outside the image).
 /// Occlusion is not tested: the scenes here are seen from inside or in front.
 std::vector<Eigen::Vector2d> ProjectedSpotCentres(const ModuleDescription& module,
