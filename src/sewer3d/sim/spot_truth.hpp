@@ -14,10 +14,13 @@
 
 namespace sewer3d {
 
-/// Camera pixels of the spot elements whose whole disk (plus a pixel of blur) lies inside the projector image and whose
-/// rays meet the scene and project into the camera (the pixel may lie outside the image).
+/// Camera pixels of spot element centres whose rays meet the scene and project into the
+/// camera (the pixel may lie outside the image). With `whole_spots_only`, only elements whose
+/// disk (plus a pixel of blur) lies inside the projector image: a spot cut by the image's edge
+/// has no meaningful centre. Without it, every element the projector lights at least in part.
 /// Occlusion is not tested: the scenes here are seen from inside or in front.
 std::vector<Eigen::Vector2d> ProjectedSpotCentres(const ModuleDescription& module,
-                                                  const BinaryArray& pattern, const Scene& scene);
+                                                  const BinaryArray& pattern, const Scene& scene,
+                                                  bool whole_spots_only = true);
 
 }  // namespace sewer3d
