@@ -19,6 +19,7 @@ const char* MaterialName(Material m) {
     case Material::kConcrete: return "concrete";
     case Material::kVitrifiedClay: return "vitrified_clay";
     case Material::kPlastic: return "plastic";
+    case Material::kSediment: return "sediment";
   }
   return "concrete";
 }

@@ -1,6 +1,8 @@
 #include "sewer3d/sim/material.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace sewer3d {
 namespace {
@@ -70,6 +72,14 @@ double Aggregate(std::uint64_t seed, const Eigen::Vector2d& p) {
 
 }  // namespace
 
+double SmoothNoise(std::uint64_t seed, double x, double y, int octaves) { return Fbm(seed, x, y, octaves); }
+
+double HashNormal(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
+  const double u1 = std::max(HashUniform(a, b, c, 11), 1e-300);
+  const double u2 = HashUniform(a, b, c, 12);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
 double HashUniform(std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d) {
   const std::uint64_t h = Mix(a ^ Mix(b ^ Mix(c ^ Mix(d))));
   return static_cast<double>(h >> 11) * 0x1.0p-53;
@@ -95,6 +105,12 @@ Eigen::Vector3d MaterialAlbedo(Material material, std::uint64_t seed, const Eige
     case Material::kPlastic: {
       const double k = 1.0 + 0.02 * (Fbm(seed, p.x() / 50.0, p.y() / 50.0, 2) - 0.5);
       return Eigen::Vector3d(0.62, 0.50, 0.40) * k;
+    }
+    case Material::kSediment: {
+      const double grit = Fbm(seed + 5, p.x() / 2.0, p.y() / 2.0, 3) - 0.5;
+      const double patch = Fbm(seed + 9, p.x() / 25.0, p.y() / 25.0, 2) - 0.5;
+      const double k = 1.0 + 0.35 * grit + 0.3 * patch;
+      return (Eigen::Vector3d(0.30, 0.25, 0.17) * k).cwiseMax(0.02).cwiseMin(0.95);
     }
   }
   return Eigen::Vector3d::Constant(0.5);

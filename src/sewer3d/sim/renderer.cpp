@@ -13,13 +13,6 @@ namespace {
 
 constexpr double kReferenceDistanceMm = 150.0;
 
-// Standard normal from two hashed uniforms (Box–Muller).
-double HashNormal(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
-  const double u1 = std::max(HashUniform(a, b, c, 11), 1e-300);
-  const double u2 = HashUniform(a, b, c, 12);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-}
-
 // Thin-lens circle of confusion (diameter, px) of a point at depth z for a lens focused at
 // focus_mm with focal length f_px (pixels) and aperture diameter aperture_mm.
 double CircleOfConfusionPx(double f_px, double aperture_mm, double focus_mm, double z_mm) {
@@ -30,7 +23,7 @@ double CircleOfConfusionPx(double f_px, double aperture_mm, double focus_mm, dou
 struct Setup {
   const ModuleDescription& module;
   const BinaryArray& pattern;
-  const Scene& scene;
+  const Surface& surface;
   const RenderOptions& o;
   CameraModel camera, projector;
   Eigen::Matrix3d projector_rotation;
@@ -38,8 +31,8 @@ struct Setup {
   double camera_aperture_mm, projector_aperture_mm;
   cv::Mat2d corner_rays;  // normalised (x, y) at pixel corners; NaN where not invertible
 
-  Setup(const ModuleDescription& m, const BinaryArray& p, const Scene& s, const RenderOptions& opt)
-      : module(m), pattern(p), scene(s), o(opt), camera(m.camera), projector(m.projector),
+  Setup(const ModuleDescription& m, const BinaryArray& p, const Surface& s, const RenderOptions& opt)
+      : module(m), pattern(p), surface(s), o(opt), camera(m.camera), projector(m.projector),
         projector_rotation(m.projector_from_camera.RotationMatrix()),
         projector_centre(m.projector_from_camera.Inverse().translation) {
     const double pitch_mm = o.sensor_width_mm / m.camera.width;
@@ -87,19 +80,22 @@ struct Sample {
 Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
              const Eigen::Vector3d& rig_shift, double cos_alpha) {
   Sample out;
-  const auto hit = Intersect(s.scene, origin, direction);
+  const auto hit = s.surface.Intersect(origin, direction);
   if (!hit) return out;
   const RenderOptions& o = s.o;
-  const Eigen::Vector3d albedo = MaterialAlbedo(s.scene.material, s.scene.material_seed, hit->surface_mm);
+  const Eigen::Vector3d albedo = MaterialAlbedo(hit->material, s.surface.MaterialSeed(), hit->surface_mm);
   const double grey = albedo.mean();
   const double vignetting = o.vignetting ? std::pow(cos_alpha, 4) : 1.0;
-  // Texture light: a ring around the camera pupil, treated as a point source there.
-  const Eigen::Vector3d to_light = rig_shift - hit->point;
-  const double d_light = to_light.norm();
-  const double cos_light = std::max(0.0, hit->normal.dot(to_light) / d_light);
-  const double falloff = std::pow(kReferenceDistanceMm / d_light, 2) * cos_light;
-  out.texture = (albedo / 0.5) * (o.texture_level * falloff * cos_alpha * cos_alpha + o.ambient_level);
-  out.texture *= vignetting;
+  if (o.images != RenderImages::kPattern) {
+    // Texture light: a ring around the camera pupil, treated as a point source there.
+    const Eigen::Vector3d to_light = rig_shift - hit->point;
+    const double d_light = to_light.norm();
+    const double cos_light = std::max(0.0, hit->normal.dot(to_light) / d_light);
+    const double falloff = std::pow(kReferenceDistanceMm / d_light, 2) * cos_light;
+    out.texture = (albedo / 0.5) * (o.texture_level * falloff * cos_alpha * cos_alpha + o.ambient_level);
+    out.texture *= vignetting;
+  }
+  if (o.images == RenderImages::kTexture) return out;
   // Pattern light from the projector.
   const Eigen::Vector3d p_rig = hit->point - rig_shift;
   const Eigen::Vector3d p_projector = s.projector_rotation * p_rig + s.module.projector_from_camera.translation;
@@ -164,10 +160,15 @@ RenderOptions RenderOptions::Ideal() {
 
 RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pattern,
                           const Scene& scene, const RenderOptions& o) {
-  module.Check();
   scene.Check();
+  return RenderFrame(module, pattern, SceneSurface(scene), o);
+}
+
+RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pattern,
+                          const Surface& surface, const RenderOptions& o) {
+  module.Check();
   o.Check();
-  const Setup setup(module, pattern, scene, o);
+  const Setup setup(module, pattern, surface, o);
   const int w = module.camera.width, h = module.camera.height, n = o.supersampling;
   RenderedFrame frame;
   frame.pattern_signal.create(h, w);
@@ -183,7 +184,7 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
       const auto centre_ray = setup.camera.Unproject({double(u), double(v)});
       float depth = NAN;
       if (centre_ray) {
-        const auto hit = Intersect(scene, Eigen::Vector3d::Zero(),
+        const auto hit = surface.Intersect(Eigen::Vector3d::Zero(),
                                    Eigen::Vector3d(centre_ray->x(), centre_ray->y(), 1.0));
         if (hit) depth = static_cast<float>(hit->point.z());
       }
@@ -223,10 +224,12 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
       const Eigen::Vector3d texture_signal = sum.texture / (n * n);
       frame.pattern_signal(v, u) = static_cast<float>(pattern_signal);
       frame.texture_signal(v, u) = cv::Vec3f(texture_signal.x(), texture_signal.y(), texture_signal.z());
-      frame.pattern(v, u) = Digitise(pattern_signal, o.sensor, o.seed, pixel, 0);
-      frame.texture(v, u) = cv::Vec3w(Digitise(texture_signal.x(), o.sensor, o.seed, pixel, 1),
-                                      Digitise(texture_signal.y(), o.sensor, o.seed, pixel, 2),
-                                      Digitise(texture_signal.z(), o.sensor, o.seed, pixel, 3));
+      frame.pattern(v, u) = o.images == RenderImages::kTexture ? 0 : Digitise(pattern_signal, o.sensor, o.seed, pixel, 0);
+      frame.texture(v, u) = o.images == RenderImages::kPattern
+                                ? cv::Vec3w(0, 0, 0)
+                                : cv::Vec3w(Digitise(texture_signal.x(), o.sensor, o.seed, pixel, 1),
+                                            Digitise(texture_signal.y(), o.sensor, o.seed, pixel, 2),
+                                            Digitise(texture_signal.z(), o.sensor, o.seed, pixel, 3));
     }
   });
   frame.samples = static_cast<std::int64_t>(w) * h * n * n;

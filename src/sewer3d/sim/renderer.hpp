@@ -15,6 +15,7 @@
 #include "sewer3d/camera/module.hpp"
 #include "sewer3d/pattern/binary_array.hpp"
 #include "sewer3d/sim/scene.hpp"
+#include "sewer3d/sim/surface.hpp"
 
 namespace sewer3d {
 
@@ -25,7 +26,12 @@ struct SensorModel {
   bool noise = true;            ///< photon shot noise and read noise
 };
 
+/// Which images a call renders (a capture run renders each image of a triplet at its own
+/// instant, so it asks for one at a time).
+enum class RenderImages { kBoth, kPattern, kTexture };
+
 struct RenderOptions {
+  RenderImages images = RenderImages::kBoth;
   int supersampling = 3;           ///< S: S x S samples per pixel (area and aperture)
   /// Physical width of the camera sensor (2592 x 2.2 µm); with the image width it gives the
   /// pixel pitch, hence the physical focal length and aperture of camera and projector.
@@ -60,7 +66,10 @@ struct RenderedFrame {
   std::int64_t samples = 0;   ///< rays traced
 };
 
-/// Renders the frame; multi-threaded, deterministic for options.seed.
+/// Renders the frame; multi-threaded, deterministic for options.seed. Images not asked for
+/// in options.images are left black.
+RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pattern,
+                          const Surface& surface, const RenderOptions& options);
 RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pattern,
                           const Scene& scene, const RenderOptions& options);
 

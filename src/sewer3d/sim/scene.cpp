@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/sim/root.hpp"
 
 namespace sewer3d {
 namespace {
@@ -102,6 +103,7 @@ std::optional<SurfaceHit> IntersectPlane(const Scene& s, const Eigen::Vector3d& 
   // In-plane coordinates: camera x and the tilted y direction.
   const Eigen::Vector3d ey = n.cross(Eigen::Vector3d::UnitX()).normalized();
   hit.surface_mm = {hit.point.x(), (hit.point - p0).dot(ey)};
+  hit.material = s.material;
   return hit;
 }
 
@@ -178,24 +180,7 @@ std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o
     if (ga > 0.0) {
       hit.t = a;
     } else {
-      int side = 0;
-      double t = a;
-      for (int it = 0; it < 60 && b - a > 1e-9; ++it) {
-        t = (a * gb - b * ga) / (gb - ga);
-        if (!(t > a && t < b)) t = 0.5 * (a + b);
-        const double gt = g(t);
-        if (gt > 0.0) {
-          b = t, gb = gt;
-          if (side == -1) ga *= 0.5;
-          side = -1;
-        } else {
-          a = t, ga = gt;
-          if (side == 1) gb *= 0.5;
-          side = 1;
-        }
-        if (std::abs(gt) < 1e-10) break;
-      }
-      hit.t = t;
+      hit.t = IllinoisRoot(g, a, b, ga, gb, 1e-9);
     }
   }
   hit.point = o + hit.t * d;
@@ -215,6 +200,7 @@ std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o
   }
   hit.normal = normal.dot(d) < 0 ? normal : -normal;
   hit.surface_mm = {clock * f.radius, station};
+  hit.material = scene.material;
   return hit;
 }
 

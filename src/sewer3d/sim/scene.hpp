@@ -12,7 +12,7 @@
 
 namespace sewer3d {
 
-enum class Material { kConcrete, kVitrifiedClay, kPlastic };
+enum class Material { kConcrete, kVitrifiedClay, kPlastic, kSediment };
 
 /// A displacement of the pipe wall. Positions: station along the axis (mm) and clock angle
 /// (deg, 0 = where the camera's optical axis meets the wall, increasing toward camera +x).
@@ -54,6 +54,7 @@ struct SurfaceHit {
   Eigen::Vector3d point;           ///< camera frame, mm
   Eigen::Vector3d normal;          ///< unit, facing the ray origin
   Eigen::Vector2d surface_mm;      ///< 2-D surface coordinates for textures (unrolled wall)
+  Material material = Material::kConcrete;  ///< what the surface is made of there
 };
 
 /// First intersection with t > 0 of origin + t * direction; nullopt when the ray misses.

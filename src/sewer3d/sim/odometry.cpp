@@ -1,0 +1,49 @@
+#include "sewer3d/sim/odometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/sim/material.hpp"
+
+namespace sewer3d {
+
+void OdometryOptions::Check() const {
+  SEWER3D_CHECK(rate_hz > 0.0 && rate_hz <= 1000.0, "odometry rate " << rate_hz << " Hz");
+  SEWER3D_CHECK(std::abs(scale_error) < 0.2 && noise_mm >= 0.0, "odometry scale error / noise");
+  for (const OdometrySlip& s : slips) {
+    SEWER3D_CHECK(s.length_mm >= 0.0 && s.fraction >= 0.0 && s.fraction <= 1.0,
+                  "slip at " << s.station_mm << " mm: length and fraction 0..1");
+  }
+}
+
+double SlipLossMm(const std::vector<OdometrySlip>& slips, double start, double station) {
+  double loss = 0.0;
+  for (const OdometrySlip& s : slips) {
+    const double a = std::max(start, s.station_mm), b = std::min(station, s.station_mm + s.length_mm);
+    if (b > a) loss += s.fraction * (b - a);
+  }
+  return loss;
+}
+
+std::vector<OdometrySample> SimulateOdometry(const Trajectory& trajectory, const OdometryOptions& o,
+                                             std::uint64_t seed) {
+  o.Check();
+  std::vector<OdometrySample> out;
+  const double start = trajectory.StationAt(0.0);
+  const int n = static_cast<int>(std::floor(trajectory.DurationS() * o.rate_hz)) + 1;
+  for (int i = 0; i < n; ++i) {
+    OdometrySample s;
+    s.time_s = i / o.rate_hz;
+    const double station = trajectory.StationAt(s.time_s);
+    s.true_mm = station - start;
+    s.scale_mm = o.scale_error * s.true_mm;
+    s.slip_mm = -SlipLossMm(o.slips, start, station);
+    s.noise_mm = o.noise_mm * HashNormal(seed, 0x0d0, i);
+    s.measured_mm = s.true_mm + s.scale_mm + s.slip_mm + s.noise_mm;
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,302 @@
+#include "sewer3d/sim/pipe_world.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/sim/material.hpp"
+#include "sewer3d/sim/root.hpp"
+
+namespace sewer3d {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kEdgeMm = 0.4;  // width of the smoothed edges of features
+
+double WrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
+
+// 0 below −½, 1 above ½, smooth in between.
+double Step(double x) {
+  const double u = std::clamp(x + 0.5, 0.0, 1.0);
+  return u * u * (3.0 - 2.0 * u);
+}
+
+// Centreline frame of a section in its own start frame at arc length u.
+Rigid3d LocalFrame(const PipeSection& s, double u) {
+  if (s.bend_radius_mm <= 0.0) return {Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, u)};
+  const Eigen::Vector3d d = ClockDirection(ClockHoursToRad(s.bend_clock_h));
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ().cross(d);
+  const Eigen::Quaterniond r(Eigen::AngleAxisd(u / s.bend_radius_mm, n));
+  return {r, s.bend_radius_mm * (d - (r * d))};
+}
+
+// Arc length of the centreline point nearest to a point given in the section's start frame.
+double LocalArc(const PipeSection& s, const Eigen::Vector3d& local) {
+  if (s.bend_radius_mm <= 0.0) return local.z();
+  const Eigen::Vector3d d = ClockDirection(ClockHoursToRad(s.bend_clock_h));
+  const Eigen::Vector3d w = local - s.bend_radius_mm * d;
+  return s.bend_radius_mm * std::atan2(w.dot(Eigen::Vector3d::UnitZ()), -w.dot(d));
+}
+
+Rigid3d Blend(const Rigid3d& a, const Rigid3d& b, double w) {
+  return {a.rotation.slerp(w, b.rotation), (1.0 - w) * a.translation + w * b.translation};
+}
+
+}  // namespace
+
+Eigen::Vector3d ClockDirection(double clock_rad) {
+  return {std::sin(clock_rad), -std::cos(clock_rad), 0.0};
+}
+
+void PipeWorld::Check() const {
+  SEWER3D_CHECK(!sections.empty(), "the pipe has no sections");
+  SEWER3D_CHECK(joints.size() + 1 == sections.size(),
+                "need one joint between each pair of sections: " << sections.size()
+                                                                 << " sections, " << joints.size() << " joints");
+  for (size_t i = 0; i < sections.size(); ++i) {
+    const PipeSection& s = sections[i];
+    SEWER3D_CHECK(s.length_mm > 0.0, "section " << i << ": length " << s.length_mm);
+    SEWER3D_CHECK(s.diameter_mm >= 50.0 && s.diameter_mm <= 5000.0, "section " << i << ": diameter " << s.diameter_mm);
+    SEWER3D_CHECK(s.ovality_pct >= 0.0 && s.ovality_pct < 30.0, "section " << i << ": ovality " << s.ovality_pct << " %");
+    SEWER3D_CHECK(s.bend_radius_mm == 0.0 || s.bend_radius_mm >= 10.0 * s.diameter_mm,
+                  "section " << i << ": bend radius " << s.bend_radius_mm << " mm (0, or at least 10 diameters)");
+  }
+  for (size_t i = 0; i < joints.size(); ++i) {
+    const PipeJoint& j = joints[i];
+    SEWER3D_CHECK(j.gap_mm >= 0.0 && j.gap_depth_mm >= 0.0 && j.offset_mm >= 0.0,
+                  "joint " << j.id << ": gap, depth and offset must not be negative");
+    SEWER3D_CHECK(j.gap_mm < 0.5 * std::min(sections[i].length_mm, sections[i + 1].length_mm),
+                  "joint " << j.id << ": gap " << j.gap_mm << " mm");
+    SEWER3D_CHECK(j.offset_mm < 0.2 * sections[i].diameter_mm, "joint " << j.id << ": offset " << j.offset_mm);
+    SEWER3D_CHECK(std::abs(j.deflection_deg) <= 10.0, "joint " << j.id << ": deflection " << j.deflection_deg << "°");
+  }
+  for (const PipeFeature& f : features) {
+    using T = PipeFeature::Type;
+    SEWER3D_CHECK(f.type != T::kConnection || (f.diameter_mm > 0.0 && f.wall_mm >= 0.0 && f.intrusion_mm >= 0.0),
+                  "feature " << f.id << ": connection needs diameter_mm > 0, wall_mm and intrusion_mm >= 0");
+    SEWER3D_CHECK(f.type != T::kSpalling || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
+                  "feature " << f.id << ": spalling needs length_mm, width_mm and depth_mm > 0");
+    SEWER3D_CHECK(f.type != T::kCrack || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
+                  "feature " << f.id << ": crack needs length_mm, width_mm and depth_mm > 0");
+    SEWER3D_CHECK(f.type != T::kDeposit || (f.length_mm > 0.0 && f.height_mm > 0.0),
+                  "feature " << f.id << ": deposit needs length_mm and height_mm > 0");
+    for (const PipeSection& s : sections) {
+      SEWER3D_CHECK(f.intrusion_mm < 0.4 * s.diameter_mm && f.height_mm < 0.5 * s.diameter_mm,
+                    "feature " << f.id << ": intrusion or deposit too large for a Ø" << s.diameter_mm << " section");
+    }
+  }
+}
+
+double PipeWorld::LengthMm() const {
+  double l = 0.0;
+  for (const auto& s : sections) l += s.length_mm;
+  return l;
+}
+
+PipeGeometry::PipeGeometry(PipeWorld world) : world_(std::move(world)) {
+  world_.Check();
+  const size_t n = world_.sections.size();
+  start_station_.resize(n);
+  section_start_.resize(n);
+  double station = 0.0;
+  Rigid3d start = Rigid3d::Identity();
+  for (size_t i = 0; i < n; ++i) {
+    start_station_[i] = station;
+    section_start_[i] = start;
+    station += world_.sections[i].length_mm;
+    if (i + 1 == n) break;
+    const PipeJoint& j = world_.joints[i];
+    const Rigid3d end = start * LocalFrame(world_.sections[i], world_.sections[i].length_mm);
+    // The next axis moves away from offset_clock, so its wall there is offset_mm inward.
+    const Eigen::Vector3d shift = -j.offset_mm * ClockDirection(ClockHoursToRad(j.offset_clock_h));
+    const Eigen::Vector3d turn_axis =
+        Eigen::Vector3d::UnitZ().cross(ClockDirection(ClockHoursToRad(j.deflection_clock_h)));
+    const Eigen::Quaterniond turn(Eigen::AngleAxisd(j.deflection_deg * kDeg, turn_axis));
+    start = end * Rigid3d(turn, shift);
+    joint_point_.push_back(0.5 * (end.translation + start.translation));
+    joint_normal_.push_back((end.rotation * Eigen::Vector3d::UnitZ() + start.rotation * Eigen::Vector3d::UnitZ()).normalized());
+  }
+}
+
+Rigid3d PipeGeometry::SectionFrame(int section, double local_mm) const {
+  return section_start_[section] * LocalFrame(world_.sections[section], local_mm);
+}
+
+Rigid3d PipeGeometry::PathFrame(double station_mm, double blend_mm) const {
+  const int n = static_cast<int>(start_station_.size());
+  const int i = std::max(0, static_cast<int>(std::upper_bound(start_station_.begin(), start_station_.end(), station_mm) -
+                                             start_station_.begin()) - 1);
+  const Rigid3d here = SectionFrame(i, station_mm - start_station_[i]);
+  const double end = start_station_[i] + world_.sections[i].length_mm;
+  if (i + 1 < n && station_mm > end - blend_mm) {
+    const double w = Step((station_mm - end) / (2.0 * blend_mm));
+    return Blend(here, SectionFrame(i + 1, station_mm - start_station_[i + 1]), w);
+  }
+  if (i > 0 && station_mm < start_station_[i] + blend_mm) {
+    const double w = Step((start_station_[i] - station_mm) / (2.0 * blend_mm));
+    return Blend(here, SectionFrame(i - 1, station_mm - start_station_[i - 1]), w);
+  }
+  return here;
+}
+
+PipeLocation PipeGeometry::Locate(const Eigen::Vector3d& p) const {
+  // Sections are ordered along the pipe: the point is beyond joints 0 .. k-1 and before k.
+  int lo = 0, hi = static_cast<int>(joint_point_.size());
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if ((p - joint_point_[mid]).dot(joint_normal_[mid]) >= 0.0) lo = mid + 1;
+    else hi = mid;
+  }
+  PipeLocation at;
+  at.section = lo;
+  const PipeSection& s = world_.sections[lo];
+  const Eigen::Vector3d local = section_start_[lo].Inverse() * p;
+  at.local_mm = LocalArc(s, local);
+  at.station_mm = start_station_[lo] + at.local_mm;
+  const Eigen::Vector3d q = LocalFrame(s, at.local_mm).Inverse() * local;
+  at.rho_mm = std::hypot(q.x(), q.y());
+  at.clock_rad = std::atan2(q.x(), -q.y());
+  return at;
+}
+
+double PipeGeometry::Displacement(const PipeLocation& at, Material* material) const {
+  const PipeSection& s = world_.sections[at.section];
+  const double radius = 0.5 * s.diameter_mm;
+  double d = 0.0, strongest = 0.0;
+  // Open gaps at the joints before and after this section.
+  if (at.section > 0 && at.local_mm < 0.5 * world_.joints[at.section - 1].gap_mm) {
+    d -= world_.joints[at.section - 1].gap_depth_mm;
+  }
+  if (at.section + 1 < static_cast<int>(world_.sections.size()) &&
+      at.local_mm > s.length_mm - 0.5 * world_.joints[at.section].gap_mm) {
+    d -= world_.joints[at.section].gap_depth_mm;
+  }
+  for (size_t k = 0; k < world_.features.size(); ++k) {
+    const PipeFeature& f = world_.features[k];
+    const double ds = at.station_mm - f.station_mm;
+    const double dclock = WrapAngle(at.clock_rad - ClockHoursToRad(f.clock_h));
+    const double arc = dclock * radius;
+    double fd = 0.0;
+    Material m = s.material;
+    switch (f.type) {
+      case PipeFeature::Type::kConnection: {
+        const double r_in = 0.5 * f.diameter_mm, r_out = r_in + f.wall_mm;
+        if (std::abs(ds) > r_out + kEdgeMm || std::abs(arc) > r_out + kEdgeMm) continue;
+        const double r = std::hypot(ds, arc);
+        const double bore = std::min(60.0, r_in);  // how deep the lateral's bore is modelled
+        fd = f.intrusion_mm * (1.0 - Step((r - r_out) / kEdgeMm)) -
+             (bore + f.intrusion_mm) * (1.0 - Step((r - r_in) / kEdgeMm));
+        m = Material::kVitrifiedClay;
+        break;
+      }
+      case PipeFeature::Type::kSpalling: {
+        if (std::abs(ds) > 0.5 * f.length_mm + kEdgeMm || std::abs(arc) > 0.5 * f.width_mm + kEdgeMm) continue;
+        // Rounded rectangle (superellipse) with a rough bottom.
+        const double u = 2.0 * ds / f.length_mm, v = 2.0 * arc / f.width_mm;
+        const double q = std::pow(std::pow(u, 4) + std::pow(v, 4), 0.25);
+        const double edge = (q - 1.0) * 0.5 * std::min(f.length_mm, f.width_mm) / kEdgeMm;
+        const double rough = SmoothNoise(world_.material_seed + 17 + k, ds / 4.0, arc / 4.0, 3);
+        fd = -f.depth_mm * (0.6 + 0.8 * rough) * (1.0 - Step(edge));
+        break;
+      }
+      case PipeFeature::Type::kCrack: {
+        if (std::abs(ds) > 0.5 * f.length_mm + f.width_mm && std::abs(arc) > 0.5 * f.length_mm + f.width_mm) continue;
+        const double ca = std::cos(f.angle_deg * kDeg), sa = std::sin(f.angle_deg * kDeg);
+        const double along = ds * ca + arc * sa, across = -ds * sa + arc * ca;
+        if (std::abs(along) > 0.5 * f.length_mm) continue;
+        const double q = std::abs(across) / (0.5 * f.width_mm);
+        fd = q < 1.0 ? -f.depth_mm * (1.0 - q) : 0.0;
+        break;
+      }
+      case PipeFeature::Type::kDeposit: {
+        if (ds < 0.0 || ds > f.length_mm) continue;
+        const double ramp = std::min(30.0, 0.25 * f.length_mm);
+        const double h = f.height_mm * std::min(Step(ds / ramp - 0.5), Step((f.length_mm - ds) / ramp - 0.5));
+        const double c = std::cos(dclock);
+        if (c <= 0.0) continue;
+        const double grit = 0.3 * (SmoothNoise(world_.material_seed + 29 + k, ds / 3.0, arc / 3.0, 2) - 0.5);
+        fd = std::max(0.0, radius - (radius - h - grit) / c);
+        m = Material::kSediment;
+        break;
+      }
+    }
+    d += fd;
+    if (material && fd > strongest) {
+      strongest = fd;
+      *material = m;
+    }
+  }
+  return d;
+}
+
+double PipeGeometry::WallRadiusMm(const PipeLocation& at) const {
+  const PipeSection& s = world_.sections[at.section];
+  double radius = 0.5 * s.diameter_mm;
+  if (s.ovality_pct > 0.0) {
+    const double ramp = std::min(100.0, 0.25 * s.length_mm);
+    const double w = std::min(Step(at.local_mm / ramp - 0.5), Step((s.length_mm - at.local_mm) / ramp - 0.5));
+    radius *= 1.0 - 0.01 * s.ovality_pct * w * std::cos(2.0 * (at.clock_rad - ClockHoursToRad(s.ovality_clock_h)));
+  }
+  return radius - Displacement(at, nullptr);
+}
+
+double PipeGeometry::SignedDistanceMm(const Eigen::Vector3d& p) const {
+  const PipeLocation at = Locate(p);
+  return at.rho_mm - WallRadiusMm(at);
+}
+
+std::optional<SurfaceHit> PipeGeometry::Intersect(const Eigen::Vector3d& origin,
+                                                  const Eigen::Vector3d& direction) const {
+  const double scale = direction.norm();
+  if (!(scale > 0.0)) return std::nullopt;
+  const Eigen::Vector3d d = direction / scale;
+  const PipeLocation start = Locate(origin);
+  if (start.rho_mm >= WallRadiusMm(start)) return std::nullopt;  // origin outside the wall
+  // First guess: the nominal cylinder of the section around the origin.
+  const Rigid3d frame = SectionFrame(start.section, start.local_mm);
+  const Eigen::Vector3d o_l = frame.Inverse() * origin, d_l = frame.rotation.conjugate() * d;
+  const double radius = 0.5 * world_.sections[start.section].diameter_mm;
+  const double A = d_l.head<2>().squaredNorm(), B = 2.0 * o_l.head<2>().dot(d_l.head<2>());
+  const double C = o_l.head<2>().squaredNorm() - radius * radius;
+  if (A < 1e-12) return std::nullopt;  // along the axis
+  const double t0 = (-B + std::sqrt(std::max(0.0, B * B - 4.0 * A * C))) / (2.0 * A);
+  auto g = [&](double t) { return SignedDistanceMm(origin + t * d); };
+  // Bracket the wall by steps of 1, 2, 4 ... mm from the guess, then refine.
+  double a = t0, b = t0, ga = g(t0), gb = ga;
+  if (ga > 0.0) {
+    for (double step = 1.0; ga > 0.0; step *= 2.0) {
+      b = a, gb = ga;
+      if (a <= 1e-6) return std::nullopt;
+      a = std::max(1e-6, t0 - step);
+      ga = g(a);
+    }
+  } else {
+    for (double step = 1.0; gb <= 0.0; step *= 2.0) {
+      if (step > 1024.0) return std::nullopt;
+      a = b, ga = gb;
+      b = t0 + step;
+      gb = g(b);
+    }
+  }
+  const double t = IllinoisRoot(g, a, b, ga, gb, 1e-7);
+  SurfaceHit hit;
+  hit.t = t / scale;
+  hit.point = origin + t * d;
+  const PipeLocation at = Locate(hit.point);
+  hit.material = world_.sections[at.section].material;
+  Displacement(at, &hit.material);
+  // Normal from the gradient of the signed distance (forward differences).
+  constexpr double h = 1e-3;
+  const double g0 = at.rho_mm - WallRadiusMm(at);
+  Eigen::Vector3d gradient;
+  for (int k = 0; k < 3; ++k) gradient[k] = (SignedDistanceMm(hit.point + h * Eigen::Vector3d::Unit(k)) - g0) / h;
+  Eigen::Vector3d normal = -gradient.normalized();
+  if (!normal.allFinite()) normal = -d;
+  hit.normal = normal.dot(d) < 0.0 ? normal : -normal;
+  hit.surface_mm = {at.clock_rad * 0.5 * world_.sections[at.section].diameter_mm, at.station_mm};
+  return hit;
+}
+
+}  // namespace sewer3d

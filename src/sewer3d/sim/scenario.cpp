@@ -1,0 +1,160 @@
+#include "sewer3d/sim/scenario.hpp"
+
+#include <stdexcept>
+
+#include "sewer3d/core/check.hpp"
+
+namespace sewer3d {
+namespace {
+
+PipeJoint Joint(const std::string& id, double gap, double depth, double offset, double offset_clock,
+                double deflection = 0.0, double deflection_clock = 3.0) {
+  PipeJoint j;
+  j.id = id;
+  j.gap_mm = gap;
+  j.gap_depth_mm = depth;
+  j.offset_mm = offset;
+  j.offset_clock_h = offset_clock;
+  j.deflection_deg = deflection;
+  j.deflection_clock_h = deflection_clock;
+  return j;
+}
+
+PipeFeature Connection(const std::string& id, double station, double clock, double diameter, double intrusion) {
+  PipeFeature f;
+  f.type = PipeFeature::Type::kConnection;
+  f.id = id;
+  f.station_mm = station;
+  f.clock_h = clock;
+  f.diameter_mm = diameter;
+  f.wall_mm = 12.0;
+  f.intrusion_mm = intrusion;
+  return f;
+}
+
+PipeFeature Patch(PipeFeature::Type type, const std::string& id, double station, double clock, double length,
+                  double width, double depth, double angle = 0.0) {
+  PipeFeature f;
+  f.type = type;
+  f.id = id;
+  f.station_mm = station;
+  f.clock_h = clock;
+  f.length_mm = length;
+  f.width_mm = width;
+  f.depth_mm = depth;
+  f.angle_deg = angle;
+  return f;
+}
+
+PipeFeature Deposit(const std::string& id, double station, double length, double height) {
+  PipeFeature f;
+  f.type = PipeFeature::Type::kDeposit;
+  f.id = id;
+  f.station_mm = station;
+  f.clock_h = 6.0;
+  f.length_mm = length;
+  f.height_mm = height;
+  return f;
+}
+
+Scenario Tiny() {
+  Scenario s;
+  s.name = "tiny";
+  s.camera_width = 648;
+  s.world.sections = {{.length_mm = 400.0, .diameter_mm = 300.0}, {.length_mm = 600.0, .diameter_mm = 300.0}};
+  s.world.joints = {Joint("J1", 8.0, 5.0, 4.0, 12.0)};
+  s.world.features = {Connection("C1", 300.0, 2.0, 100.0, 15.0),
+                      Patch(PipeFeature::Type::kCrack, "K1", 250.0, 8.0, 80.0, 1.5, 3.0, 30.0)};
+  s.motion.start_station_mm = 350.0;
+  s.motion.travel_mm = 100.0;
+  s.render.supersampling = 1;
+  s.truth_depth = TruthDepth::kAll;
+  return s;
+}
+
+Scenario Demo() {
+  Scenario s;
+  s.name = "demo";
+  s.world.sections = {{.length_mm = 700.0, .diameter_mm = 300.0},
+                      {.length_mm = 600.0, .diameter_mm = 300.0},
+                      {.length_mm = 1000.0, .diameter_mm = 300.0, .material = Material::kPlastic}};
+  s.world.joints = {Joint("J1", 10.0, 6.0, 6.0, 1.0, 1.0, 3.0), Joint("J2", 4.0, 3.0, 1.0, 6.0)};
+  s.world.features = {Connection("C1", 950.0, 2.0, 150.0, 25.0),
+                      Patch(PipeFeature::Type::kSpalling, "S1", 1120.0, 10.0, 70.0, 50.0, 6.0),
+                      Patch(PipeFeature::Type::kCrack, "K1", 450.0, 4.5, 120.0, 1.2, 3.0, 20.0)};
+  s.motion.start_station_mm = 300.0;
+  s.motion.travel_mm = 1000.0;
+  s.render.supersampling = 1;
+  s.truth_depth = TruthDepth::kPattern;
+  return s;
+}
+
+Scenario Long() {
+  Scenario s;
+  s.name = "long";
+  const PipeSection concrete{.length_mm = 2000.0, .diameter_mm = 300.0};
+  const PipeSection clay{.length_mm = 1000.0, .diameter_mm = 300.0, .material = Material::kVitrifiedClay};
+  PipeSection plastic{.length_mm = 3000.0, .diameter_mm = 300.0, .material = Material::kPlastic};
+  PipeSection bent = concrete;
+  bent.bend_radius_mm = 30000.0;
+  bent.bend_clock_h = 3.0;
+  PipeSection deformed = plastic;
+  deformed.ovality_pct = 6.0;
+  s.world.sections = {concrete, bent, clay, clay, clay, deformed, plastic};
+  s.world.joints = {Joint("J1", 6.0, 4.0, 3.0, 12.0), Joint("J2", 12.0, 6.0, 8.0, 2.0, 1.5, 9.0),
+                    Joint("J3", 5.0, 3.0, 2.0, 4.0), Joint("J4", 5.0, 3.0, 0.0, 12.0, 2.0, 12.0),
+                    Joint("J5", 8.0, 5.0, 5.0, 9.0), Joint("J6", 3.0, 2.0, 0.0, 12.0)};
+  s.world.features = {Connection("C1", 1200.0, 2.0, 150.0, 25.0),
+                      Connection("C2", 5600.0, 10.0, 100.0, 10.0),
+                      Patch(PipeFeature::Type::kSpalling, "S1", 800.0, 11.0, 90.0, 60.0, 8.0),
+                      Patch(PipeFeature::Type::kSpalling, "S2", 3300.0, 5.0, 40.0, 40.0, 4.0),
+                      Patch(PipeFeature::Type::kCrack, "K1", 2500.0, 1.0, 300.0, 1.0, 3.0, 0.0),
+                      Patch(PipeFeature::Type::kCrack, "K2", 6200.0, 8.0, 150.0, 2.0, 4.0, 90.0),
+                      Deposit("D1", 4200.0, 900.0, 30.0)};
+  s.motion.start_station_mm = 300.0;
+  s.motion.travel_mm = 10000.0;
+  s.render.supersampling = 1;
+  s.truth_depth = TruthDepth::kNone;
+  s.odometry.slips = {{.station_mm = 4300.0, .length_mm = 500.0, .fraction = 0.15}};
+  return s;
+}
+
+}  // namespace
+
+void Scenario::Check() const {
+  SEWER3D_CHECK(!name.empty(), "scenario name");
+  SEWER3D_CHECK(camera_width >= 160 && camera_width <= 8192, "camera width " << camera_width);
+  rig.Check();
+  world.Check();
+  motion.Check();
+  capture.Check();
+  odometry.Check();
+  render.Check();
+  SEWER3D_CHECK(motion.start_station_mm - 0.5 * rig.carrier_length_mm >= -world.LengthMm() &&
+                    motion.start_station_mm + motion.travel_mm <= 2.0 * world.LengthMm(),
+                "the robot's travel lies far outside the pipe");
+  for (const PipeSection& s : world.sections) {
+    SEWER3D_CHECK(motion.offset_mm.norm() + motion.wander_mm + 0.5 * rig.carrier_diameter_mm < 0.5 * s.diameter_mm,
+                  "the carrier (Ø" << rig.carrier_diameter_mm << ", offset " << motion.offset_mm.norm()
+                                   << " mm) does not fit in a Ø" << s.diameter_mm << " section");
+  }
+}
+
+const std::vector<std::string>& PresetNames() {
+  static const std::vector<std::string> names{"tiny", "demo", "long"};
+  return names;
+}
+
+Scenario PresetScenario(const std::string& name) {
+  Scenario s;
+  if (name == "tiny") s = Tiny();
+  else if (name == "demo") s = Demo();
+  else if (name == "long") s = Long();
+  else throw std::invalid_argument("unknown preset '" + name + "' (tiny, demo, long)");
+  s.odometry.slips.push_back({.station_mm = s.motion.start_station_mm + 0.4 * s.motion.travel_mm,
+                              .length_mm = 0.1 * s.motion.travel_mm, .fraction = 0.2});
+  s.Check();
+  return s;
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,46 @@
+#pragma once
+/// \file
+/// Everything that defines a virtual inspection run (docs/simulator.md, "Scenario files"):
+/// the pipe world, the rig, the robot's motion, capture timing, odometry errors and render
+/// settings; plus the built-in presets tiny, demo and long.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sewer3d/sim/odometry.hpp"
+#include "sewer3d/sim/pipe_world.hpp"
+#include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/sim/rig.hpp"
+#include "sewer3d/sim/trajectory.hpp"
+
+namespace sewer3d {
+
+enum class TruthDepth { kAll, kPattern, kNone };
+
+struct Scenario {
+  std::string name = "custom";
+  std::uint64_t seed = 1;
+  /// Module file for every module of the rig (relative to the scenario file); empty: the
+  /// default module with camera_width (height and projector scaled alike).
+  std::string module_file;
+  int camera_width = 2592;
+  RigOptions rig;
+  PipeWorld world;
+  MotionOptions motion;
+  CaptureOptions capture;
+  OdometryOptions odometry;
+  RenderOptions render;
+  TruthDepth truth_depth = TruthDepth::kPattern;  ///< which images get a truth depth map
+
+  void Check() const;  ///< throws std::invalid_argument
+};
+
+const std::vector<std::string>& PresetNames();
+/// tiny: 648 × 486 images, DN300 concrete with a displaced joint, two acquisitions (tests);
+/// demo: full-size images, DN300, 1 m of travel: concrete, displaced joint, intruding
+/// connection, spalled patch, crack, then plastic; long: 10 m with every kind of feature.
+/// Throws std::invalid_argument for an unknown name.
+Scenario PresetScenario(const std::string& name);
+
+}  // namespace sewer3d
