@@ -78,6 +78,21 @@ expect_error "'type'" "$bin" simulate frame --module "$tmp/m/module.json" --scen
 echo '{"type": "cylinder", "diameter_mm": 100, "axis_point_mm": [0, 0, 80]}' >"$tmp/s/outside.json"
 expect_error "camera outside" "$bin" simulate frame --module "$tmp/m/module.json" --scene "$tmp/s/outside.json" --out "$tmp/s/x"
 expect_error "error" "$bin" simulate frame --module "$tmp/nothing.json" --out "$tmp/s/x"
+# simulate run: input errors (the tiny run itself is checked by cli/run_format).
+expect_ok "$bin" simulate run --help
+grep -q -- "--preset" "$tmp/out" || fail "simulate run --help shows no --preset"
+expect_error "--scenario FILE or --preset" "$bin" simulate run --out "$tmp/r"
+expect_error "--preset" "$bin" simulate run --preset huge --out "$tmp/r"
+printf '{"pipe": {"sections": [{"length_mm": 500}]}, "motoin": {}}' >"$tmp/typo.json"
+expect_error "motoin" "$bin" simulate run --scenario "$tmp/typo.json" --out "$tmp/r"
+printf '{"pipe": {"sections": [{"length_mm": 3000, "diameter_mm": 160}]}}' >"$tmp/narrow.json"
+expect_error "does not fit" "$bin" simulate run --scenario "$tmp/narrow.json" --out "$tmp/r"
+printf '{"pipe": {"sections": [{"length_mm": 500}, {"length_mm": 500}]}}' >"$tmp/nojoint.json"
+expect_error "joint" "$bin" simulate run --scenario "$tmp/nojoint.json" --out "$tmp/r"
+printf '{"pipe": {"sections": [{"length_mm": 500, "material": "wood"}]}}' >"$tmp/wood.json"
+expect_error "wood" "$bin" simulate run --scenario "$tmp/wood.json" --out "$tmp/r"
+printf '{"pipe": ' >"$tmp/cut.json"
+expect_error "cut.json" "$bin" simulate run --scenario "$tmp/cut.json" --out "$tmp/r"
 
 # Reconstruction of the simulated plane.
 expect_ok "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/s/plane/pattern.png" \

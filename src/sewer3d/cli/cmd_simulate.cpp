@@ -9,6 +9,10 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/scene_io.hpp"
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/io/scenario_io.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/pipeline/simulate_run.hpp"
 #include "sewer3d/sim/renderer.hpp"
 
 namespace sewer3d::cli {
@@ -43,6 +47,76 @@ std::vector<WallFeature> PipeWallPreset() {
   return f;
 }
 
+struct RunArgs {
+  std::string scenario, preset, out, module;
+  std::uint64_t seed = 0;
+  int supersampling = 0;
+  bool quiet = false;
+};
+
+void AddRunCommand(CLI::App& sim, RunArgs& a) {
+  CLI::App* run = sim.add_subcommand("run", "Simulate a whole inspection run: six modules, robot motion, odometry, truth");
+  auto* scenario = run->add_option("--scenario", a.scenario, "Scenario JSON file (docs/formats.md)")->check(CLI::ExistingFile);
+  auto* preset = run->add_option("--preset", a.preset, "Built-in scenario: tiny, demo or long")
+                     ->check(CLI::IsMember({"tiny", "demo", "long"}));
+  scenario->excludes(preset);
+  run->add_option("--out", a.out, "Run folder to write")->required();
+  run->add_option("--seed", a.seed, "Seed (overrides the scenario's)");
+  run->add_option("--module", a.module, "Module file for every module (overrides the scenario's)")
+      ->check(CLI::ExistingFile);
+  run->add_option("--supersampling", a.supersampling, "S x S samples per pixel (overrides the scenario's)")
+      ->check(CLI::Range(1, 16));
+  run->add_flag("--quiet", a.quiet, "No progress bar");
+}
+
+int RunRun(const RunArgs& a) {
+  if (a.scenario.empty() && a.preset.empty()) {
+    std::fprintf(stderr, "sewer3d: error: simulate run needs --scenario FILE or --preset NAME\n");
+    return 2;
+  }
+  Scenario s = a.scenario.empty() ? PresetScenario(a.preset) : ReadScenario(a.scenario);
+  if (a.seed != 0) s.seed = a.seed;
+  if (a.supersampling != 0) s.render.supersampling = a.supersampling;
+  std::filesystem::path module_file = a.module;
+  if (module_file.empty() && !s.module_file.empty()) {
+    module_file = std::filesystem::path(a.scenario).parent_path() / s.module_file;
+  }
+  ModuleDescription module;
+  BinaryArray pattern;
+  if (!module_file.empty()) {
+    LoadedModule loaded = LoadModule(module_file);
+    module = loaded.module;
+    pattern = loaded.pattern;
+  } else {
+    DefaultModuleOptions options;
+    options.camera_width = s.camera_width;
+    options.camera_height = s.camera_width * 3 / 4;
+    module = MakeDefaultModule(options);
+    pattern = DefaultPatternArray();
+  }
+  const auto start = std::chrono::steady_clock::now();
+  auto progress = [&](int done, int total) {
+    if (a.quiet) return;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const int width = 30, filled = width * done / total;
+    std::fprintf(stderr, "\rsimulate %s: [%s%s] %d/%d images  %.0f s  ETA %.0f s ", s.name.c_str(),
+                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), done, total, seconds,
+                 seconds / done * (total - done));
+    if (done == total) std::fprintf(stderr, "\n");
+  };
+  const SimulatedRun r = SimulateRun(s, module, pattern, a.out, progress);
+  fmt::print("run '{}': {} acquisitions x {} modules x 3 images = {} images of {}x{} px\n", s.name,
+             r.plan.acquisitions, s.rig.modules, r.images, module.camera.width, module.camera.height);
+  fmt::print("robot: {:.0f} mm at {:.0f} mm/s in {:.2f} s; acquisition every {:.3f} s ({:.0f} mm footprint, {:.0f} % overlap)\n",
+             s.motion.travel_mm, s.motion.speed_mm_s, r.duration_s, r.plan.period_s, r.plan.footprint_mm,
+             100.0 * s.capture.overlap);
+  std::string overlap;
+  for (const NeighbourOverlap& o : r.overlap) overlap += fmt::format(" m{}-m{} {:.1f} deg", o.module, o.next, o.overlap_deg);
+  fmt::print("neighbour overlap (3-D, DN{:.0f}, centred):{}\n", s.capture.nominal_diameter_mm, overlap);
+  fmt::print("wrote {} ({:.1f} MB) in {:.1f} s\n", a.out, r.bytes / 1e6, r.wall_seconds);
+  return 0;
+}
+
 }  // namespace
 
 Command AddSimulateCommand(CLI::App& app) {
@@ -55,6 +129,7 @@ Command AddSimulateCommand(CLI::App& app) {
     RenderOptions render;
   };
   auto args = std::make_shared<Args>();
+  auto run_args = std::make_shared<RunArgs>();
   CLI::App* sim = app.add_subcommand("simulate", "Render simulated captures");
   sim->require_subcommand(1);
   CLI::App* frame = sim->add_subcommand("frame", "Render one module's pattern and texture images of a scene");
@@ -85,8 +160,9 @@ Command AddSimulateCommand(CLI::App& app) {
   frame->add_option("--exposure-ms", args->render.exposure_ms, "Exposure time")
       ->capture_default_str()->check(CLI::Range(0.0, 1000.0));
   frame->add_flag("--ideal", args->ideal, "No noise, defocus, ambient light or vignetting");
-  return {sim, [args, frame] {
-            if (!frame->parsed()) return 2;
+  AddRunCommand(*sim, *run_args);
+  return {sim, [args, run_args, frame] {
+            if (!frame->parsed()) return RunRun(*run_args);
             const LoadedModule loaded = LoadModule(args->module);
             Scene scene;
             if (args->scene == "plane" || args->scene == "cylinder" || args->scene == "pipe-wall") {

@@ -8,21 +8,13 @@
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/json_reader.hpp"
 
 namespace sewer3d {
 namespace {
 
 using nlohmann::json;
 
-const char* MaterialName(Material m) {
-  switch (m) {
-    case Material::kConcrete: return "concrete";
-    case Material::kVitrifiedClay: return "vitrified_clay";
-    case Material::kPlastic: return "plastic";
-    case Material::kSediment: return "sediment";
-  }
-  return "concrete";
-}
 const char* TypeName(Scene::Type t) {
   switch (t) {
     case Scene::Type::kPlane: return "plane";
@@ -41,62 +33,18 @@ const char* FeatureName(WallFeature::Type t) {
   return "joint";
 }
 
-class Reader {
- public:
-  explicit Reader(const std::filesystem::path& path) : path_(path) {}
-  [[noreturn]] void Fail(const std::string& field, const std::string& problem) const {
-    throw FileError(path_, "field '" + field + "' " + problem);
-  }
-  double Number(const json& j, const char* key, const std::string& prefix, double fallback) const {
-    const auto it = j.find(key);
-    if (it == j.end()) return fallback;
-    if (!it->is_number() || !std::isfinite(it->get<double>())) Fail(prefix + key, "must be a finite number");
-    return it->get<double>();
-  }
-  Eigen::Vector3d Vector(const json& j, const char* key, const Eigen::Vector3d& fallback) const {
-    const auto it = j.find(key);
-    if (it == j.end()) return fallback;
-    if (!it->is_array() || it->size() != 3) Fail(key, "must be an array of 3 numbers");
-    Eigen::Vector3d v;
-    for (int i = 0; i < 3; ++i) {
-      if (!(*it)[i].is_number()) Fail(key, "must be an array of 3 numbers");
-      v[i] = (*it)[i].get<double>();
-    }
-    return v;
-  }
-  std::string Text(const json& j, const char* key, const std::string& prefix, const std::string& fallback) const {
-    const auto it = j.find(key);
-    if (it == j.end()) return fallback;
-    if (!it->is_string()) Fail(prefix + key, "must be a string");
-    return it->get<std::string>();
-  }
-
- private:
-  std::filesystem::path path_;
-};
-
 }  // namespace
 
 Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw FileError(path, std::string("invalid JSON: ") + e.what());
-  }
-  if (!j.is_object()) throw FileError(path, "must hold a JSON object");
-  const Reader in(path);
+  const JsonReader in(path);
+  const json j = in.ParseObject(text);
   Scene s;
   const std::string type = in.Text(j, "type", "", "");
   if (type == "plane") s.type = Scene::Type::kPlane;
   else if (type == "cylinder") s.type = Scene::Type::kCylinder;
   else if (type == "pipe_wall") s.type = Scene::Type::kPipeWall;
   else in.Fail("type", "must be plane, cylinder or pipe_wall, got '" + type + "'");
-  const std::string material = in.Text(j, "material", "", "concrete");
-  if (material == "concrete") s.material = Material::kConcrete;
-  else if (material == "vitrified_clay") s.material = Material::kVitrifiedClay;
-  else if (material == "plastic") s.material = Material::kPlastic;
-  else in.Fail("material", "must be concrete, vitrified_clay or plastic, got '" + material + "'");
+  s.material = ParseMaterial(in, in.Text(j, "material", "", "concrete"), "material");
   s.material_seed = static_cast<std::uint64_t>(in.Number(j, "material_seed", "", 1.0));
   s.distance_mm = in.Number(j, "distance_mm", "", s.distance_mm);
   s.tilt_deg = in.Number(j, "tilt_deg", "", s.tilt_deg);
@@ -177,21 +125,28 @@ std::string SceneToJson(const Scene& s) {
   return j.dump(2);
 }
 
+void WritePatternImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits) {
+  cv::Mat pattern;
+  if (bits == 8) frame.pattern.convertTo(pattern, CV_8U);
+  else pattern = frame.pattern;
+  WriteImage(path, pattern);
+}
+
+void WriteTextureImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits) {
+  cv::Mat texture8, bgr;
+  frame.texture.convertTo(texture8, CV_8U, 255.0 / ((1 << bits) - 1));
+  cv::cvtColor(texture8, bgr, cv::COLOR_RGB2BGR);
+  WriteImage(path, bgr);
+}
+
 void WriteRenderedFrame(const std::filesystem::path& dir, const RenderedFrame& frame,
                         const Scene& scene, const RenderOptions& o,
                         const std::filesystem::path& module_path) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw FileError(dir, "cannot create folder: " + ec.message());
-  const int bits = o.sensor.bits;
-  cv::Mat pattern;
-  if (bits == 8) frame.pattern.convertTo(pattern, CV_8U);
-  else pattern = frame.pattern;
-  WriteImage(dir / "pattern.png", pattern);
-  cv::Mat texture8, bgr;
-  frame.texture.convertTo(texture8, CV_8U, 255.0 / ((1 << bits) - 1));
-  cv::cvtColor(texture8, bgr, cv::COLOR_RGB2BGR);
-  WriteImage(dir / "texture.png", bgr);
+  WritePatternImage(dir / "pattern.png", frame, o.sensor.bits);
+  WriteTextureImage(dir / "texture.png", frame, o.sensor.bits);
   WriteImage(dir / "truth_depth.tiff", frame.truth_depth);
   const auto [lo, hi] = WriteDepthPreview(dir / "depth_preview.png", frame.truth_depth);
 
@@ -199,21 +154,69 @@ void WriteRenderedFrame(const std::filesystem::path& dir, const RenderedFrame& f
   doc["scene"] = json::parse(SceneToJson(scene));
   doc["seed"] = o.seed;
   doc["module"] = module_path.string();
-  doc["render"] = {{"supersampling", o.supersampling}, {"sensor_width_mm", o.sensor_width_mm},
-                   {"camera_f_number", o.camera_f_number}, {"camera_focus_mm", o.camera_focus_mm},
-                   {"projector_f_number", o.projector_f_number},
-                   {"projector_focus_mm", o.projector_focus_mm},
-                   {"projector_psf_px", o.projector_psf_px}, {"texture_level", o.texture_level},
-                   {"pattern_level", o.pattern_level}, {"ambient_level", o.ambient_level},
-                   {"vignetting", o.vignetting}, {"speed_mm_s", o.speed_mm_s},
-                   {"exposure_ms", o.exposure_ms},
-                   {"motion_direction", {o.motion_direction.x(), o.motion_direction.y(), o.motion_direction.z()}},
-                   {"full_well_e", o.sensor.full_well_e}, {"read_noise_e", o.sensor.read_noise_e},
-                   {"bits", o.sensor.bits}, {"noise", o.sensor.noise}};
+  doc["render"] = RenderOptionsToJson(o);
   doc["depth_range_mm"] = {lo, hi};
   std::ofstream file(dir / "scene.json");
   if (!file) throw FileError(dir / "scene.json", "cannot open for writing");
   file << doc.dump(2) << "\n";
+}
+
+}  // namespace sewer3d
+
+namespace sewer3d {
+
+const char* MaterialName(Material m) {
+  switch (m) {
+    case Material::kConcrete: return "concrete";
+    case Material::kVitrifiedClay: return "vitrified_clay";
+    case Material::kPlastic: return "plastic";
+    case Material::kSediment: return "sediment";
+  }
+  return "concrete";
+}
+
+Material ParseMaterial(const JsonReader& in, const std::string& name, const std::string& field) {
+  for (const Material m : {Material::kConcrete, Material::kVitrifiedClay, Material::kPlastic, Material::kSediment}) {
+    if (name == MaterialName(m)) return m;
+  }
+  in.Fail(field, "must be concrete, vitrified_clay, plastic or sediment, got '" + name + "'");
+}
+
+nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
+  return {{"supersampling", o.supersampling}, {"sensor_width_mm", o.sensor_width_mm},
+          {"camera_f_number", o.camera_f_number}, {"camera_focus_mm", o.camera_focus_mm},
+          {"projector_f_number", o.projector_f_number}, {"projector_focus_mm", o.projector_focus_mm},
+          {"projector_psf_px", o.projector_psf_px}, {"texture_level", o.texture_level},
+          {"pattern_level", o.pattern_level}, {"ambient_level", o.ambient_level},
+          {"vignetting", o.vignetting}, {"speed_mm_s", o.speed_mm_s}, {"exposure_ms", o.exposure_ms},
+          {"motion_direction", {o.motion_direction.x(), o.motion_direction.y(), o.motion_direction.z()}},
+          {"full_well_e", o.sensor.full_well_e}, {"read_noise_e", o.sensor.read_noise_e},
+          {"bits", o.sensor.bits}, {"noise", o.sensor.noise}};
+}
+
+void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& p, RenderOptions& o) {
+  in.OnlyKnown(j, p, {"supersampling", "sensor_width_mm", "camera_f_number", "camera_focus_mm",
+                      "projector_f_number", "projector_focus_mm", "projector_psf_px", "texture_level",
+                      "pattern_level", "ambient_level", "vignetting", "speed_mm_s", "exposure_ms",
+                      "motion_direction", "full_well_e", "read_noise_e", "bits", "noise"});
+  o.supersampling = in.Integer(j, "supersampling", p, o.supersampling);
+  o.sensor_width_mm = in.Number(j, "sensor_width_mm", p, o.sensor_width_mm);
+  o.camera_f_number = in.Number(j, "camera_f_number", p, o.camera_f_number);
+  o.camera_focus_mm = in.Number(j, "camera_focus_mm", p, o.camera_focus_mm);
+  o.projector_f_number = in.Number(j, "projector_f_number", p, o.projector_f_number);
+  o.projector_focus_mm = in.Number(j, "projector_focus_mm", p, o.projector_focus_mm);
+  o.projector_psf_px = in.Number(j, "projector_psf_px", p, o.projector_psf_px);
+  o.texture_level = in.Number(j, "texture_level", p, o.texture_level);
+  o.pattern_level = in.Number(j, "pattern_level", p, o.pattern_level);
+  o.ambient_level = in.Number(j, "ambient_level", p, o.ambient_level);
+  o.vignetting = in.Bool(j, "vignetting", p, o.vignetting);
+  o.speed_mm_s = in.Number(j, "speed_mm_s", p, o.speed_mm_s);
+  o.exposure_ms = in.Number(j, "exposure_ms", p, o.exposure_ms);
+  o.motion_direction = in.Vector(j, "motion_direction", o.motion_direction);
+  o.sensor.full_well_e = in.Number(j, "full_well_e", p, o.sensor.full_well_e);
+  o.sensor.read_noise_e = in.Number(j, "read_noise_e", p, o.sensor.read_noise_e);
+  o.sensor.bits = in.Integer(j, "bits", p, o.sensor.bits);
+  o.sensor.noise = in.Bool(j, "noise", p, o.sensor.noise);
 }
 
 }  // namespace sewer3d

@@ -16,6 +16,11 @@ Scene ParseScene(const std::string& json_text, const std::filesystem::path& path
 Scene ReadScene(const std::filesystem::path& path);
 std::string SceneToJson(const Scene& scene);
 
+/// The pattern image as stored: 8-bit grey, or 16-bit holding the DN when bits > 8.
+void WritePatternImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits);
+/// The texture image as stored: 8-bit colour.
+void WriteTextureImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits);
+
 /// Writes pattern.png (8-bit, or 16-bit holding the DN when bits > 8), texture.png (8-bit
 /// colour), truth_depth.tiff (float32 z mm, NaN where no surface), depth_preview.png, and
 /// scene.json (the scene exactly as rendered, the render options, the seed, the module path).

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cmath>
 #include <numbers>
 
 #include "sewer3d/core/check.hpp"
@@ -15,7 +16,13 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kEdgeMm = 0.4;  // width of the smoothed edges of features
 
-double WrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
+// Into [−π, π]; cheaper than std::remainder for the small multiples of 2π met here.
+double WrapAngle(double a) {
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  while (a > std::numbers::pi) a -= kTwoPi;
+  while (a < -std::numbers::pi) a += kTwoPi;
+  return a;
+}
 
 // 0 below −½, 1 above ½, smooth in between.
 double Step(double x) {
@@ -105,6 +112,8 @@ PipeGeometry::PipeGeometry(PipeWorld world) : world_(std::move(world)) {
   for (size_t i = 0; i < n; ++i) {
     start_station_[i] = station;
     section_start_[i] = start;
+    start_inverse_rotation_.push_back(start.Inverse().RotationMatrix());
+    start_inverse_translation_.push_back(start.Inverse().translation);
     station += world_.sections[i].length_mm;
     if (i + 1 == n) break;
     const PipeJoint& j = world_.joints[i];
@@ -141,7 +150,18 @@ Rigid3d PipeGeometry::PathFrame(double station_mm, double blend_mm) const {
   return here;
 }
 
-PipeLocation PipeGeometry::Locate(const Eigen::Vector3d& p) const {
+PipeLocation PipeGeometry::Locate(const Eigen::Vector3d& p) const { return LocateAt(p, true); }
+
+namespace {
+
+// The clock angle costs an atan2: computed only where a feature or deformation needs it.
+void EnsureClock(PipeLocation& at) {
+  if (std::isnan(at.clock_rad)) at.clock_rad = std::atan2(at.radial.x(), -at.radial.y());
+}
+
+}  // namespace
+
+PipeLocation PipeGeometry::LocateAt(const Eigen::Vector3d& p, bool with_clock) const {
   // Sections are ordered along the pipe: the point is beyond joints 0 .. k-1 and before k.
   int lo = 0, hi = static_cast<int>(joint_point_.size());
   while (lo < hi) {
@@ -152,30 +172,40 @@ PipeLocation PipeGeometry::Locate(const Eigen::Vector3d& p) const {
   PipeLocation at;
   at.section = lo;
   const PipeSection& s = world_.sections[lo];
-  const Eigen::Vector3d local = section_start_[lo].Inverse() * p;
+  const Eigen::Vector3d local = start_inverse_rotation_[lo] * p + start_inverse_translation_[lo];
   at.local_mm = LocalArc(s, local);
   at.station_mm = start_station_[lo] + at.local_mm;
-  const Eigen::Vector3d q = LocalFrame(s, at.local_mm).Inverse() * local;
-  at.rho_mm = std::hypot(q.x(), q.y());
-  at.clock_rad = std::atan2(q.x(), -q.y());
+  const Eigen::Vector3d q = s.bend_radius_mm > 0.0 ? LocalFrame(s, at.local_mm).Inverse() * local : local;
+  at.rho_mm = std::sqrt(q.x() * q.x() + q.y() * q.y());
+  at.radial = {q.x(), q.y()};
+  at.clock_rad = NAN;
+  if (with_clock) EnsureClock(at);
   return at;
 }
 
-double PipeGeometry::Displacement(const PipeLocation& at, Material* material) const {
+double PipeGeometry::Displacement(PipeLocation at, Material* material) const {
   const PipeSection& s = world_.sections[at.section];
   const double radius = 0.5 * s.diameter_mm;
   double d = 0.0, strongest = 0.0;
   // Open gaps at the joints before and after this section.
-  if (at.section > 0 && at.local_mm < 0.5 * world_.joints[at.section - 1].gap_mm) {
-    d -= world_.joints[at.section - 1].gap_depth_mm;
+  if (at.section > 0) {
+    const PipeJoint& j = world_.joints[at.section - 1];
+    if (j.gap_depth_mm > 0.0) d -= j.gap_depth_mm * (1.0 - Step((at.local_mm - 0.5 * j.gap_mm) / kEdgeMm));
   }
-  if (at.section + 1 < static_cast<int>(world_.sections.size()) &&
-      at.local_mm > s.length_mm - 0.5 * world_.joints[at.section].gap_mm) {
-    d -= world_.joints[at.section].gap_depth_mm;
+  if (at.section + 1 < static_cast<int>(world_.sections.size())) {
+    const PipeJoint& j = world_.joints[at.section];
+    if (j.gap_depth_mm > 0.0) {
+      d -= j.gap_depth_mm * (1.0 - Step((s.length_mm - 0.5 * j.gap_mm - at.local_mm) / kEdgeMm));
+    }
   }
   for (size_t k = 0; k < world_.features.size(); ++k) {
     const PipeFeature& f = world_.features[k];
     const double ds = at.station_mm - f.station_mm;
+    const double reach = f.type == PipeFeature::Type::kConnection ? 0.5 * f.diameter_mm + f.wall_mm + kEdgeMm
+                         : f.type == PipeFeature::Type::kDeposit  ? f.length_mm
+                                                                  : 0.5 * f.length_mm + f.width_mm + kEdgeMm;
+    if (std::abs(ds) > reach) continue;
+    EnsureClock(at);
     const double dclock = WrapAngle(at.clock_rad - ClockHoursToRad(f.clock_h));
     const double arc = dclock * radius;
     double fd = 0.0;
@@ -184,7 +214,7 @@ double PipeGeometry::Displacement(const PipeLocation& at, Material* material) co
       case PipeFeature::Type::kConnection: {
         const double r_in = 0.5 * f.diameter_mm, r_out = r_in + f.wall_mm;
         if (std::abs(ds) > r_out + kEdgeMm || std::abs(arc) > r_out + kEdgeMm) continue;
-        const double r = std::hypot(ds, arc);
+        const double r = std::sqrt(ds * ds + arc * arc);
         const double bore = std::min(60.0, r_in);  // how deep the lateral's bore is modelled
         fd = f.intrusion_mm * (1.0 - Step((r - r_out) / kEdgeMm)) -
              (bore + f.intrusion_mm) * (1.0 - Step((r - r_in) / kEdgeMm));
@@ -237,13 +267,15 @@ double PipeGeometry::WallRadiusMm(const PipeLocation& at) const {
   if (s.ovality_pct > 0.0) {
     const double ramp = std::min(100.0, 0.25 * s.length_mm);
     const double w = std::min(Step(at.local_mm / ramp - 0.5), Step((s.length_mm - at.local_mm) / ramp - 0.5));
-    radius *= 1.0 - 0.01 * s.ovality_pct * w * std::cos(2.0 * (at.clock_rad - ClockHoursToRad(s.ovality_clock_h)));
+    PipeLocation with_clock = at;
+    EnsureClock(with_clock);
+    radius *= 1.0 - 0.01 * s.ovality_pct * w * std::cos(2.0 * (with_clock.clock_rad - ClockHoursToRad(s.ovality_clock_h)));
   }
   return radius - Displacement(at, nullptr);
 }
 
 double PipeGeometry::SignedDistanceMm(const Eigen::Vector3d& p) const {
-  const PipeLocation at = Locate(p);
+  const PipeLocation at = LocateAt(p, false);
   return at.rho_mm - WallRadiusMm(at);
 }
 
@@ -263,24 +295,28 @@ std::optional<SurfaceHit> PipeGeometry::Intersect(const Eigen::Vector3d& origin,
   if (A < 1e-12) return std::nullopt;  // along the axis
   const double t0 = (-B + std::sqrt(std::max(0.0, B * B - 4.0 * A * C))) / (2.0 * A);
   auto g = [&](double t) { return SignedDistanceMm(origin + t * d); };
-  // Bracket the wall by steps of 1, 2, 4 ... mm from the guess, then refine.
+  // Bracket the wall from the guess with steps sized by the guess's error (the nominal
+  // cylinder's slope dρ/dt converts it to t), doubling until the sign changes; then refine.
+  const double slope =
+      std::max(0.05, (o_l.head<2>() + t0 * d_l.head<2>()).dot(d_l.head<2>()) / radius);
   double a = t0, b = t0, ga = g(t0), gb = ga;
+  const double first_step = std::max(0.02, 1.5 * std::abs(ga) / slope);
   if (ga > 0.0) {
-    for (double step = 1.0; ga > 0.0; step *= 2.0) {
+    for (double step = first_step; ga > 0.0; step *= 2.0) {
       b = a, gb = ga;
       if (a <= 1e-6) return std::nullopt;
       a = std::max(1e-6, t0 - step);
       ga = g(a);
     }
   } else {
-    for (double step = 1.0; gb <= 0.0; step *= 2.0) {
-      if (step > 1024.0) return std::nullopt;
+    for (double step = first_step; gb <= 0.0; step *= 2.0) {
+      if (step > 2048.0) return std::nullopt;
       a = b, ga = gb;
       b = t0 + step;
       gb = g(b);
     }
   }
-  const double t = IllinoisRoot(g, a, b, ga, gb, 1e-7);
+  const double t = IllinoisRoot(g, a, b, ga, gb, 1e-6);
   SurfaceHit hit;
   hit.t = t / scale;
   hit.point = origin + t * d;

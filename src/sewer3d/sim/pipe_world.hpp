@@ -77,6 +77,7 @@ struct PipeLocation {
   double local_mm = 0.0;    ///< along the section's own centreline from its start
   double clock_rad = 0.0;   ///< 0 at the crown, increasing clockwise looking downstream
   double rho_mm = 0.0;      ///< distance from the section's centreline
+  Eigen::Vector2d radial = Eigen::Vector2d::Zero();  ///< (x, y) in the centreline frame
 };
 
 /// The geometry of a PipeWorld: section frames, point location, wall radius, ray hits.
@@ -106,11 +107,14 @@ class PipeGeometry {
                                       const Eigen::Vector3d& direction) const;
 
  private:
-  double Displacement(const PipeLocation& at, Material* material) const;
+  PipeLocation LocateAt(const Eigen::Vector3d& p_world, bool with_clock) const;
+  double Displacement(PipeLocation at, Material* material) const;
 
   PipeWorld world_;
   std::vector<double> start_station_;
   std::vector<Rigid3d> section_start_;  ///< world_from_section at local 0
+  std::vector<Eigen::Matrix3d> start_inverse_rotation_;  ///< section_from_world, for speed
+  std::vector<Eigen::Vector3d> start_inverse_translation_;
   std::vector<Eigen::Vector3d> joint_point_, joint_normal_;  ///< bisecting planes
 };
 

@@ -183,7 +183,7 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
       const std::uint64_t pixel = static_cast<std::uint64_t>(v) * w + u;
       const auto centre_ray = setup.camera.Unproject({double(u), double(v)});
       float depth = NAN;
-      if (centre_ray) {
+      if (centre_ray && o.truth_depth) {
         const auto hit = surface.Intersect(Eigen::Vector3d::Zero(),
                                    Eigen::Vector3d(centre_ray->x(), centre_ray->y(), 1.0));
         if (hit) depth = static_cast<float>(hit->point.z());

@@ -32,6 +32,7 @@ enum class RenderImages { kBoth, kPattern, kTexture };
 
 struct RenderOptions {
   RenderImages images = RenderImages::kBoth;
+  bool truth_depth = true;  ///< trace the pixel-centre ray for truth_depth (else all NaN)
   int supersampling = 3;           ///< S: S x S samples per pixel (area and aperture)
   /// Physical width of the camera sensor (2592 x 2.2 µm); with the image width it gives the
   /// pixel pitch, hence the physical focal length and aperture of camera and projector.

@@ -1,0 +1,23 @@
+#pragma once
+/// \file
+/// Scenario files of virtual runs (docs/formats.md, "Scenario file"). Errors are FileError
+/// naming the file and the field; unknown fields are errors, not silently ignored.
+
+#include <filesystem>
+#include <string>
+
+#include "sewer3d/sim/scenario.hpp"
+
+namespace sewer3d {
+
+/// Parses scenario JSON; absent fields keep Scenario's defaults. `path` names the source.
+Scenario ParseScenario(const std::string& json_text, const std::filesystem::path& path);
+Scenario ReadScenario(const std::filesystem::path& path);
+/// The complete scenario (every field written), readable by ParseScenario.
+std::string ScenarioToJson(const Scenario& scenario);
+/// The pipe world alone (the same form as the scenario's "pipe" member).
+std::string PipeWorldToJson(const PipeWorld& world);
+
+const char* FeatureTypeName(PipeFeature::Type type);
+
+}  // namespace sewer3d

@@ -1,0 +1,121 @@
+// The tiny preset written as a capture run, then read back through the documented files only:
+// every image's ground-truth depth must agree with the world seen through the true pose.
+
+#include "sewer3d/pipeline/simulate_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/run_io.hpp"
+#include "sewer3d/io/scenario_io.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+
+namespace sewer3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+class TinyRun : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / "sewer3d_tiny_run_test";
+    fs::remove_all(dir_);
+    const Scenario s = PresetScenario("tiny");
+    DefaultModuleOptions o;
+    o.camera_width = s.camera_width;
+    o.camera_height = s.camera_width * 3 / 4;
+    int calls = 0;
+    result_ = SimulateRun(s, MakeDefaultModule(o), DefaultPatternArray(), dir_, [&](int done, int total) {
+      ++calls;
+      EXPECT_LE(done, total);
+    });
+    calls_ = calls;
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static fs::path dir_;
+  static SimulatedRun result_;
+  static int calls_;
+};
+fs::path TinyRun::dir_;
+SimulatedRun TinyRun::result_;
+int TinyRun::calls_ = 0;
+
+TEST_F(TinyRun, TruthDepthAgreesWithTheWorldThroughTheTruePose) {
+  const LoadedRig rig = ReadRig(dir_ / "rig.json");
+  const auto index = ReadIndex(dir_ / "acquisitions.csv");
+  const auto poses = ReadTruthPoses(dir_ / "truth" / "poses.csv");
+  const Scenario scenario = ReadScenario(dir_ / "truth" / "scenario.json");
+  const PipeGeometry pipe(scenario.world);
+  ASSERT_EQ(rig.rig.modules.size(), 6u);
+  ASSERT_EQ(index.size(), poses.size());
+  ASSERT_EQ(static_cast<int>(index.size()), result_.images);
+  EXPECT_EQ(calls_, result_.images);
+  double worst = 0.0;
+  int on_steps = 0;
+  for (size_t i = 0; i < index.size(); ++i) {
+    const IndexEntry& e = index[i];
+    ASSERT_EQ(poses[i].module, e.module);
+    ASSERT_EQ(poses[i].time_s, e.time_s);
+    const RigModule& m = rig.rig.modules[e.module];
+    const cv::Mat image = ReadImage(dir_ / e.file, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(image.cols, m.module.camera.width);
+    ASSERT_EQ(image.rows, m.module.camera.height);
+    ASSERT_EQ(image.channels(), e.kind == ImageKind::kPattern ? 1 : 3);
+    fs::path depth_file = dir_ / "truth" / "depth" / fs::path(e.file).lexically_relative("images");
+    depth_file.replace_extension(".tiff");
+    const cv::Mat depth = ReadImage(depth_file, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(depth.type(), CV_32F);
+    const CameraModel camera(m.module.camera);
+    const Rigid3d world_from_camera = poses[i].world_from_carrier * m.carrier_from_camera;
+    int finite = 0, checked = 0;
+    for (int v = 0; v < depth.rows; v += 5) {
+      for (int u = 0; u < depth.cols; u += 5) {
+        ++checked;
+        const float z = depth.at<float>(v, u);
+        if (!std::isfinite(z)) continue;
+        ++finite;
+        const auto xy = camera.Unproject({double(u), double(v)});
+        ASSERT_TRUE(xy);
+        const Eigen::Vector3d p = world_from_camera * (z * Eigen::Vector3d(xy->x(), xy->y(), 1.0));
+        const double g = pipe.SignedDistanceMm(p);
+        if (std::abs(g) < 2e-3) {
+          worst = std::max(worst, std::abs(g));
+          continue;
+        }
+        // Not on the wall function: then on the face of a step (a joint offset), which the
+        // signed distance crosses within a hair along the pipe.
+        const Eigen::Vector3d along = 0.02 * (pipe.PathFrame(pipe.Locate(p).station_mm).rotation * Eigen::Vector3d::UnitZ());
+        const bool on_step = pipe.SignedDistanceMm(p - along) * pipe.SignedDistanceMm(p + along) < 0.0;
+        ++on_steps;
+        EXPECT_TRUE(on_step) << e.file << " pixel " << u << "," << v << ": " << g << " mm off the wall";
+      }
+    }
+    EXPECT_GT(finite, 0.95 * checked) << e.file;
+  }
+  std::printf("%d images, largest distance of a truth-depth point from the wall %.2e mm (%d on step faces)\n",
+              result_.images, worst, on_steps);
+  EXPECT_LT(worst, 2e-3);  // float32 depth at ~150 mm is exact to ~1e-5 mm; poses written to 1e-6 mm
+}
+
+TEST_F(TinyRun, RunFolderIsCompleteAndMatchesThePlan) {
+  EXPECT_GE(result_.plan.acquisitions, 2);
+  EXPECT_EQ(result_.images, result_.plan.acquisitions * 18);
+  const auto index = ReadIndex(dir_ / "acquisitions.csv");
+  for (const IndexEntry& e : index) EXPECT_TRUE(fs::exists(dir_ / e.file)) << e.file;
+  std::ifstream run(dir_ / "run.json");
+  std::string text((std::istreambuf_iterator<char>(run)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"complete\": true"), std::string::npos);
+  EXPECT_GT(result_.bytes, 1000u);
+  for (const NeighbourOverlap& o : result_.overlap) EXPECT_GT(o.overlap_deg, 5.0);
+}
+
+}  // namespace
+}  // namespace sewer3d
