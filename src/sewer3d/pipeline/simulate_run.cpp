@@ -13,6 +13,7 @@
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/io/scenario_io.hpp"
 #include "sewer3d/io/scene_io.hpp"
+#include "sewer3d/pipeline/run_overview.hpp"
 #include "sewer3d/sim/material.hpp"
 #include "sewer3d/sim/odometry.hpp"
 #include "sewer3d/sim/surface.hpp"
@@ -93,6 +94,7 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
   WriteTextFile(out / "truth" / "scenario.json", ScenarioToJson(scenario) + "\n");
   WriteTextFile(out / "truth" / "world.json", PipeWorldToJson(scenario.world) + "\n");
   WriteFeatureTruth(out / "truth" / "features.json", pipe);
+  WriteImage(out / "truth" / "overview.png", RunOverview(pipe, rig, trajectory, plan));
 
   const int total = static_cast<int>(plan.shots.size());
   std::atomic<int> done{0};

@@ -109,10 +109,10 @@ WallCoverage ModuleCoverage(const Rig& rig, int index, double diameter, const Ei
 }
 
 std::vector<NeighbourOverlap> NeighbourOverlaps(const Rig& rig, double diameter, const Eigen::Vector2d& offset,
-                                                bool lit) {
+                                                bool lit, int step_px) {
   const int n = static_cast<int>(rig.modules.size());
   std::vector<WallCoverage> cover(n);
-  for (int k = 0; k < n; ++k) cover[k] = ModuleCoverage(rig, k, diameter, offset, lit);
+  for (int k = 0; k < n; ++k) cover[k] = ModuleCoverage(rig, k, diameter, offset, lit, step_px);
   std::vector<NeighbourOverlap> out;
   for (int k = 0; k < n; ++k) {
     const int next = (k + 1) % n;

@@ -67,6 +67,7 @@ struct NeighbourOverlap {
 
 /// Overlap of each module with the next one around the carrier (n entries).
 std::vector<NeighbourOverlap> NeighbourOverlaps(const Rig& rig, double pipe_diameter_mm,
-                                                const Eigen::Vector2d& carrier_offset_mm, bool lit);
+                                                const Eigen::Vector2d& carrier_offset_mm, bool lit,
+                                                int step_px = 8);
 
 }  // namespace sewer3d

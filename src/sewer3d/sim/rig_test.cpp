@@ -67,6 +67,29 @@ TEST(Rig, NeighboursOverlapForEveryDiameterAndDecentring) {
   }
 }
 
+TEST(Rig, NeighboursOverlapInEveryPreset) {
+  for (const std::string& name : PresetNames()) {
+    const Scenario s = PresetScenario(name);
+    DefaultModuleOptions options;
+    options.camera_width = s.camera_width;
+    options.camera_height = s.camera_width * 3 / 4;
+    const Rig rig = MakeRig(MakeDefaultModule(options), s.rig);
+    const double worst_offset = s.motion.offset_mm.norm() + std::sqrt(2.0) * s.motion.wander_mm;
+    for (const PipeSection& section : s.world.sections) {
+      for (const Eigen::Vector2d& offset : {Eigen::Vector2d(s.motion.offset_mm), Eigen::Vector2d(0.0, worst_offset),
+                                            Eigen::Vector2d(worst_offset, 0.0)}) {
+        double worst = 1e9;
+        for (const NeighbourOverlap& o : NeighbourOverlaps(rig, section.diameter_mm, offset, true, s.camera_width / 80)) {
+          worst = std::min(worst, o.overlap_deg);
+        }
+        std::printf("preset %-4s DN%.0f carrier offset (%+.1f, %+.1f) mm: smallest 3-D neighbour overlap %.1f deg\n",
+                    name.c_str(), section.diameter_mm, offset.x(), offset.y(), worst);
+        EXPECT_GT(worst, 5.0);
+      }
+    }
+  }
+}
+
 TEST(Trajectory, FollowsThePipeWithOffsetRollAndWobble) {
   PipeWorld w;
   w.sections = {{.length_mm = 3000.0, .diameter_mm = 300.0}};
