@@ -4,7 +4,9 @@
 
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/sim/material.hpp"
 #include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/sim/scenario.hpp"
 
 namespace sewer3d {
 namespace {
@@ -28,6 +30,34 @@ void BM_RenderCylinder(benchmark::State& state) {
 }
 BENCHMARK(BM_RenderCylinder)->Args({648, 3})->Args({2592, 1})->Args({2592, 3})
     ->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+}  // namespace
+}  // namespace sewer3d
+
+namespace sewer3d {
+namespace {
+
+// Ray hits on the demo preset's pipe world from carrier poses along the run: the cost that
+// a whole-run render adds over a single cylinder.
+void BM_PipeWorldIntersect(benchmark::State& state) {
+  const Scenario s = PresetScenario("demo");
+  const PipeGeometry pipe(s.world);
+  const Trajectory trajectory(pipe, s.motion, s.seed);
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> rays;
+  for (int i = 0; i < 4096; ++i) {
+    const Rigid3d pose = trajectory.WorldFromCarrier(trajectory.DurationS() * (i % 64) / 64.0);
+    const double a = 2.0 * 3.14159265358979 * HashUniform(5, i, 1), b = 1.2 * (HashUniform(5, i, 2) - 0.5);
+    rays.emplace_back(pose.translation, pose.rotation * Eigen::Vector3d(std::sin(a), -std::cos(a), std::tan(b)));
+  }
+  std::int64_t hits = 0;
+  for (auto _ : state) {
+    for (const auto& [o, d] : rays) hits += pipe.Intersect(o, d).has_value();
+  }
+  state.counters["rays_per_s"] =
+      benchmark::Counter(double(state.iterations()) * rays.size(), benchmark::Counter::kIsRate);
+  benchmark::DoNotOptimize(hits);
+}
+BENCHMARK(BM_PipeWorldIntersect)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace sewer3d
