@@ -15,29 +15,32 @@ namespace {
 
 void PrintRigOverlap(const ModuleDescription& module) {
   const Rig rig = MakeRig(module, {});
-  fmt::print("\nrig: {} modules on a carrier Ø{:.0f} x {:.0f} mm, cameras and projectors on its axis\n",
-             rig.modules.size(), rig.carrier_diameter_mm, rig.carrier_length_mm);
+  fmt::print(
+      "\nrig: {} modules on a carrier Ø{:.0f} x {:.0f} mm, cameras and projectors on its axis\n",
+      rig.modules.size(), rig.carrier_diameter_mm, rig.carrier_length_mm);
   for (const RigModule& m : rig.modules) {
-    fmt::print("  {} at {:>4.1f} h: camera at z {:+7.1f} mm, projector at z {:+7.1f} mm\n", m.name, m.clock_h,
-               m.carrier_from_camera.translation.z(), ProjectorCentreInCarrier(m).z());
+    fmt::print("  {} at {:>4.1f} h: camera at z {:+7.1f} mm, projector at z {:+7.1f} mm\n", m.name,
+               m.clock_h, m.carrier_from_camera.translation.z(), ProjectorCentreInCarrier(m).z());
   }
   fmt::print("\nsmallest / largest overlap between neighbouring modules around the pipe\n");
   fmt::print("(texture: camera fields; 3-D: where camera and projector both reach)\n");
-  fmt::print("  {:<6} {:<22} {:>22} {:>22}\n", "pipe", "carrier offset (x, y)", "texture deg (mm)", "3-D deg (mm)");
+  fmt::print("  {:<6} {:<22} {:>22} {:>22}\n", "pipe", "carrier offset (x, y)", "texture deg (mm)",
+             "3-D deg (mm)");
   const int step = std::max(1, module.camera.width / 320);
   for (const double dn : {200.0, 300.0, 400.0}) {
-    for (const Eigen::Vector2d offset : {Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 25), Eigen::Vector2d(25, 0),
-                                         Eigen::Vector2d(17.7, 17.7)}) {
+    for (const Eigen::Vector2d offset : {Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 25),
+                                         Eigen::Vector2d(25, 0), Eigen::Vector2d(17.7, 17.7)}) {
       std::string cells;
       for (const bool lit : {false, true}) {
         const auto o = NeighbourOverlaps(rig, dn, offset, lit, step);
-        const auto [lo, hi] = std::minmax_element(o.begin(), o.end(), [](const auto& a, const auto& b) {
-          return a.overlap_deg < b.overlap_deg;
-        });
-        cells += fmt::format(" {:>5.1f}-{:<4.1f} ({:>3.0f}-{:<3.0f})", lo->overlap_deg, hi->overlap_deg,
-                             lo->overlap_mm, hi->overlap_mm);
+        const auto [lo, hi] = std::minmax_element(
+            o.begin(), o.end(),
+            [](const auto& a, const auto& b) { return a.overlap_deg < b.overlap_deg; });
+        cells += fmt::format(" {:>5.1f}-{:<4.1f} ({:>3.0f}-{:<3.0f})", lo->overlap_deg,
+                             hi->overlap_deg, lo->overlap_mm, hi->overlap_mm);
       }
-      fmt::print("  DN{:<4.0f} ({:+5.1f}, {:+5.1f}) mm        {}\n", dn, offset.x(), offset.y(), cells);
+      fmt::print("  DN{:<4.0f} ({:+5.1f}, {:+5.1f}) mm        {}\n", dn, offset.x(), offset.y(),
+                 cells);
     }
   }
 }
@@ -50,7 +53,9 @@ Command AddDescribeCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "describe", "Validate a module.json and print its geometry, disparity range and pattern");
   sub->add_option("--module", *module_path, "module.json to check")->required();
-  sub->add_flag("--rig", *rig, "Also place six such modules on the carrier and report their overlap for DN200-DN400");
+  sub->add_flag(
+      "--rig", *rig,
+      "Also place six such modules on the carrier and report their overlap for DN200-DN400");
   return {sub, [module_path, rig] {
             const LoadedModule loaded = LoadModule(*module_path);
             fmt::print("{}: valid module file\n", *module_path);

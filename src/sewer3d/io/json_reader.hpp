@@ -35,7 +35,8 @@ class JsonReader {
     return j;
   }
   /// Rejects members not in `known` (typos must not be silently ignored).
-  void OnlyKnown(const json& j, const std::string& prefix, std::initializer_list<const char*> known) const {
+  void OnlyKnown(const json& j, const std::string& prefix,
+                 std::initializer_list<const char*> known) const {
     for (auto it = j.begin(); it != j.end(); ++it) {
       bool found = false;
       for (const char* k : known) found = found || it.key() == k;
@@ -59,7 +60,8 @@ class JsonReader {
   double Number(const json& j, const char* key, const std::string& prefix, double fallback) const {
     const auto it = j.find(key);
     if (it == j.end()) return fallback;
-    if (!it->is_number() || !std::isfinite(it->get<double>())) Fail(prefix + key, "must be a finite number");
+    if (!it->is_number() || !std::isfinite(it->get<double>()))
+      Fail(prefix + key, "must be a finite number");
     return it->get<double>();
   }
   int Integer(const json& j, const char* key, const std::string& prefix, int fallback) const {
@@ -85,7 +87,8 @@ class JsonReader {
     }
     return v;
   }
-  std::string Text(const json& j, const char* key, const std::string& prefix, const std::string& fallback) const {
+  std::string Text(const json& j, const char* key, const std::string& prefix,
+                   const std::string& fallback) const {
     const auto it = j.find(key);
     if (it == j.end()) return fallback;
     if (!it->is_string()) Fail(prefix + key, "must be a string");
@@ -100,7 +103,8 @@ class JsonReader {
 /// The render options as JSON (what a scene.json or scenario file's "render" holds).
 nlohmann::json RenderOptionsToJson(const RenderOptions& o);
 /// Reads the members of a "render" object over `o` (absent members keep their values).
-void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& prefix, RenderOptions& o);
+void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& prefix,
+                       RenderOptions& o);
 
 const char* MaterialName(Material m);
 /// Throws via `in` when the name is not a material.

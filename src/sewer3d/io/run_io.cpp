@@ -1,7 +1,8 @@
 #include "sewer3d/io/run_io.hpp"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -10,26 +11,20 @@
 #include "sewer3d/io/json_reader.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/scenario_io.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
 namespace {
 
 using nlohmann::json;
 
-std::string ReadText(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !file) throw FileError(path, "cannot open file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
 // Lines of a CSV file with the expected header; throws naming the line on a wrong field count.
-std::vector<std::vector<std::string>> ReadCsv(const std::filesystem::path& path, const std::string& header) {
-  std::istringstream in(ReadText(path));
+std::vector<std::vector<std::string>> ReadCsv(const std::filesystem::path& path,
+                                              const std::string& header) {
+  std::istringstream in(ReadTextFile(path));
   std::string line;
-  if (!std::getline(in, line) || line != header) throw FileError(path, "line 1: header must be '" + header + "'");
+  if (!std::getline(in, line) || line != header)
+    throw FileError(path, "line 1: header must be '" + header + "'");
   const size_t columns = std::count(header.begin(), header.end(), ',') + 1;
   std::vector<std::vector<std::string>> rows;
   for (int number = 2; std::getline(in, line); ++number) {
@@ -38,7 +33,8 @@ std::vector<std::vector<std::string>> ReadCsv(const std::filesystem::path& path,
     std::stringstream ss(line);
     for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
     if (fields.size() != columns) {
-      throw FileError(path, fmt::format("line {}: {} fields, expected {}", number, fields.size(), columns));
+      throw FileError(
+          path, fmt::format("line {}: {} fields, expected {}", number, fields.size(), columns));
     }
     rows.push_back(std::move(fields));
   }
@@ -59,28 +55,33 @@ ImageKind ToKind(const std::filesystem::path& path, size_t row, const std::strin
   for (const auto k : {ImageKind::kTextureBefore, ImageKind::kPattern, ImageKind::kTextureAfter}) {
     if (text == ImageKindName(k)) return k;
   }
-  throw FileError(path, fmt::format("line {}: image '{}' must be texture_before, pattern or texture_after", row + 2, text));
+  throw FileError(
+      path, fmt::format("line {}: image '{}' must be texture_before, pattern or texture_after",
+                        row + 2, text));
+}
+
+// The columns every per-image file starts with: module, counter, image, time_s.
+template <typename Row>
+void ReadImageKey(const std::filesystem::path& path, size_t i, const std::vector<std::string>& f,
+                  Row& row) {
+  row.module = static_cast<int>(ToNumber(path, i, f[0]));
+  row.counter = static_cast<int>(ToNumber(path, i, f[1]));
+  row.kind = ToKind(path, i, f[2]);
+  row.time_s = ToNumber(path, i, f[3]);
 }
 
 json PoseJson(const Rigid3d& pose) {
   const Eigen::Matrix3d r = pose.RotationMatrix();
-  return {{"rotation", {r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}},
+  return {{"rotation",
+           {r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}},
           {"translation_mm", {pose.translation.x(), pose.translation.y(), pose.translation.z()}}};
 }
 
 constexpr const char* kIndexHeader = "module,counter,image,time_s,exposure_ms,file";
-constexpr const char* kPoseHeader = "module,counter,image,time_s,station_mm,x_mm,y_mm,z_mm,qx,qy,qz,qw";
+constexpr const char* kPoseHeader =
+    "module,counter,image,time_s,station_mm,x_mm,y_mm,z_mm,qx,qy,qz,qw";
 
 }  // namespace
-
-void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
-  std::error_code ec;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  std::ofstream file(path, std::ios::binary);
-  if (!file) throw FileError(path, "cannot open for writing");
-  file << text;
-  if (!file.flush()) throw FileError(path, "write failed");
-}
 
 std::string RigToJson(const Rig& rig) {
   json j;
@@ -89,17 +90,21 @@ std::string RigToJson(const Rig& rig) {
   j["carrier"] = {{"diameter_mm", rig.carrier_diameter_mm}, {"length_mm", rig.carrier_length_mm}};
   j["modules"] = json::array();
   for (const RigModule& m : rig.modules) {
-    j["modules"].push_back({{"name", m.name}, {"clock_h", m.clock_h}, {"module", json::parse(ModuleToJson(m.module))},
+    j["modules"].push_back({{"name", m.name},
+                            {"clock_h", m.clock_h},
+                            {"module", json::parse(ModuleToJson(m.module))},
                             {"carrier_from_camera", PoseJson(m.carrier_from_camera)}});
   }
   return j.dump(2) + "\n";
 }
 
-void WriteRig(const std::filesystem::path& path, const Rig& rig) { WriteTextFile(path, RigToJson(rig)); }
+void WriteRig(const std::filesystem::path& path, const Rig& rig) {
+  WriteTextFile(path, RigToJson(rig));
+}
 
 LoadedRig ReadRig(const std::filesystem::path& path) {
   const JsonReader in(path);
-  const json j = in.ParseObject(ReadText(path));
+  const json j = in.ParseObject(ReadTextFile(path));
   if (in.Text(j, "format", "", "") != "sewer3d-rig") in.Fail("format", "must be \"sewer3d-rig\"");
   LoadedRig out;
   const json& carrier = in.Object(j, "carrier", "");
@@ -114,17 +119,19 @@ LoadedRig ReadRig(const std::filesystem::path& path) {
       in.Fail(p, "must be an object with module and carrier_from_camera");
     }
     RigModule rm;
-    rm.name = in.Text(m, "name", p, "m" + std::to_string(i));
+    rm.name = in.Text(m, "name", p, fmt::format("m{}", i));
     rm.clock_h = in.Number(m, "clock_h", p, 12.0);
     try {
       rm.module = ParseModule(m["module"].dump(), path);
     } catch (const FileError& e) {
-      throw FileError(path, p + "module: " + std::string(e.what()).substr(path.string().size() + 2));
+      throw FileError(path,
+                      p + "module: " + std::string(e.what()).substr(path.string().size() + 2));
     }
     const json& pose = in.Object(m, "carrier_from_camera", p);
     const auto& r = pose.value("rotation", json::array());
     const auto& t = pose.value("translation_mm", json::array());
-    if (r.size() != 9 || t.size() != 3) in.Fail(p + "carrier_from_camera", "needs rotation[9] and translation_mm[3]");
+    if (r.size() != 9 || t.size() != 3)
+      in.Fail(p + "carrier_from_camera", "needs rotation[9] and translation_mm[3]");
     Eigen::Matrix3d rot;
     Eigen::Vector3d tr;
     for (int k = 0; k < 9; ++k) {
@@ -135,7 +142,8 @@ LoadedRig ReadRig(const std::filesystem::path& path) {
       if (!t[k].is_number()) in.Fail(p + "carrier_from_camera.translation_mm", "must hold numbers");
       tr[k] = t[k].get<double>();
     }
-    if ((rot.transpose() * rot - Eigen::Matrix3d::Identity()).norm() > 1e-6 || rot.determinant() < 0.0) {
+    if ((rot.transpose() * rot - Eigen::Matrix3d::Identity()).norm() > 1e-6 ||
+        rot.determinant() < 0.0) {
       in.Fail(p + "carrier_from_camera.rotation", "is not a rotation");
     }
     rm.carrier_from_camera = Rigid3d(rot, tr);
@@ -150,8 +158,8 @@ LoadedRig ReadRig(const std::filesystem::path& path) {
 void WriteIndex(const std::filesystem::path& path, const std::vector<IndexEntry>& entries) {
   std::string text = std::string(kIndexHeader) + "\n";
   for (const IndexEntry& e : entries) {
-    text += fmt::format("{},{},{},{:.6f},{:.3f},{}\n", e.module, e.counter, ImageKindName(e.kind), e.time_s,
-                        e.exposure_ms, e.file);
+    text += fmt::format("{},{},{},{:.6f},{:.3f},{}\n", e.module, e.counter, ImageKindName(e.kind),
+                        e.time_s, e.exposure_ms, e.file);
   }
   WriteTextFile(path, text);
 }
@@ -162,10 +170,7 @@ std::vector<IndexEntry> ReadIndex(const std::filesystem::path& path) {
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& f = rows[i];
     IndexEntry e;
-    e.module = static_cast<int>(ToNumber(path, i, f[0]));
-    e.counter = static_cast<int>(ToNumber(path, i, f[1]));
-    e.kind = ToKind(path, i, f[2]);
-    e.time_s = ToNumber(path, i, f[3]);
+    ReadImageKey(path, i, f, e);
     e.exposure_ms = ToNumber(path, i, f[4]);
     e.file = f[5];
     out.push_back(e);
@@ -179,11 +184,12 @@ void WriteOdometry(const std::filesystem::path& path, const std::vector<Odometry
   WriteTextFile(path, text);
 }
 
-void WriteOdometryTruth(const std::filesystem::path& path, const std::vector<OdometrySample>& samples) {
+void WriteOdometryTruth(const std::filesystem::path& path,
+                        const std::vector<OdometrySample>& samples) {
   std::string text = "time_s,true_mm,scale_mm,slip_mm,noise_mm,measured_mm\n";
   for (const auto& s : samples) {
-    text += fmt::format("{:.6f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n", s.time_s, s.true_mm, s.scale_mm, s.slip_mm,
-                        s.noise_mm, s.measured_mm);
+    text += fmt::format("{:.6f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n", s.time_s, s.true_mm,
+                        s.scale_mm, s.slip_mm, s.noise_mm, s.measured_mm);
   }
   WriteTextFile(path, text);
 }
@@ -193,9 +199,10 @@ void WriteTruthPoses(const std::filesystem::path& path, const std::vector<TruthP
   for (const TruthPose& p : poses) {
     const Eigen::Vector3d& t = p.world_from_carrier.translation;
     const Eigen::Quaterniond& q = p.world_from_carrier.rotation;
-    text += fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.12f},{:.12f},{:.12f},{:.12f}\n", p.module,
-                        p.counter, ImageKindName(p.kind), p.time_s, p.station_mm, t.x(), t.y(), t.z(), q.x(), q.y(),
-                        q.z(), q.w());
+    text +=
+        fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.12f},{:.12f},{:.12f},{:.12f}\n",
+                    p.module, p.counter, ImageKindName(p.kind), p.time_s, p.station_mm, t.x(),
+                    t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
   }
   WriteTextFile(path, text);
 }
@@ -206,15 +213,14 @@ std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path) {
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& f = rows[i];
     TruthPose p;
-    p.module = static_cast<int>(ToNumber(path, i, f[0]));
-    p.counter = static_cast<int>(ToNumber(path, i, f[1]));
-    p.kind = ToKind(path, i, f[2]);
-    p.time_s = ToNumber(path, i, f[3]);
+    ReadImageKey(path, i, f, p);
     p.station_mm = ToNumber(path, i, f[4]);
-    const Eigen::Vector3d t(ToNumber(path, i, f[5]), ToNumber(path, i, f[6]), ToNumber(path, i, f[7]));
-    const Eigen::Quaterniond q(ToNumber(path, i, f[11]), ToNumber(path, i, f[8]), ToNumber(path, i, f[9]),
-                               ToNumber(path, i, f[10]));
-    if (std::abs(q.norm() - 1.0) > 1e-6) throw FileError(path, fmt::format("line {}: quaternion not unit", i + 2));
+    const Eigen::Vector3d t(ToNumber(path, i, f[5]), ToNumber(path, i, f[6]),
+                            ToNumber(path, i, f[7]));
+    const Eigen::Quaterniond q(ToNumber(path, i, f[11]), ToNumber(path, i, f[8]),
+                               ToNumber(path, i, f[9]), ToNumber(path, i, f[10]));
+    if (std::abs(q.norm() - 1.0) > 1e-6)
+      throw FileError(path, fmt::format("line {}: quaternion not unit", i + 2));
     p.world_from_carrier = Rigid3d(q, t);
     out.push_back(p);
   }
@@ -233,17 +239,27 @@ void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pi
   for (size_t i = 0; i < w.joints.size(); ++i) {
     const PipeJoint& j = w.joints[i];
     const double station = pipe.SectionStartMm(static_cast<int>(i + 1));
-    list.push_back({{"id", j.id}, {"type", "joint"}, {"code", "BAJ"}, {"station_mm", station},
-                    {"clock_h", j.offset_clock_h}, {"gap_mm", j.gap_mm}, {"gap_depth_mm", j.gap_depth_mm},
-                    {"offset_mm", j.offset_mm}, {"deflection_deg", j.deflection_deg},
+    list.push_back({{"id", j.id},
+                    {"type", "joint"},
+                    {"code", "BAJ"},
+                    {"station_mm", station},
+                    {"clock_h", j.offset_clock_h},
+                    {"gap_mm", j.gap_mm},
+                    {"gap_depth_mm", j.gap_depth_mm},
+                    {"offset_mm", j.offset_mm},
+                    {"deflection_deg", j.deflection_deg},
                     {"deflection_clock_h", j.deflection_clock_h}});
   }
   for (size_t i = 0; i < w.sections.size(); ++i) {
     const PipeSection& s = w.sections[i];
     if (s.ovality_pct <= 0.0) continue;
-    list.push_back({{"id", "D" + std::to_string(i + 1)}, {"type", "deformation"}, {"code", "BAA"},
-                    {"station_mm", pipe.SectionStartMm(static_cast<int>(i))}, {"length_mm", s.length_mm},
-                    {"clock_h", s.ovality_clock_h}, {"deformation_pct", s.ovality_pct}});
+    list.push_back({{"id", fmt::format("D{}", i + 1)},
+                    {"type", "deformation"},
+                    {"code", "BAA"},
+                    {"station_mm", pipe.SectionStartMm(static_cast<int>(i))},
+                    {"length_mm", s.length_mm},
+                    {"clock_h", s.ovality_clock_h},
+                    {"deformation_pct", s.ovality_pct}});
   }
   for (const PipeFeature& f : w.features) {
     PipeWorld one;
@@ -255,8 +271,12 @@ void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pi
         o["code"] = "BAG";
         o["intrusion_pct_of_dn"] = 100.0 * f.intrusion_mm / dn;
         break;
-      case PipeFeature::Type::kSpalling: o["code"] = "BAF"; break;
-      case PipeFeature::Type::kCrack: o["code"] = "BAB"; break;
+      case PipeFeature::Type::kSpalling:
+        o["code"] = "BAF";
+        break;
+      case PipeFeature::Type::kCrack:
+        o["code"] = "BAB";
+        break;
       case PipeFeature::Type::kDeposit: {
         // Share of the cross-section the deposit fills: the circular segment of height h.
         const double r = 0.5 * dn, h = f.height_mm, theta = 2.0 * std::acos((r - h) / r);
@@ -267,7 +287,9 @@ void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pi
     }
     list.push_back(o);
   }
-  WriteTextFile(path, json{{"format", "sewer3d-features"}, {"version", 1}, {"features", list}}.dump(2) + "\n");
+  WriteTextFile(
+      path,
+      json{{"format", "sewer3d-features"}, {"version", 1}, {"features", list}}.dump(2) + "\n");
 }
 
 }  // namespace sewer3d

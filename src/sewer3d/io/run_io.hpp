@@ -32,9 +32,9 @@ struct IndexEntry {
   int module = 0;
   int counter = 0;
   ImageKind kind = ImageKind::kPattern;
-  double time_s = 0.0;       ///< middle of the exposure
+  double time_s = 0.0;  ///< middle of the exposure
   double exposure_ms = 0.0;
-  std::string file;          ///< relative to the run folder
+  std::string file;  ///< relative to the run folder
 };
 void WriteIndex(const std::filesystem::path& path, const std::vector<IndexEntry>& entries);
 std::vector<IndexEntry> ReadIndex(const std::filesystem::path& path);
@@ -42,7 +42,8 @@ std::vector<IndexEntry> ReadIndex(const std::filesystem::path& path);
 /// odometry.csv: what the robot reports (time_s, distance_mm).
 void WriteOdometry(const std::filesystem::path& path, const std::vector<OdometrySample>& samples);
 /// truth/odometry.csv: every sample with its error terms.
-void WriteOdometryTruth(const std::filesystem::path& path, const std::vector<OdometrySample>& samples);
+void WriteOdometryTruth(const std::filesystem::path& path,
+                        const std::vector<OdometrySample>& samples);
 
 /// truth/poses.csv: the true world_from_carrier at each image's time.
 struct TruthPose {
@@ -60,7 +61,5 @@ std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path);
 /// code, station, clock position and true dimensions.
 void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pipe);
 
-/// Writes text to a file, creating its folder; FileError on failure.
-void WriteTextFile(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace sewer3d

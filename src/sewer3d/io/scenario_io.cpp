@@ -1,9 +1,12 @@
 #include "sewer3d/io/scenario_io.hpp"
 
+#include <fmt/format.h>
+
 #include <fstream>
 #include <sstream>
 
 #include "sewer3d/io/json_reader.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
 namespace {
@@ -12,9 +15,12 @@ using nlohmann::json;
 
 const char* TruthDepthName(TruthDepth t) {
   switch (t) {
-    case TruthDepth::kAll: return "all";
-    case TruthDepth::kPattern: return "pattern";
-    case TruthDepth::kNone: return "none";
+    case TruthDepth::kAll:
+      return "all";
+    case TruthDepth::kPattern:
+      return "pattern";
+    case TruthDepth::kNone:
+      return "none";
   }
   return "pattern";
 }
@@ -24,29 +30,43 @@ json WorldJson(const PipeWorld& w) {
   j["material_seed"] = w.material_seed;
   j["sections"] = json::array();
   for (const PipeSection& s : w.sections) {
-    j["sections"].push_back({{"length_mm", s.length_mm}, {"diameter_mm", s.diameter_mm},
-                             {"material", MaterialName(s.material)}, {"ovality_pct", s.ovality_pct},
-                             {"ovality_clock_h", s.ovality_clock_h}, {"bend_radius_mm", s.bend_radius_mm},
+    j["sections"].push_back({{"length_mm", s.length_mm},
+                             {"diameter_mm", s.diameter_mm},
+                             {"material", MaterialName(s.material)},
+                             {"ovality_pct", s.ovality_pct},
+                             {"ovality_clock_h", s.ovality_clock_h},
+                             {"bend_radius_mm", s.bend_radius_mm},
                              {"bend_clock_h", s.bend_clock_h}});
   }
   j["joints"] = json::array();
   for (const PipeJoint& t : w.joints) {
-    j["joints"].push_back({{"id", t.id}, {"gap_mm", t.gap_mm}, {"gap_depth_mm", t.gap_depth_mm},
-                           {"offset_mm", t.offset_mm}, {"offset_clock_h", t.offset_clock_h},
-                           {"deflection_deg", t.deflection_deg}, {"deflection_clock_h", t.deflection_clock_h}});
+    j["joints"].push_back({{"id", t.id},
+                           {"gap_mm", t.gap_mm},
+                           {"gap_depth_mm", t.gap_depth_mm},
+                           {"offset_mm", t.offset_mm},
+                           {"offset_clock_h", t.offset_clock_h},
+                           {"deflection_deg", t.deflection_deg},
+                           {"deflection_clock_h", t.deflection_clock_h}});
   }
   j["features"] = json::array();
   for (const PipeFeature& f : w.features) {
-    json o{{"id", f.id}, {"type", FeatureTypeName(f.type)}, {"station_mm", f.station_mm}, {"clock_h", f.clock_h}};
+    json o{{"id", f.id},
+           {"type", FeatureTypeName(f.type)},
+           {"station_mm", f.station_mm},
+           {"clock_h", f.clock_h}};
     switch (f.type) {
       case PipeFeature::Type::kConnection:
-        o.update({{"diameter_mm", f.diameter_mm}, {"wall_mm", f.wall_mm}, {"intrusion_mm", f.intrusion_mm}});
+        o.update({{"diameter_mm", f.diameter_mm},
+                  {"wall_mm", f.wall_mm},
+                  {"intrusion_mm", f.intrusion_mm}});
         break;
       case PipeFeature::Type::kSpalling:
         o.update({{"length_mm", f.length_mm}, {"width_mm", f.width_mm}, {"depth_mm", f.depth_mm}});
         break;
       case PipeFeature::Type::kCrack:
-        o.update({{"length_mm", f.length_mm}, {"width_mm", f.width_mm}, {"depth_mm", f.depth_mm},
+        o.update({{"length_mm", f.length_mm},
+                  {"width_mm", f.width_mm},
+                  {"depth_mm", f.depth_mm},
                   {"angle_deg", f.angle_deg}});
         break;
       case PipeFeature::Type::kDeposit:
@@ -67,8 +87,9 @@ PipeWorld ReadWorld(const JsonReader& in, const json& j) {
     const std::string p = "pipe.sections[" + std::to_string(i) + "].";
     const json& o = sections[i];
     if (!o.is_object()) in.Fail(p, "must be an object");
-    in.OnlyKnown(o, p, {"length_mm", "diameter_mm", "material", "ovality_pct", "ovality_clock_h",
-                        "bend_radius_mm", "bend_clock_h"});
+    in.OnlyKnown(o, p,
+                 {"length_mm", "diameter_mm", "material", "ovality_pct", "ovality_clock_h",
+                  "bend_radius_mm", "bend_clock_h"});
     PipeSection s;
     s.length_mm = in.Number(o, "length_mm", p, s.length_mm);
     s.diameter_mm = in.Number(o, "diameter_mm", p, s.diameter_mm);
@@ -84,10 +105,11 @@ PipeWorld ReadWorld(const JsonReader& in, const json& j) {
     const std::string p = "pipe.joints[" + std::to_string(i) + "].";
     const json& o = joints[i];
     if (!o.is_object()) in.Fail(p, "must be an object");
-    in.OnlyKnown(o, p, {"id", "gap_mm", "gap_depth_mm", "offset_mm", "offset_clock_h", "deflection_deg",
-                        "deflection_clock_h"});
+    in.OnlyKnown(o, p,
+                 {"id", "gap_mm", "gap_depth_mm", "offset_mm", "offset_clock_h", "deflection_deg",
+                  "deflection_clock_h"});
     PipeJoint t;
-    t.id = in.Text(o, "id", p, "J" + std::to_string(i + 1));
+    t.id = in.Text(o, "id", p, fmt::format("J{}", i + 1));
     t.gap_mm = in.Number(o, "gap_mm", p, t.gap_mm);
     t.gap_depth_mm = in.Number(o, "gap_depth_mm", p, t.gap_depth_mm);
     t.offset_mm = in.Number(o, "offset_mm", p, t.offset_mm);
@@ -101,17 +123,19 @@ PipeWorld ReadWorld(const JsonReader& in, const json& j) {
     const std::string p = "pipe.features[" + std::to_string(i) + "].";
     const json& o = features[i];
     if (!o.is_object()) in.Fail(p, "must be an object");
-    in.OnlyKnown(o, p, {"id", "type", "station_mm", "clock_h", "diameter_mm", "wall_mm", "intrusion_mm",
-                        "length_mm", "width_mm", "depth_mm", "height_mm", "angle_deg"});
+    in.OnlyKnown(o, p,
+                 {"id", "type", "station_mm", "clock_h", "diameter_mm", "wall_mm", "intrusion_mm",
+                  "length_mm", "width_mm", "depth_mm", "height_mm", "angle_deg"});
     PipeFeature f;
     const std::string type = in.Text(o, "type", p, "");
     bool known = false;
-    for (const auto t : {PipeFeature::Type::kConnection, PipeFeature::Type::kSpalling, PipeFeature::Type::kCrack,
-                         PipeFeature::Type::kDeposit}) {
+    for (const auto t : {PipeFeature::Type::kConnection, PipeFeature::Type::kSpalling,
+                         PipeFeature::Type::kCrack, PipeFeature::Type::kDeposit}) {
       if (type == FeatureTypeName(t)) f.type = t, known = true;
     }
-    if (!known) in.Fail(p + "type", "must be connection, spalling, crack or deposit, got '" + type + "'");
-    f.id = in.Text(o, "id", p, "F" + std::to_string(i + 1));
+    if (!known)
+      in.Fail(p + "type", "must be connection, spalling, crack or deposit, got '" + type + "'");
+    f.id = in.Text(o, "id", p, fmt::format("F{}", i + 1));
     f.station_mm = in.Number(o, "station_mm", p, f.station_mm);
     f.clock_h = in.Number(o, "clock_h", p, f.type == PipeFeature::Type::kDeposit ? 6.0 : f.clock_h);
     f.diameter_mm = in.Number(o, "diameter_mm", p, 0.0);
@@ -131,10 +155,14 @@ PipeWorld ReadWorld(const JsonReader& in, const json& j) {
 
 const char* FeatureTypeName(PipeFeature::Type type) {
   switch (type) {
-    case PipeFeature::Type::kConnection: return "connection";
-    case PipeFeature::Type::kSpalling: return "spalling";
-    case PipeFeature::Type::kCrack: return "crack";
-    case PipeFeature::Type::kDeposit: return "deposit";
+    case PipeFeature::Type::kConnection:
+      return "connection";
+    case PipeFeature::Type::kSpalling:
+      return "spalling";
+    case PipeFeature::Type::kCrack:
+      return "crack";
+    case PipeFeature::Type::kDeposit:
+      return "deposit";
   }
   return "connection";
 }
@@ -147,26 +175,40 @@ std::string ScenarioToJson(const Scenario& s) {
   j["seed"] = s.seed;
   if (!s.module_file.empty()) j["module"] = s.module_file;
   j["camera_width"] = s.camera_width;
-  j["rig"] = {{"modules", s.rig.modules}, {"first_clock_h", s.rig.first_clock_h}, {"stagger_mm", s.rig.stagger_mm},
-              {"carrier_diameter_mm", s.rig.carrier_diameter_mm}, {"carrier_length_mm", s.rig.carrier_length_mm}};
+  j["rig"] = {{"modules", s.rig.modules},
+              {"first_clock_h", s.rig.first_clock_h},
+              {"stagger_mm", s.rig.stagger_mm},
+              {"carrier_diameter_mm", s.rig.carrier_diameter_mm},
+              {"carrier_length_mm", s.rig.carrier_length_mm}};
   j["pipe"] = WorldJson(s.world);
   const MotionOptions& m = s.motion;
-  j["motion"] = {{"speed_mm_s", m.speed_mm_s}, {"speed_variation", m.speed_variation},
-                 {"start_station_mm", m.start_station_mm}, {"travel_mm", m.travel_mm},
-                 {"offset_mm", {m.offset_mm.x(), m.offset_mm.y()}}, {"wander_mm", m.wander_mm},
-                 {"roll_deg", m.roll_deg}, {"roll_amplitude_deg", m.roll_amplitude_deg}, {"wobble_deg", m.wobble_deg}};
+  j["motion"] = {{"speed_mm_s", m.speed_mm_s},
+                 {"speed_variation", m.speed_variation},
+                 {"start_station_mm", m.start_station_mm},
+                 {"travel_mm", m.travel_mm},
+                 {"offset_mm", {m.offset_mm.x(), m.offset_mm.y()}},
+                 {"wander_mm", m.wander_mm},
+                 {"roll_deg", m.roll_deg},
+                 {"roll_amplitude_deg", m.roll_amplitude_deg},
+                 {"wobble_deg", m.wobble_deg}};
   const CaptureOptions& c = s.capture;
-  j["capture"] = {{"overlap", c.overlap}, {"triplet_interval_ms", c.triplet_interval_ms},
-                  {"group_delay_ms", c.group_delay_ms}, {"exposure_ms", c.exposure_ms},
+  j["capture"] = {{"overlap", c.overlap},
+                  {"triplet_interval_ms", c.triplet_interval_ms},
+                  {"group_delay_ms", c.group_delay_ms},
+                  {"exposure_ms", c.exposure_ms},
                   {"nominal_diameter_mm", c.nominal_diameter_mm}};
-  j["odometry"] = {{"rate_hz", s.odometry.rate_hz}, {"scale_error", s.odometry.scale_error},
-                   {"noise_mm", s.odometry.noise_mm}, {"slips", json::array()}};
+  j["odometry"] = {{"rate_hz", s.odometry.rate_hz},
+                   {"scale_error", s.odometry.scale_error},
+                   {"noise_mm", s.odometry.noise_mm},
+                   {"slips", json::array()}};
   for (const OdometrySlip& slip : s.odometry.slips) {
-    j["odometry"]["slips"].push_back(
-        {{"station_mm", slip.station_mm}, {"length_mm", slip.length_mm}, {"fraction", slip.fraction}});
+    j["odometry"]["slips"].push_back({{"station_mm", slip.station_mm},
+                                      {"length_mm", slip.length_mm},
+                                      {"fraction", slip.fraction}});
   }
   json render = RenderOptionsToJson(s.render);
-  for (const char* per_shot : {"speed_mm_s", "exposure_ms", "motion_direction"}) render.erase(per_shot);
+  for (const char* per_shot : {"speed_mm_s", "exposure_ms", "motion_direction"})
+    render.erase(per_shot);
   j["render"] = render;
   j["truth_depth"] = TruthDepthName(s.truth_depth);
   return j.dump(2);
@@ -175,25 +217,30 @@ std::string ScenarioToJson(const Scenario& s) {
 Scenario ParseScenario(const std::string& text, const std::filesystem::path& path) {
   const JsonReader in(path);
   const json j = in.ParseObject(text);
-  in.OnlyKnown(j, "", {"name", "seed", "module", "camera_width", "rig", "pipe", "motion", "capture", "odometry",
-                       "render", "truth_depth"});
+  in.OnlyKnown(j, "",
+               {"name", "seed", "module", "camera_width", "rig", "pipe", "motion", "capture",
+                "odometry", "render", "truth_depth"});
   Scenario s;
   s.name = in.Text(j, "name", "", path.stem().string());
   s.seed = static_cast<std::uint64_t>(in.Number(j, "seed", "", 1.0));
   s.module_file = in.Text(j, "module", "", "");
   s.camera_width = in.Integer(j, "camera_width", "", s.camera_width);
   const json& rig = in.Object(j, "rig", "");
-  in.OnlyKnown(rig, "rig.", {"modules", "first_clock_h", "stagger_mm", "carrier_diameter_mm", "carrier_length_mm"});
+  in.OnlyKnown(
+      rig, "rig.",
+      {"modules", "first_clock_h", "stagger_mm", "carrier_diameter_mm", "carrier_length_mm"});
   s.rig.modules = in.Integer(rig, "modules", "rig.", s.rig.modules);
   s.rig.first_clock_h = in.Number(rig, "first_clock_h", "rig.", s.rig.first_clock_h);
   s.rig.stagger_mm = in.Number(rig, "stagger_mm", "rig.", s.rig.stagger_mm);
-  s.rig.carrier_diameter_mm = in.Number(rig, "carrier_diameter_mm", "rig.", s.rig.carrier_diameter_mm);
+  s.rig.carrier_diameter_mm =
+      in.Number(rig, "carrier_diameter_mm", "rig.", s.rig.carrier_diameter_mm);
   s.rig.carrier_length_mm = in.Number(rig, "carrier_length_mm", "rig.", s.rig.carrier_length_mm);
   if (!j.contains("pipe")) in.Fail("pipe", "is missing");
   s.world = ReadWorld(in, in.Object(j, "pipe", ""));
   const json& m = in.Object(j, "motion", "");
-  in.OnlyKnown(m, "motion.", {"speed_mm_s", "speed_variation", "start_station_mm", "travel_mm", "offset_mm",
-                              "wander_mm", "roll_deg", "roll_amplitude_deg", "wobble_deg"});
+  in.OnlyKnown(m, "motion.",
+               {"speed_mm_s", "speed_variation", "start_station_mm", "travel_mm", "offset_mm",
+                "wander_mm", "roll_deg", "roll_amplitude_deg", "wobble_deg"});
   MotionOptions& mo = s.motion;
   mo.speed_mm_s = in.Number(m, "speed_mm_s", "motion.", mo.speed_mm_s);
   mo.speed_variation = in.Number(m, "speed_variation", "motion.", mo.speed_variation);
@@ -210,13 +257,17 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
   mo.roll_amplitude_deg = in.Number(m, "roll_amplitude_deg", "motion.", mo.roll_amplitude_deg);
   mo.wobble_deg = in.Number(m, "wobble_deg", "motion.", mo.wobble_deg);
   const json& c = in.Object(j, "capture", "");
-  in.OnlyKnown(c, "capture.", {"overlap", "triplet_interval_ms", "group_delay_ms", "exposure_ms", "nominal_diameter_mm"});
+  in.OnlyKnown(
+      c, "capture.",
+      {"overlap", "triplet_interval_ms", "group_delay_ms", "exposure_ms", "nominal_diameter_mm"});
   s.capture.overlap = in.Number(c, "overlap", "capture.", s.capture.overlap);
-  s.capture.triplet_interval_ms = in.Number(c, "triplet_interval_ms", "capture.", s.capture.triplet_interval_ms);
+  s.capture.triplet_interval_ms =
+      in.Number(c, "triplet_interval_ms", "capture.", s.capture.triplet_interval_ms);
   s.capture.group_delay_ms = in.Number(c, "group_delay_ms", "capture.", s.capture.group_delay_ms);
   s.capture.exposure_ms = in.Number(c, "exposure_ms", "capture.", s.capture.exposure_ms);
-  s.capture.nominal_diameter_mm = in.Number(c, "nominal_diameter_mm", "capture.",
-                                            s.world.sections.empty() ? 300.0 : s.world.sections[0].diameter_mm);
+  s.capture.nominal_diameter_mm =
+      in.Number(c, "nominal_diameter_mm", "capture.",
+                s.world.sections.empty() ? 300.0 : s.world.sections[0].diameter_mm);
   const json& o = in.Object(j, "odometry", "");
   in.OnlyKnown(o, "odometry.", {"rate_hz", "scale_error", "noise_mm", "slips"});
   s.odometry.rate_hz = in.Number(o, "rate_hz", "odometry.", s.odometry.rate_hz);
@@ -227,15 +278,20 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
     const std::string p = "odometry.slips[" + std::to_string(i) + "].";
     if (!slips[i].is_object()) in.Fail(p, "must be an object");
     in.OnlyKnown(slips[i], p, {"station_mm", "length_mm", "fraction"});
-    s.odometry.slips.push_back({in.Number(slips[i], "station_mm", p, 0.0), in.Number(slips[i], "length_mm", p, 0.0),
+    s.odometry.slips.push_back({in.Number(slips[i], "station_mm", p, 0.0),
+                                in.Number(slips[i], "length_mm", p, 0.0),
                                 in.Number(slips[i], "fraction", p, 0.0)});
   }
   ReadRenderOptions(in, in.Object(j, "render", ""), "render.", s.render);
   const std::string truth = in.Text(j, "truth_depth", "", "pattern");
-  if (truth == "all") s.truth_depth = TruthDepth::kAll;
-  else if (truth == "pattern") s.truth_depth = TruthDepth::kPattern;
-  else if (truth == "none") s.truth_depth = TruthDepth::kNone;
-  else in.Fail("truth_depth", "must be all, pattern or none, got '" + truth + "'");
+  if (truth == "all")
+    s.truth_depth = TruthDepth::kAll;
+  else if (truth == "pattern")
+    s.truth_depth = TruthDepth::kPattern;
+  else if (truth == "none")
+    s.truth_depth = TruthDepth::kNone;
+  else
+    in.Fail("truth_depth", "must be all, pattern or none, got '" + truth + "'");
   try {
     s.Check();
   } catch (const std::invalid_argument& e) {
@@ -244,13 +300,6 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
   return s;
 }
 
-Scenario ReadScenario(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !file) throw FileError(path, "cannot open file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return ParseScenario(text.str(), path);
-}
+Scenario ReadScenario(const std::filesystem::path& path) { return ParseScenario(ReadTextFile(path), path); }
 
 }  // namespace sewer3d

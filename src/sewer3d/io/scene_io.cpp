@@ -9,6 +9,7 @@
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/json_reader.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
 namespace {
@@ -85,20 +86,16 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
 }
 
 Scene ReadScene(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !file) throw FileError(path, "cannot open file");
-  std::ostringstream text;
-  text << file.rdbuf();
+  const std::string text = ReadTextFile(path);
   try {
-    const json doc = json::parse(text.str());
+    const json doc = json::parse(text);
     if (doc.is_object() && doc.contains("scene") && doc["scene"].is_object()) {
       return ParseScene(doc["scene"].dump(), path);
     }
   } catch (const json::parse_error&) {
     // ParseScene reports it.
   }
-  return ParseScene(text.str(), path);
+  return ParseScene(text, path);
 }
 
 std::string SceneToJson(const Scene& s) {

@@ -11,6 +11,7 @@
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/io/text_file.hpp"
 #include "sewer3d/io/scenario_io.hpp"
 #include "sewer3d/io/scene_io.hpp"
 #include "sewer3d/pipeline/run_overview.hpp"
@@ -36,7 +37,8 @@ std::uintmax_t FolderBytes(const fs::path& dir) {
   return bytes;
 }
 
-void WriteRunJson(const fs::path& out, const Scenario& s, const CapturePlan& plan, bool complete, double seconds) {
+void WriteRunJson(const fs::path& out, const Scenario& s, const CapturePlan& plan, bool complete,
+                  double seconds) {
   const nlohmann::json j{{"format", "sewer3d-run"},
                          {"version", 1},
                          {"complete", complete},
@@ -56,8 +58,9 @@ void WriteRunJson(const fs::path& out, const Scenario& s, const CapturePlan& pla
 
 }  // namespace
 
-SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& module_in, const BinaryArray& pattern,
-                         const fs::path& out, const RunProgress& progress) {
+SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& module_in,
+                         const BinaryArray& pattern, const fs::path& out,
+                         const RunProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   scenario.Check();
   ModuleDescription module = module_in;
@@ -68,7 +71,8 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
   SimulatedRun result;
   result.plan = PlanCaptures(rig, trajectory, scenario.capture);
   result.duration_s = trajectory.DurationS();
-  result.overlap = NeighbourOverlaps(rig, scenario.capture.nominal_diameter_mm, Eigen::Vector2d::Zero(), true);
+  result.overlap =
+      NeighbourOverlaps(rig, scenario.capture.nominal_diameter_mm, Eigen::Vector2d::Zero(), true);
   const CapturePlan& plan = result.plan;
 
   // Everything but the images first: a run that stops part-way still says what it holds.
@@ -105,22 +109,30 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
     const Rigid3d world_from_camera = poses[i].world_from_carrier * m.carrier_from_camera;
     RenderOptions o = scenario.render;
     o.images = shot.kind == ImageKind::kPattern ? RenderImages::kPattern : RenderImages::kTexture;
-    o.seed = static_cast<std::uint64_t>(HashUniform(scenario.seed, shot.module, shot.counter, static_cast<int>(shot.kind)) * 0x1p53);
+    o.seed = static_cast<std::uint64_t>(
+        HashUniform(scenario.seed, shot.module, shot.counter, static_cast<int>(shot.kind)) *
+        0x1p53);
     // Motion during the exposure, in the camera frame.
     const double dt = 0.5e-3;
     const Eigen::Vector3d velocity =
         ((trajectory.WorldFromCarrier(shot.time_s + dt) * m.carrier_from_camera).translation -
-         (trajectory.WorldFromCarrier(shot.time_s - dt) * m.carrier_from_camera).translation) / (2.0 * dt);
+         (trajectory.WorldFromCarrier(shot.time_s - dt) * m.carrier_from_camera).translation) /
+        (2.0 * dt);
     o.exposure_ms = scenario.capture.exposure_ms;
     o.speed_mm_s = velocity.norm();
-    if (o.speed_mm_s > 0.0) o.motion_direction = world_from_camera.rotation.conjugate() * velocity.normalized();
-    const bool truth = scenario.truth_depth == TruthDepth::kAll ||
-                       (scenario.truth_depth == TruthDepth::kPattern && shot.kind == ImageKind::kPattern);
+    if (o.speed_mm_s > 0.0)
+      o.motion_direction = world_from_camera.rotation.conjugate() * velocity.normalized();
+    const bool truth =
+        scenario.truth_depth == TruthDepth::kAll ||
+        (scenario.truth_depth == TruthDepth::kPattern && shot.kind == ImageKind::kPattern);
     o.truth_depth = truth;
-    const RenderedFrame frame = RenderFrame(m.module, pattern, PipeView(pipe, world_from_camera), o);
+    const RenderedFrame frame =
+        RenderFrame(m.module, pattern, PipeView(pipe, world_from_camera), o);
     const fs::path image = out / index[i].file;
-    if (shot.kind == ImageKind::kPattern) WritePatternImage(image, frame, o.sensor.bits);
-    else WriteTextureImage(image, frame, o.sensor.bits);
+    if (shot.kind == ImageKind::kPattern)
+      WritePatternImage(image, frame, o.sensor.bits);
+    else
+      WriteTextureImage(image, frame, o.sensor.bits);
     if (truth) {
       WriteImage(out / "truth" / "depth" / (ShotStem(shot) + ".tiff"), frame.truth_depth);
     }
@@ -131,7 +143,8 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
     }
   });
   result.images = total;
-  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   WriteRunJson(out, scenario, plan, true, result.wall_seconds);
   result.bytes = FolderBytes(out);
   return result;

@@ -18,9 +18,9 @@ namespace sewer3d {
 struct SimulatedRun {
   CapturePlan plan;
   int images = 0;
-  double duration_s = 0.0;        ///< of the run (robot time)
-  double wall_seconds = 0.0;      ///< to simulate it
-  std::uintmax_t bytes = 0;       ///< on disk
+  double duration_s = 0.0;                ///< of the run (robot time)
+  double wall_seconds = 0.0;              ///< to simulate it
+  std::uintmax_t bytes = 0;               ///< on disk
   std::vector<NeighbourOverlap> overlap;  ///< 3-D coverage at the nominal diameter, centred
 };
 
@@ -28,7 +28,8 @@ struct SimulatedRun {
 using RunProgress = std::function<void(int done, int total)>;
 
 /// Every module of the rig uses `module` and `pattern` (its matrix is written as pattern.png).
-SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& module, const BinaryArray& pattern,
-                         const std::filesystem::path& out, const RunProgress& progress);
+SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& module,
+                         const BinaryArray& pattern, const std::filesystem::path& out,
+                         const RunProgress& progress);
 
 }  // namespace sewer3d

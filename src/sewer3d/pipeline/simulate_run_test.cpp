@@ -33,10 +33,11 @@ class TinyRun : public ::testing::Test {
     o.camera_width = s.camera_width;
     o.camera_height = s.camera_width * 3 / 4;
     int calls = 0;
-    result_ = SimulateRun(s, MakeDefaultModule(o), DefaultPatternArray(), dir_, [&](int done, int total) {
-      ++calls;
-      EXPECT_LE(done, total);
-    });
+    result_ =
+        SimulateRun(s, MakeDefaultModule(o), DefaultPatternArray(), dir_, [&](int done, int total) {
+          ++calls;
+          EXPECT_LE(done, total);
+        });
     calls_ = calls;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
@@ -92,17 +93,23 @@ TEST_F(TinyRun, TruthDepthAgreesWithTheWorldThroughTheTruePose) {
         }
         // Not on the wall function: then on the face of a step (a joint offset), which the
         // signed distance crosses within a hair along the pipe.
-        const Eigen::Vector3d along = 0.02 * (pipe.PathFrame(pipe.Locate(p).station_mm).rotation * Eigen::Vector3d::UnitZ());
-        const bool on_step = pipe.SignedDistanceMm(p - along) * pipe.SignedDistanceMm(p + along) < 0.0;
+        const Eigen::Vector3d along =
+            0.02 * (pipe.PathFrame(pipe.Locate(p).station_mm).rotation * Eigen::Vector3d::UnitZ());
+        const bool on_step =
+            pipe.SignedDistanceMm(p - along) * pipe.SignedDistanceMm(p + along) < 0.0;
         ++on_steps;
-        EXPECT_TRUE(on_step) << e.file << " pixel " << u << "," << v << ": " << g << " mm off the wall";
+        EXPECT_TRUE(on_step) << e.file << " pixel " << u << "," << v << ": " << g
+                             << " mm off the wall";
       }
     }
     EXPECT_GT(finite, 0.95 * checked) << e.file;
   }
-  std::printf("%d images, largest distance of a truth-depth point from the wall %.2e mm (%d on step faces)\n",
-              result_.images, worst, on_steps);
-  EXPECT_LT(worst, 2e-3);  // float32 depth at ~150 mm is exact to ~1e-5 mm; poses written to 1e-6 mm
+  std::printf(
+      "%d images, largest distance of a truth-depth point from the wall %.2e mm (%d on step "
+      "faces)\n",
+      result_.images, worst, on_steps);
+  EXPECT_LT(worst,
+            2e-3);  // float32 depth at ~150 mm is exact to ~1e-5 mm; poses written to 1e-6 mm
 }
 
 TEST_F(TinyRun, RunFolderIsCompleteAndMatchesThePlan) {

@@ -20,7 +20,8 @@ void OdometryOptions::Check() const {
 double SlipLossMm(const std::vector<OdometrySlip>& slips, double start, double station) {
   double loss = 0.0;
   for (const OdometrySlip& s : slips) {
-    const double a = std::max(start, s.station_mm), b = std::min(station, s.station_mm + s.length_mm);
+    const double a = std::max(start, s.station_mm),
+                 b = std::min(station, s.station_mm + s.length_mm);
     if (b > a) loss += s.fraction * (b - a);
   }
   return loss;

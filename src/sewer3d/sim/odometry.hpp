@@ -15,7 +15,7 @@ namespace sewer3d {
 struct OdometrySlip {
   double station_mm = 0.0;  ///< where the stretch starts (pipe station of the carrier centre)
   double length_mm = 0.0;
-  double fraction = 0.0;    ///< share of the motion not counted there, 0..1
+  double fraction = 0.0;  ///< share of the motion not counted there, 0..1
 };
 
 struct OdometryOptions {
@@ -29,17 +29,18 @@ struct OdometryOptions {
 
 struct OdometrySample {
   double time_s = 0.0;
-  double true_mm = 0.0;    ///< true distance along the pipe since t = 0
-  double scale_mm = 0.0;   ///< scale_error · true_mm
-  double slip_mm = 0.0;    ///< − Σ fraction · (motion inside each slip stretch so far)
+  double true_mm = 0.0;   ///< true distance along the pipe since t = 0
+  double scale_mm = 0.0;  ///< scale_error · true_mm
+  double slip_mm = 0.0;   ///< − Σ fraction · (motion inside each slip stretch so far)
   double noise_mm = 0.0;
   double measured_mm = 0.0;  ///< true + scale + slip + noise: what the robot reports
 };
 
-std::vector<OdometrySample> SimulateOdometry(const Trajectory& trajectory, const OdometryOptions& options,
-                                             std::uint64_t seed);
+std::vector<OdometrySample> SimulateOdometry(const Trajectory& trajectory,
+                                             const OdometryOptions& options, std::uint64_t seed);
 
 /// Σ fraction · |[start, station] ∩ stretch|: the distance the slips have swallowed.
-double SlipLossMm(const std::vector<OdometrySlip>& slips, double start_station_mm, double station_mm);
+double SlipLossMm(const std::vector<OdometrySlip>& slips, double start_station_mm,
+                  double station_mm);
 
 }  // namespace sewer3d

@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <cmath>
 #include <numbers>
 
 #include "sewer3d/core/check.hpp"
@@ -60,15 +59,18 @@ Eigen::Vector3d ClockDirection(double clock_rad) {
 void PipeWorld::Check() const {
   SEWER3D_CHECK(!sections.empty(), "the pipe has no sections");
   SEWER3D_CHECK(joints.size() + 1 == sections.size(),
-                "need one joint between each pair of sections: " << sections.size()
-                                                                 << " sections, " << joints.size() << " joints");
+                "need one joint between each pair of sections: " << sections.size() << " sections, "
+                                                                 << joints.size() << " joints");
   for (size_t i = 0; i < sections.size(); ++i) {
     const PipeSection& s = sections[i];
     SEWER3D_CHECK(s.length_mm > 0.0, "section " << i << ": length " << s.length_mm);
-    SEWER3D_CHECK(s.diameter_mm >= 50.0 && s.diameter_mm <= 5000.0, "section " << i << ": diameter " << s.diameter_mm);
-    SEWER3D_CHECK(s.ovality_pct >= 0.0 && s.ovality_pct < 30.0, "section " << i << ": ovality " << s.ovality_pct << " %");
+    SEWER3D_CHECK(s.diameter_mm >= 50.0 && s.diameter_mm <= 5000.0,
+                  "section " << i << ": diameter " << s.diameter_mm);
+    SEWER3D_CHECK(s.ovality_pct >= 0.0 && s.ovality_pct < 30.0,
+                  "section " << i << ": ovality " << s.ovality_pct << " %");
     SEWER3D_CHECK(s.bend_radius_mm == 0.0 || s.bend_radius_mm >= 10.0 * s.diameter_mm,
-                  "section " << i << ": bend radius " << s.bend_radius_mm << " mm (0, or at least 10 diameters)");
+                  "section " << i << ": bend radius " << s.bend_radius_mm
+                             << " mm (0, or at least 10 diameters)");
   }
   for (size_t i = 0; i < joints.size(); ++i) {
     const PipeJoint& j = joints[i];
@@ -76,22 +78,29 @@ void PipeWorld::Check() const {
                   "joint " << j.id << ": gap, depth and offset must not be negative");
     SEWER3D_CHECK(j.gap_mm < 0.5 * std::min(sections[i].length_mm, sections[i + 1].length_mm),
                   "joint " << j.id << ": gap " << j.gap_mm << " mm");
-    SEWER3D_CHECK(j.offset_mm < 0.2 * sections[i].diameter_mm, "joint " << j.id << ": offset " << j.offset_mm);
-    SEWER3D_CHECK(std::abs(j.deflection_deg) <= 10.0, "joint " << j.id << ": deflection " << j.deflection_deg << "°");
+    SEWER3D_CHECK(j.offset_mm < 0.2 * sections[i].diameter_mm,
+                  "joint " << j.id << ": offset " << j.offset_mm);
+    SEWER3D_CHECK(std::abs(j.deflection_deg) <= 10.0,
+                  "joint " << j.id << ": deflection " << j.deflection_deg << "°");
   }
   for (const PipeFeature& f : features) {
     using T = PipeFeature::Type;
-    SEWER3D_CHECK(f.type != T::kConnection || (f.diameter_mm > 0.0 && f.wall_mm >= 0.0 && f.intrusion_mm >= 0.0),
-                  "feature " << f.id << ": connection needs diameter_mm > 0, wall_mm and intrusion_mm >= 0");
-    SEWER3D_CHECK(f.type != T::kSpalling || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
-                  "feature " << f.id << ": spalling needs length_mm, width_mm and depth_mm > 0");
-    SEWER3D_CHECK(f.type != T::kCrack || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
-                  "feature " << f.id << ": crack needs length_mm, width_mm and depth_mm > 0");
+    SEWER3D_CHECK(
+        f.type != T::kConnection ||
+            (f.diameter_mm > 0.0 && f.wall_mm >= 0.0 && f.intrusion_mm >= 0.0),
+        "feature " << f.id << ": connection needs diameter_mm > 0, wall_mm and intrusion_mm >= 0");
+    SEWER3D_CHECK(
+        f.type != T::kSpalling || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
+        "feature " << f.id << ": spalling needs length_mm, width_mm and depth_mm > 0");
+    SEWER3D_CHECK(
+        f.type != T::kCrack || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
+        "feature " << f.id << ": crack needs length_mm, width_mm and depth_mm > 0");
     SEWER3D_CHECK(f.type != T::kDeposit || (f.length_mm > 0.0 && f.height_mm > 0.0),
                   "feature " << f.id << ": deposit needs length_mm and height_mm > 0");
     for (const PipeSection& s : sections) {
       SEWER3D_CHECK(f.intrusion_mm < 0.4 * s.diameter_mm && f.height_mm < 0.5 * s.diameter_mm,
-                    "feature " << f.id << ": intrusion or deposit too large for a Ø" << s.diameter_mm << " section");
+                    "feature " << f.id << ": intrusion or deposit too large for a Ø"
+                               << s.diameter_mm << " section");
     }
   }
 }
@@ -125,7 +134,9 @@ PipeGeometry::PipeGeometry(PipeWorld world) : world_(std::move(world)) {
     const Eigen::Quaterniond turn(Eigen::AngleAxisd(j.deflection_deg * kDeg, turn_axis));
     start = end * Rigid3d(turn, shift);
     joint_point_.push_back(0.5 * (end.translation + start.translation));
-    joint_normal_.push_back((end.rotation * Eigen::Vector3d::UnitZ() + start.rotation * Eigen::Vector3d::UnitZ()).normalized());
+    joint_normal_.push_back(
+        (end.rotation * Eigen::Vector3d::UnitZ() + start.rotation * Eigen::Vector3d::UnitZ())
+            .normalized());
   }
 }
 
@@ -135,8 +146,10 @@ Rigid3d PipeGeometry::SectionFrame(int section, double local_mm) const {
 
 Rigid3d PipeGeometry::PathFrame(double station_mm, double blend_mm) const {
   const int n = static_cast<int>(start_station_.size());
-  const int i = std::max(0, static_cast<int>(std::upper_bound(start_station_.begin(), start_station_.end(), station_mm) -
-                                             start_station_.begin()) - 1);
+  const int i = std::max(0, static_cast<int>(std::upper_bound(start_station_.begin(),
+                                                              start_station_.end(), station_mm) -
+                                             start_station_.begin()) -
+                                1);
   const Rigid3d here = SectionFrame(i, station_mm - start_station_[i]);
   const double end = start_station_[i] + world_.sections[i].length_mm;
   if (i + 1 < n && station_mm > end - blend_mm) {
@@ -166,8 +179,10 @@ PipeLocation PipeGeometry::LocateAt(const Eigen::Vector3d& p, bool with_clock) c
   int lo = 0, hi = static_cast<int>(joint_point_.size());
   while (lo < hi) {
     const int mid = (lo + hi) / 2;
-    if ((p - joint_point_[mid]).dot(joint_normal_[mid]) >= 0.0) lo = mid + 1;
-    else hi = mid;
+    if ((p - joint_point_[mid]).dot(joint_normal_[mid]) >= 0.0)
+      lo = mid + 1;
+    else
+      hi = mid;
   }
   PipeLocation at;
   at.section = lo;
@@ -175,7 +190,8 @@ PipeLocation PipeGeometry::LocateAt(const Eigen::Vector3d& p, bool with_clock) c
   const Eigen::Vector3d local = start_inverse_rotation_[lo] * p + start_inverse_translation_[lo];
   at.local_mm = LocalArc(s, local);
   at.station_mm = start_station_[lo] + at.local_mm;
-  const Eigen::Vector3d q = s.bend_radius_mm > 0.0 ? LocalFrame(s, at.local_mm).Inverse() * local : local;
+  const Eigen::Vector3d q =
+      s.bend_radius_mm > 0.0 ? LocalFrame(s, at.local_mm).Inverse() * local : local;
   at.rho_mm = std::sqrt(q.x() * q.x() + q.y() * q.y());
   at.radial = {q.x(), q.y()};
   at.clock_rad = NAN;
@@ -190,7 +206,8 @@ double PipeGeometry::Displacement(PipeLocation at, Material* material) const {
   // Open gaps at the joints before and after this section.
   if (at.section > 0) {
     const PipeJoint& j = world_.joints[at.section - 1];
-    if (j.gap_depth_mm > 0.0) d -= j.gap_depth_mm * (1.0 - Step((at.local_mm - 0.5 * j.gap_mm) / kEdgeMm));
+    if (j.gap_depth_mm > 0.0)
+      d -= j.gap_depth_mm * (1.0 - Step((at.local_mm - 0.5 * j.gap_mm) / kEdgeMm));
   }
   if (at.section + 1 < static_cast<int>(world_.sections.size())) {
     const PipeJoint& j = world_.joints[at.section];
@@ -201,9 +218,10 @@ double PipeGeometry::Displacement(PipeLocation at, Material* material) const {
   for (size_t k = 0; k < world_.features.size(); ++k) {
     const PipeFeature& f = world_.features[k];
     const double ds = at.station_mm - f.station_mm;
-    const double reach = f.type == PipeFeature::Type::kConnection ? 0.5 * f.diameter_mm + f.wall_mm + kEdgeMm
-                         : f.type == PipeFeature::Type::kDeposit  ? f.length_mm
-                                                                  : 0.5 * f.length_mm + f.width_mm + kEdgeMm;
+    const double reach =
+        f.type == PipeFeature::Type::kConnection ? 0.5 * f.diameter_mm + f.wall_mm + kEdgeMm
+        : f.type == PipeFeature::Type::kDeposit  ? f.length_mm
+                                                 : 0.5 * f.length_mm + f.width_mm + kEdgeMm;
     if (std::abs(ds) > reach) continue;
     EnsureClock(at);
     const double dclock = WrapAngle(at.clock_rad - ClockHoursToRad(f.clock_h));
@@ -222,7 +240,9 @@ double PipeGeometry::Displacement(PipeLocation at, Material* material) const {
         break;
       }
       case PipeFeature::Type::kSpalling: {
-        if (std::abs(ds) > 0.5 * f.length_mm + kEdgeMm || std::abs(arc) > 0.5 * f.width_mm + kEdgeMm) continue;
+        if (std::abs(ds) > 0.5 * f.length_mm + kEdgeMm ||
+            std::abs(arc) > 0.5 * f.width_mm + kEdgeMm)
+          continue;
         // Rounded rectangle (superellipse) with a rough bottom.
         const double u = 2.0 * ds / f.length_mm, v = 2.0 * arc / f.width_mm;
         const double q = std::pow(std::pow(u, 4) + std::pow(v, 4), 0.25);
@@ -232,7 +252,9 @@ double PipeGeometry::Displacement(PipeLocation at, Material* material) const {
         break;
       }
       case PipeFeature::Type::kCrack: {
-        if (std::abs(ds) > 0.5 * f.length_mm + f.width_mm && std::abs(arc) > 0.5 * f.length_mm + f.width_mm) continue;
+        if (std::abs(ds) > 0.5 * f.length_mm + f.width_mm &&
+            std::abs(arc) > 0.5 * f.length_mm + f.width_mm)
+          continue;
         const double ca = std::cos(f.angle_deg * kDeg), sa = std::sin(f.angle_deg * kDeg);
         const double along = ds * ca + arc * sa, across = -ds * sa + arc * ca;
         if (std::abs(along) > 0.5 * f.length_mm) continue;
@@ -243,10 +265,12 @@ double PipeGeometry::Displacement(PipeLocation at, Material* material) const {
       case PipeFeature::Type::kDeposit: {
         if (ds < 0.0 || ds > f.length_mm) continue;
         const double ramp = std::min(30.0, 0.25 * f.length_mm);
-        const double h = f.height_mm * std::min(Step(ds / ramp - 0.5), Step((f.length_mm - ds) / ramp - 0.5));
+        const double h =
+            f.height_mm * std::min(Step(ds / ramp - 0.5), Step((f.length_mm - ds) / ramp - 0.5));
         const double c = std::cos(dclock);
         if (c <= 0.0) continue;
-        const double grit = 0.3 * (SmoothNoise(world_.material_seed + 29 + k, ds / 3.0, arc / 3.0, 2) - 0.5);
+        const double grit =
+            0.3 * (SmoothNoise(world_.material_seed + 29 + k, ds / 3.0, arc / 3.0, 2) - 0.5);
         fd = std::max(0.0, radius - (radius - h - grit) / c);
         m = Material::kSediment;
         break;
@@ -266,10 +290,12 @@ double PipeGeometry::WallRadiusMm(const PipeLocation& at) const {
   double radius = 0.5 * s.diameter_mm;
   if (s.ovality_pct > 0.0) {
     const double ramp = std::min(100.0, 0.25 * s.length_mm);
-    const double w = std::min(Step(at.local_mm / ramp - 0.5), Step((s.length_mm - at.local_mm) / ramp - 0.5));
+    const double w =
+        std::min(Step(at.local_mm / ramp - 0.5), Step((s.length_mm - at.local_mm) / ramp - 0.5));
     PipeLocation with_clock = at;
     EnsureClock(with_clock);
-    radius *= 1.0 - 0.01 * s.ovality_pct * w * std::cos(2.0 * (with_clock.clock_rad - ClockHoursToRad(s.ovality_clock_h)));
+    radius *= 1.0 - 0.01 * s.ovality_pct * w *
+                        std::cos(2.0 * (with_clock.clock_rad - ClockHoursToRad(s.ovality_clock_h)));
   }
   return radius - Displacement(at, nullptr);
 }
@@ -327,7 +353,8 @@ std::optional<SurfaceHit> PipeGeometry::Intersect(const Eigen::Vector3d& origin,
   constexpr double h = 1e-3;
   const double g0 = at.rho_mm - WallRadiusMm(at);
   Eigen::Vector3d gradient;
-  for (int k = 0; k < 3; ++k) gradient[k] = (SignedDistanceMm(hit.point + h * Eigen::Vector3d::Unit(k)) - g0) / h;
+  for (int k = 0; k < 3; ++k)
+    gradient[k] = (SignedDistanceMm(hit.point + h * Eigen::Vector3d::Unit(k)) - g0) / h;
   Eigen::Vector3d normal = -gradient.normalized();
   if (!normal.allFinite()) normal = -d;
   hit.normal = normal.dot(d) < 0.0 ? normal : -normal;

@@ -8,7 +8,6 @@
 /// clock positions are in hours as in EN 13508-2 (12 = crown, 3 = right looking downstream).
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -48,8 +47,8 @@ struct PipeFeature {
   enum class Type { kConnection, kSpalling, kCrack, kDeposit };
   Type type = Type::kConnection;
   std::string id;
-  double station_mm = 0.0;  ///< centre (deposit: start)
-  double clock_h = 12.0;    ///< centre (deposit: lowest point, normally 6)
+  double station_mm = 0.0;    ///< centre (deposit: start)
+  double clock_h = 12.0;      ///< centre (deposit: lowest point, normally 6)
   double diameter_mm = 0.0;   ///< connection: inner diameter of the lateral pipe
   double wall_mm = 0.0;       ///< connection: wall thickness of the lateral pipe
   double intrusion_mm = 0.0;  ///< connection: how far the lateral's end protrudes (BAG)
@@ -112,7 +111,7 @@ class PipeGeometry {
 
   PipeWorld world_;
   std::vector<double> start_station_;
-  std::vector<Rigid3d> section_start_;  ///< world_from_section at local 0
+  std::vector<Rigid3d> section_start_;                   ///< world_from_section at local 0
   std::vector<Eigen::Matrix3d> start_inverse_rotation_;  ///< section_from_world, for speed
   std::vector<Eigen::Vector3d> start_inverse_translation_;
   std::vector<Eigen::Vector3d> joint_point_, joint_normal_;  ///< bisecting planes

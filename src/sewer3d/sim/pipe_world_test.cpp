@@ -13,7 +13,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 PipeWorld TwoSections(const PipeJoint& joint) {
   PipeWorld w;
-  w.sections = {{.length_mm = 1000.0, .diameter_mm = 300.0}, {.length_mm = 1000.0, .diameter_mm = 300.0}};
+  w.sections = {{.length_mm = 1000.0, .diameter_mm = 300.0},
+                {.length_mm = 1000.0, .diameter_mm = 300.0}};
   w.joints = {joint};
   return w;
 }
@@ -57,7 +58,7 @@ TEST(PipeWorld, JointOffsetMovesTheNextSection) {
   EXPECT_NEAR(WallDistance(pipe, 1100.0, 12.0), 145.0, 1e-6);  // inward at the offset's clock
   EXPECT_NEAR(WallDistance(pipe, 1100.0, 6.0), 155.0, 1e-6);
   EXPECT_NEAR(WallDistance(pipe, 1100.0, 3.0), std::sqrt(150.0 * 150.0 - 25.0), 1e-6);
-  EXPECT_NEAR(WallDistance(pipe, 998.0, 3.0), 154.0, 1e-6);    // in the open gap
+  EXPECT_NEAR(WallDistance(pipe, 998.0, 3.0), 154.0, 1e-6);  // in the open gap
 }
 
 TEST(PipeWorld, DeflectionTurnsTheAxis) {
@@ -78,7 +79,8 @@ TEST(PipeWorld, DeflectionTurnsTheAxis) {
 
 TEST(PipeWorld, GentleBendFollowsAnArc) {
   PipeWorld w;
-  w.sections = {{.length_mm = 2000.0, .diameter_mm = 300.0, .bend_radius_mm = 10000.0, .bend_clock_h = 3.0}};
+  w.sections = {
+      {.length_mm = 2000.0, .diameter_mm = 300.0, .bend_radius_mm = 10000.0, .bend_clock_h = 3.0}};
   const PipeGeometry pipe(w);
   const double angle = 1500.0 / 10000.0;
   const Rigid3d f = pipe.SectionFrame(0, 1500.0);
@@ -97,7 +99,8 @@ TEST(PipeWorld, GentleBendFollowsAnArc) {
 
 TEST(PipeWorld, OvalityChangesTheDiameters) {
   PipeWorld w;
-  w.sections = {{.length_mm = 1000.0, .diameter_mm = 300.0, .ovality_pct = 5.0, .ovality_clock_h = 12.0}};
+  w.sections = {
+      {.length_mm = 1000.0, .diameter_mm = 300.0, .ovality_pct = 5.0, .ovality_clock_h = 12.0}};
   const PipeGeometry pipe(w);
   EXPECT_NEAR(WallDistance(pipe, 500.0, 12.0) + WallDistance(pipe, 500.0, 6.0), 300.0 * 0.95, 1e-5);
   EXPECT_NEAR(WallDistance(pipe, 500.0, 3.0) + WallDistance(pipe, 500.0, 9.0), 300.0 * 1.05, 1e-5);
@@ -141,7 +144,8 @@ TEST(PipeWorld, FeaturesDisplaceTheWall) {
   const auto hit = pipe.Intersect({0.0, 0.0, 1250.0}, {0.0, 1.0, 0.0});
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->material, Material::kSediment);
-  EXPECT_NEAR(WallDistance(pipe, 1250.0, 6.0 + 1.0) * std::cos(30.0 * kDeg), invert, 0.3);  // a flat chord
+  EXPECT_NEAR(WallDistance(pipe, 1250.0, 6.0 + 1.0) * std::cos(30.0 * kDeg), invert,
+              0.3);  // a flat chord
   const double spall = WallDistance(pipe, 1700.0, 12.0);
   EXPECT_GT(spall, 150.0 + 0.6 * 5.0 - 1e-6);
   EXPECT_LT(spall, 150.0 + 1.4 * 5.0 + 1e-6);

@@ -25,7 +25,8 @@ void Rig::Check() const {
   SEWER3D_CHECK(carrier_diameter_mm > 0.0 && carrier_length_mm > 0.0, "carrier size");
   for (const RigModule& m : modules) {
     m.module.Check();
-    for (const Eigen::Vector3d& c : {m.carrier_from_camera.translation, ProjectorCentreInCarrier(m)}) {
+    for (const Eigen::Vector3d& c :
+         {m.carrier_from_camera.translation, ProjectorCentreInCarrier(m)}) {
       SEWER3D_CHECK(std::abs(c.z()) <= 0.5 * carrier_length_mm + 1e-6 &&
                         std::hypot(c.x(), c.y()) <= 0.5 * carrier_diameter_mm + 1e-6,
                     "module " << m.name << ": camera or projector outside the carrier");
@@ -51,7 +52,8 @@ Rig MakeRig(const ModuleDescription& module, const RigOptions& o) {
     if (m.clock_h <= 1e-9) m.clock_h += 12.0;  // clock positions run 0+ .. 12
     m.module = module;
     m.module.source_json.clear();
-    const Eigen::Vector3d z = ClockDirection(ClockHoursToRad(m.clock_h)), y = Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d z = ClockDirection(ClockHoursToRad(m.clock_h)),
+                          y = Eigen::Vector3d::UnitZ();
     Eigen::Matrix3d r;
     r.col(0) = y.cross(z);
     r.col(1) = y;
@@ -66,14 +68,15 @@ Rig MakeRig(const ModuleDescription& module, const RigOptions& o) {
   return rig;
 }
 
-WallCoverage ModuleCoverage(const Rig& rig, int index, double diameter, const Eigen::Vector2d& offset,
-                            bool lit, int step_px) {
+WallCoverage ModuleCoverage(const Rig& rig, int index, double diameter,
+                            const Eigen::Vector2d& offset, bool lit, int step_px) {
   PipeWorld world;
   world.sections.push_back({.length_mm = 4.0 * rig.carrier_length_mm, .diameter_mm = diameter});
   const PipeGeometry pipe(world);
   const double centre = 2.0 * rig.carrier_length_mm;
   const RigModule& m = rig.modules[index];
-  const Rigid3d world_from_carrier(Eigen::Quaterniond::Identity(), Eigen::Vector3d(offset.x(), offset.y(), centre));
+  const Rigid3d world_from_carrier(Eigen::Quaterniond::Identity(),
+                                   Eigen::Vector3d(offset.x(), offset.y(), centre));
   const Rigid3d world_from_camera = world_from_carrier * m.carrier_from_camera;
   const CameraModel camera(m.module.camera), projector(m.module.projector);
   const double nominal = ClockHoursToRad(m.clock_h);
@@ -85,11 +88,13 @@ WallCoverage ModuleCoverage(const Rig& rig, int index, double diameter, const Ei
     for (int u = 0; u < w + step_px; u += step_px) {
       const auto xy = camera.Unproject({std::min(u, w - 1), std::min(v, h - 1)});
       if (!xy) continue;
-      const auto hit = pipe.Intersect(world_from_camera.translation,
-                                      world_from_camera.rotation * Eigen::Vector3d(xy->x(), xy->y(), 1.0));
+      const auto hit =
+          pipe.Intersect(world_from_camera.translation,
+                         world_from_camera.rotation * Eigen::Vector3d(xy->x(), xy->y(), 1.0));
       if (!hit) continue;
       if (lit) {
-        const Eigen::Vector3d p = m.module.projector_from_camera * (world_from_camera.Inverse() * hit->point);
+        const Eigen::Vector3d p =
+            m.module.projector_from_camera * (world_from_camera.Inverse() * hit->point);
         const auto uv = projector.Project(p);
         if (!uv || uv->x() < -0.5 || uv->y() < -0.5 || uv->x() > m.module.projector.width - 0.5 ||
             uv->y() > m.module.projector.height - 0.5) {
@@ -97,7 +102,8 @@ WallCoverage ModuleCoverage(const Rig& rig, int index, double diameter, const Ei
         }
       }
       const PipeLocation at = pipe.Locate(hit->point);
-      const double clock = (nominal + std::remainder(at.clock_rad - nominal, 2.0 * std::numbers::pi)) / kDeg;
+      const double clock =
+          (nominal + std::remainder(at.clock_rad - nominal, 2.0 * std::numbers::pi)) / kDeg;
       c.any = true;
       c.clock_from_deg = std::min(c.clock_from_deg, clock);
       c.clock_to_deg = std::max(c.clock_to_deg, clock);
@@ -108,8 +114,9 @@ WallCoverage ModuleCoverage(const Rig& rig, int index, double diameter, const Ei
   return c;
 }
 
-std::vector<NeighbourOverlap> NeighbourOverlaps(const Rig& rig, double diameter, const Eigen::Vector2d& offset,
-                                                bool lit, int step_px) {
+std::vector<NeighbourOverlap> NeighbourOverlaps(const Rig& rig, double diameter,
+                                                const Eigen::Vector2d& offset, bool lit,
+                                                int step_px) {
   const int n = static_cast<int>(rig.modules.size());
   std::vector<WallCoverage> cover(n);
   for (int k = 0; k < n; ++k) cover[k] = ModuleCoverage(rig, k, diameter, offset, lit, step_px);

@@ -50,7 +50,8 @@ Eigen::Vector3d ProjectorCentreInCarrier(const RigModule& m);
 /// given offset from the pipe axis.
 struct WallCoverage {
   bool any = false;
-  double clock_from_deg = 0.0, clock_to_deg = 0.0;  ///< pipe clock angles, unwrapped around the module's
+  double clock_from_deg = 0.0,
+         clock_to_deg = 0.0;  ///< pipe clock angles, unwrapped around the module's
   double station_from_mm = 0.0, station_to_mm = 0.0;  ///< relative to the carrier centre
 };
 

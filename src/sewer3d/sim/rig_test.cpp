@@ -1,5 +1,7 @@
 // Rig geometry and overlap, robot motion, capture plan and odometry of a virtual run.
 
+#include "sewer3d/sim/rig.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/sim/odometry.hpp"
-#include "sewer3d/sim/rig.hpp"
 #include "sewer3d/sim/scenario.hpp"
 #include "sewer3d/sim/trajectory.hpp"
 
@@ -49,8 +50,11 @@ TEST(Rig, NeighboursOverlapForEveryDiameterAndDecentring) {
   small.camera_width = 648;  // same angles as the full module, 16x fewer rays
   small.camera_height = 486;
   const Rig rig = MakeRig(MakeDefaultModule(small), {});
-  struct Case { double diameter; Eigen::Vector2d offset; };
-  const Case cases[] = {{200, {0, 0}},  {300, {0, 0}},  {400, {0, 0}},   {200, {0, 20}},
+  struct Case {
+    double diameter;
+    Eigen::Vector2d offset;
+  };
+  const Case cases[] = {{200, {0, 0}},  {300, {0, 0}},  {400, {0, 0}},    {200, {0, 20}},
                         {300, {25, 0}}, {300, {0, 25}}, {400, {-18, 18}}, {400, {0, -25}}};
   for (const Case& c : cases) {
     for (const bool lit : {false, true}) {
@@ -58,9 +62,10 @@ TEST(Rig, NeighboursOverlapForEveryDiameterAndDecentring) {
       for (const NeighbourOverlap& o : NeighbourOverlaps(rig, c.diameter, c.offset, lit)) {
         if (o.overlap_deg < worst) worst = o.overlap_deg, worst_mm = o.overlap_mm;
       }
-      std::printf("DN%.0f offset (%+.0f, %+.0f) mm, %s: smallest neighbour overlap %.1f deg = %.1f mm\n",
-                  c.diameter, c.offset.x(), c.offset.y(), lit ? "3-D (camera+projector)" : "texture (camera)",
-                  worst, worst_mm);
+      std::printf(
+          "DN%.0f offset (%+.0f, %+.0f) mm, %s: smallest neighbour overlap %.1f deg = %.1f mm\n",
+          c.diameter, c.offset.x(), c.offset.y(),
+          lit ? "3-D (camera+projector)" : "texture (camera)", worst, worst_mm);
       EXPECT_GT(worst, 5.0);
       EXPECT_GT(worst_mm, 5.0);
     }
@@ -76,14 +81,18 @@ TEST(Rig, NeighboursOverlapInEveryPreset) {
     const Rig rig = MakeRig(MakeDefaultModule(options), s.rig);
     const double worst_offset = s.motion.offset_mm.norm() + std::sqrt(2.0) * s.motion.wander_mm;
     for (const PipeSection& section : s.world.sections) {
-      for (const Eigen::Vector2d& offset : {Eigen::Vector2d(s.motion.offset_mm), Eigen::Vector2d(0.0, worst_offset),
-                                            Eigen::Vector2d(worst_offset, 0.0)}) {
+      for (const Eigen::Vector2d& offset :
+           {Eigen::Vector2d(s.motion.offset_mm), Eigen::Vector2d(0.0, worst_offset),
+            Eigen::Vector2d(worst_offset, 0.0)}) {
         double worst = 1e9;
-        for (const NeighbourOverlap& o : NeighbourOverlaps(rig, section.diameter_mm, offset, true, s.camera_width / 80)) {
+        for (const NeighbourOverlap& o :
+             NeighbourOverlaps(rig, section.diameter_mm, offset, true, s.camera_width / 80)) {
           worst = std::min(worst, o.overlap_deg);
         }
-        std::printf("preset %-4s DN%.0f carrier offset (%+.1f, %+.1f) mm: smallest 3-D neighbour overlap %.1f deg\n",
-                    name.c_str(), section.diameter_mm, offset.x(), offset.y(), worst);
+        std::printf(
+            "preset %-4s DN%.0f carrier offset (%+.1f, %+.1f) mm: smallest 3-D neighbour overlap "
+            "%.1f deg\n",
+            name.c_str(), section.diameter_mm, offset.x(), offset.y(), worst);
         EXPECT_GT(worst, 5.0);
       }
     }
@@ -130,7 +139,8 @@ TEST(CapturePlan, RateFollowsTheOverlapAndTripletsAreSpaced) {
   EXPECT_NEAR(plan.period_s, 0.4 * plan.footprint_mm / 100.0, 1e-12);
   EXPECT_EQ(plan.acquisitions, static_cast<int>(std::floor(tr.DurationS() / plan.period_s)) + 1);
   ASSERT_EQ(plan.shots.size(), plan.acquisitions * 6u * 3u);
-  for (size_t i = 1; i < plan.shots.size(); ++i) EXPECT_LE(plan.shots[i - 1].time_s, plan.shots[i].time_s);
+  for (size_t i = 1; i < plan.shots.size(); ++i)
+    EXPECT_LE(plan.shots[i - 1].time_s, plan.shots[i].time_s);
   for (const Shot& shot : plan.shots) {
     const double t0 = shot.counter * plan.period_s + (shot.module % 2) * 0.020;
     EXPECT_NEAR(shot.time_s, t0 + static_cast<int>(shot.kind) * 0.005, 1e-12);
@@ -166,7 +176,8 @@ TEST(Odometry, DiffersFromTheTruthExactlyByTheErrorModel) {
   EXPECT_NEAR(mean, 0.0, 4.0 * 0.5 / std::sqrt(n));
   EXPECT_NEAR(sd, 0.5, 0.5 * 5.0 / std::sqrt(2.0 * n));
   // At the end: 20 mm scale error and 100 mm swallowed by the slip.
-  EXPECT_NEAR(samples.back().measured_mm - samples.back().true_mm, 0.004 * samples.back().true_mm - 100.0, 2.5);
+  EXPECT_NEAR(samples.back().measured_mm - samples.back().true_mm,
+              0.004 * samples.back().true_mm - 100.0, 2.5);
 }
 
 }  // namespace

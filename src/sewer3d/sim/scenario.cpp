@@ -20,51 +20,30 @@ PipeJoint Joint(const std::string& id, double gap, double depth, double offset, 
   return j;
 }
 
-PipeFeature Connection(const std::string& id, double station, double clock, double diameter, double intrusion) {
-  PipeFeature f;
-  f.type = PipeFeature::Type::kConnection;
-  f.id = id;
-  f.station_mm = station;
-  f.clock_h = clock;
-  f.diameter_mm = diameter;
-  f.wall_mm = 12.0;
-  f.intrusion_mm = intrusion;
-  return f;
-}
-
-PipeFeature Patch(PipeFeature::Type type, const std::string& id, double station, double clock, double length,
-                  double width, double depth, double angle = 0.0) {
-  PipeFeature f;
-  f.type = type;
-  f.id = id;
-  f.station_mm = station;
-  f.clock_h = clock;
-  f.length_mm = length;
-  f.width_mm = width;
-  f.depth_mm = depth;
-  f.angle_deg = angle;
-  return f;
-}
-
-PipeFeature Deposit(const std::string& id, double station, double length, double height) {
-  PipeFeature f;
-  f.type = PipeFeature::Type::kDeposit;
-  f.id = id;
-  f.station_mm = station;
-  f.clock_h = 6.0;
-  f.length_mm = length;
-  f.height_mm = height;
-  return f;
-}
+using Feature = PipeFeature::Type;
 
 Scenario Tiny() {
   Scenario s;
   s.name = "tiny";
   s.camera_width = 648;
-  s.world.sections = {{.length_mm = 400.0, .diameter_mm = 300.0}, {.length_mm = 600.0, .diameter_mm = 300.0}};
+  s.world.sections = {{.length_mm = 400.0, .diameter_mm = 300.0},
+                      {.length_mm = 600.0, .diameter_mm = 300.0}};
   s.world.joints = {Joint("J1", 8.0, 5.0, 4.0, 12.0)};
-  s.world.features = {Connection("C1", 300.0, 2.0, 100.0, 15.0),
-                      Patch(PipeFeature::Type::kCrack, "K1", 250.0, 8.0, 80.0, 1.5, 3.0, 30.0)};
+  s.world.features = {{.type = Feature::kConnection,
+                       .id = "C1",
+                       .station_mm = 300.0,
+                       .clock_h = 2.0,
+                       .diameter_mm = 100.0,
+                       .wall_mm = 12.0,
+                       .intrusion_mm = 15.0},
+                      {.type = Feature::kCrack,
+                       .id = "K1",
+                       .station_mm = 250.0,
+                       .clock_h = 8.0,
+                       .length_mm = 80.0,
+                       .width_mm = 1.5,
+                       .depth_mm = 3.0,
+                       .angle_deg = 30.0}};
   s.motion.start_station_mm = 350.0;
   s.motion.travel_mm = 100.0;
   s.render.supersampling = 1;
@@ -79,9 +58,28 @@ Scenario Demo() {
                       {.length_mm = 600.0, .diameter_mm = 300.0},
                       {.length_mm = 1000.0, .diameter_mm = 300.0, .material = Material::kPlastic}};
   s.world.joints = {Joint("J1", 10.0, 6.0, 6.0, 1.0, 1.0, 3.0), Joint("J2", 4.0, 3.0, 1.0, 6.0)};
-  s.world.features = {Connection("C1", 950.0, 2.0, 150.0, 25.0),
-                      Patch(PipeFeature::Type::kSpalling, "S1", 1120.0, 10.0, 70.0, 50.0, 6.0),
-                      Patch(PipeFeature::Type::kCrack, "K1", 450.0, 4.5, 120.0, 1.2, 3.0, 20.0)};
+  s.world.features = {{.type = Feature::kConnection,
+                       .id = "C1",
+                       .station_mm = 950.0,
+                       .clock_h = 2.0,
+                       .diameter_mm = 150.0,
+                       .wall_mm = 12.0,
+                       .intrusion_mm = 25.0},
+                      {.type = Feature::kSpalling,
+                       .id = "S1",
+                       .station_mm = 1120.0,
+                       .clock_h = 10.0,
+                       .length_mm = 70.0,
+                       .width_mm = 50.0,
+                       .depth_mm = 6.0},
+                      {.type = Feature::kCrack,
+                       .id = "K1",
+                       .station_mm = 450.0,
+                       .clock_h = 4.5,
+                       .length_mm = 120.0,
+                       .width_mm = 1.2,
+                       .depth_mm = 3.0,
+                       .angle_deg = 20.0}};
   s.motion.start_station_mm = 300.0;
   s.motion.travel_mm = 1000.0;
   s.render.supersampling = 1;
@@ -93,7 +91,8 @@ Scenario Long() {
   Scenario s;
   s.name = "long";
   const PipeSection concrete{.length_mm = 2000.0, .diameter_mm = 300.0};
-  const PipeSection clay{.length_mm = 1000.0, .diameter_mm = 300.0, .material = Material::kVitrifiedClay};
+  const PipeSection clay{
+      .length_mm = 1000.0, .diameter_mm = 300.0, .material = Material::kVitrifiedClay};
   PipeSection plastic{.length_mm = 3000.0, .diameter_mm = 300.0, .material = Material::kPlastic};
   PipeSection bent = concrete;
   bent.bend_radius_mm = 30000.0;
@@ -102,15 +101,57 @@ Scenario Long() {
   deformed.ovality_pct = 6.0;
   s.world.sections = {concrete, bent, clay, clay, clay, deformed, plastic};
   s.world.joints = {Joint("J1", 6.0, 4.0, 3.0, 12.0), Joint("J2", 12.0, 6.0, 8.0, 2.0, 1.5, 9.0),
-                    Joint("J3", 5.0, 3.0, 2.0, 4.0), Joint("J4", 5.0, 3.0, 0.0, 12.0, 2.0, 12.0),
-                    Joint("J5", 8.0, 5.0, 5.0, 9.0), Joint("J6", 3.0, 2.0, 0.0, 12.0)};
-  s.world.features = {Connection("C1", 1200.0, 2.0, 150.0, 25.0),
-                      Connection("C2", 5600.0, 10.0, 100.0, 10.0),
-                      Patch(PipeFeature::Type::kSpalling, "S1", 800.0, 11.0, 90.0, 60.0, 8.0),
-                      Patch(PipeFeature::Type::kSpalling, "S2", 3300.0, 5.0, 40.0, 40.0, 4.0),
-                      Patch(PipeFeature::Type::kCrack, "K1", 2500.0, 1.0, 300.0, 1.0, 3.0, 0.0),
-                      Patch(PipeFeature::Type::kCrack, "K2", 6200.0, 8.0, 150.0, 2.0, 4.0, 90.0),
-                      Deposit("D1", 4200.0, 900.0, 30.0)};
+                    Joint("J3", 5.0, 3.0, 2.0, 4.0),  Joint("J4", 5.0, 3.0, 0.0, 12.0, 2.0, 12.0),
+                    Joint("J5", 8.0, 5.0, 5.0, 9.0),  Joint("J6", 3.0, 2.0, 0.0, 12.0)};
+  s.world.features = {{.type = Feature::kConnection,
+                       .id = "C1",
+                       .station_mm = 1200.0,
+                       .clock_h = 2.0,
+                       .diameter_mm = 150.0,
+                       .wall_mm = 12.0,
+                       .intrusion_mm = 25.0},
+                      {.type = Feature::kConnection,
+                       .id = "C2",
+                       .station_mm = 5600.0,
+                       .clock_h = 10.0,
+                       .diameter_mm = 100.0,
+                       .wall_mm = 12.0,
+                       .intrusion_mm = 10.0},
+                      {.type = Feature::kSpalling,
+                       .id = "S1",
+                       .station_mm = 800.0,
+                       .clock_h = 11.0,
+                       .length_mm = 90.0,
+                       .width_mm = 60.0,
+                       .depth_mm = 8.0},
+                      {.type = Feature::kSpalling,
+                       .id = "S2",
+                       .station_mm = 3300.0,
+                       .clock_h = 5.0,
+                       .length_mm = 40.0,
+                       .width_mm = 40.0,
+                       .depth_mm = 4.0},
+                      {.type = Feature::kCrack,
+                       .id = "K1",
+                       .station_mm = 2500.0,
+                       .clock_h = 1.0,
+                       .length_mm = 300.0,
+                       .width_mm = 1.0,
+                       .depth_mm = 3.0},
+                      {.type = Feature::kCrack,
+                       .id = "K2",
+                       .station_mm = 6200.0,
+                       .clock_h = 8.0,
+                       .length_mm = 150.0,
+                       .width_mm = 2.0,
+                       .depth_mm = 4.0,
+                       .angle_deg = 90.0},
+                      {.type = Feature::kDeposit,
+                       .id = "D1",
+                       .station_mm = 4200.0,
+                       .clock_h = 6.0,
+                       .length_mm = 900.0,
+                       .height_mm = 30.0}};
   s.motion.start_station_mm = 300.0;
   s.motion.travel_mm = 10000.0;
   s.render.supersampling = 1;
@@ -134,9 +175,11 @@ void Scenario::Check() const {
                     motion.start_station_mm + motion.travel_mm <= 2.0 * world.LengthMm(),
                 "the robot's travel lies far outside the pipe");
   for (const PipeSection& s : world.sections) {
-    SEWER3D_CHECK(motion.offset_mm.norm() + motion.wander_mm + 0.5 * rig.carrier_diameter_mm < 0.5 * s.diameter_mm,
-                  "the carrier (Ø" << rig.carrier_diameter_mm << ", offset " << motion.offset_mm.norm()
-                                   << " mm) does not fit in a Ø" << s.diameter_mm << " section");
+    SEWER3D_CHECK(motion.offset_mm.norm() + motion.wander_mm + 0.5 * rig.carrier_diameter_mm <
+                      0.5 * s.diameter_mm,
+                  "the carrier (Ø" << rig.carrier_diameter_mm << ", offset "
+                                   << motion.offset_mm.norm() << " mm) does not fit in a Ø"
+                                   << s.diameter_mm << " section");
   }
 }
 
@@ -147,12 +190,17 @@ const std::vector<std::string>& PresetNames() {
 
 Scenario PresetScenario(const std::string& name) {
   Scenario s;
-  if (name == "tiny") s = Tiny();
-  else if (name == "demo") s = Demo();
-  else if (name == "long") s = Long();
-  else throw std::invalid_argument("unknown preset '" + name + "' (tiny, demo, long)");
+  if (name == "tiny")
+    s = Tiny();
+  else if (name == "demo")
+    s = Demo();
+  else if (name == "long")
+    s = Long();
+  else
+    throw std::invalid_argument("unknown preset '" + name + "' (tiny, demo, long)");
   s.odometry.slips.push_back({.station_mm = s.motion.start_station_mm + 0.4 * s.motion.travel_mm,
-                              .length_mm = 0.1 * s.motion.travel_mm, .fraction = 0.2});
+                              .length_mm = 0.1 * s.motion.travel_mm,
+                              .fraction = 0.2});
   s.Check();
   return s;
 }

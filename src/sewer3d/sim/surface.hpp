@@ -3,7 +3,6 @@
 /// What the renderer looks at: any surface that answers ray queries in the camera frame.
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <optional>
 
@@ -40,10 +39,13 @@ class SceneSurface final : public Surface {
 class PipeView final : public Surface {
  public:
   PipeView(const PipeGeometry& pipe, const Rigid3d& world_from_camera)
-      : pipe_(pipe), world_from_camera_(world_from_camera), camera_from_world_(world_from_camera.Inverse()) {}
+      : pipe_(pipe),
+        world_from_camera_(world_from_camera),
+        camera_from_world_(world_from_camera.Inverse()) {}
   std::optional<SurfaceHit> Intersect(const Eigen::Vector3d& origin,
                                       const Eigen::Vector3d& direction) const override {
-    auto hit = pipe_.Intersect(world_from_camera_ * origin, world_from_camera_.rotation * direction);
+    auto hit =
+        pipe_.Intersect(world_from_camera_ * origin, world_from_camera_.rotation * direction);
     if (hit) {
       hit->point = camera_from_world_ * hit->point;
       hit->normal = camera_from_world_.rotation * hit->normal;

@@ -19,10 +19,12 @@ constexpr double kSpeedPeriodS = 2.3;
 
 void MotionOptions::Check() const {
   SEWER3D_CHECK(speed_mm_s > 0.0 && speed_mm_s <= 1000.0, "speed " << speed_mm_s << " mm/s");
-  SEWER3D_CHECK(speed_variation >= 0.0 && speed_variation < 0.5, "speed variation " << speed_variation);
+  SEWER3D_CHECK(speed_variation >= 0.0 && speed_variation < 0.5,
+                "speed variation " << speed_variation);
   SEWER3D_CHECK(travel_mm > 0.0, "travel " << travel_mm << " mm");
   SEWER3D_CHECK(offset_mm.allFinite() && wander_mm >= 0.0, "offset / wander");
-  SEWER3D_CHECK(std::abs(roll_deg) <= 180.0 && roll_amplitude_deg >= 0.0 && wobble_deg >= 0.0 && wobble_deg < 10.0,
+  SEWER3D_CHECK(std::abs(roll_deg) <= 180.0 && roll_amplitude_deg >= 0.0 && wobble_deg >= 0.0 &&
+                    wobble_deg < 10.0,
                 "roll / wobble");
 }
 
@@ -42,14 +44,17 @@ Trajectory::Trajectory(const PipeGeometry& pipe, const MotionOptions& options, s
 double Trajectory::StationAt(double t) const {
   const MotionOptions& o = options_;
   const double a = o.speed_variation * o.speed_mm_s * kSpeedPeriodS / kTwoPi;
-  return o.start_station_mm + o.speed_mm_s * t + a * (std::sin(kTwoPi * t / kSpeedPeriodS + phase_[0]) - std::sin(phase_[0]));
+  return o.start_station_mm + o.speed_mm_s * t +
+         a * (std::sin(kTwoPi * t / kSpeedPeriodS + phase_[0]) - std::sin(phase_[0]));
 }
 
 Rigid3d Trajectory::WorldFromCarrier(double t) const {
   const MotionOptions& o = options_;
-  const Eigen::Vector3d offset(o.offset_mm.x() + o.wander_mm * std::sin(kTwoPi * t / 3.1 + phase_[1]),
-                               o.offset_mm.y() + o.wander_mm * std::sin(kTwoPi * t / 4.3 + phase_[2]), 0.0);
-  const double roll = (o.roll_deg + o.roll_amplitude_deg * std::sin(kTwoPi * t / 5.7 + phase_[3])) * kDeg;
+  const Eigen::Vector3d offset(
+      o.offset_mm.x() + o.wander_mm * std::sin(kTwoPi * t / 3.1 + phase_[1]),
+      o.offset_mm.y() + o.wander_mm * std::sin(kTwoPi * t / 4.3 + phase_[2]), 0.0);
+  const double roll =
+      (o.roll_deg + o.roll_amplitude_deg * std::sin(kTwoPi * t / 5.7 + phase_[3])) * kDeg;
   const double pitch = o.wobble_deg * std::sin(kTwoPi * t / 0.9 + phase_[4]) * kDeg;
   const double yaw = o.wobble_deg * std::sin(kTwoPi * t / 1.3 + phase_[5]) * kDeg;
   const Eigen::Quaterniond attitude = Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()) *
@@ -60,17 +65,22 @@ Rigid3d Trajectory::WorldFromCarrier(double t) const {
 
 const char* ImageKindName(ImageKind kind) {
   switch (kind) {
-    case ImageKind::kTextureBefore: return "texture_before";
-    case ImageKind::kPattern: return "pattern";
-    case ImageKind::kTextureAfter: return "texture_after";
+    case ImageKind::kTextureBefore:
+      return "texture_before";
+    case ImageKind::kPattern:
+      return "pattern";
+    case ImageKind::kTextureAfter:
+      return "texture_after";
   }
   return "pattern";
 }
 
 void CaptureOptions::Check() const {
   SEWER3D_CHECK(overlap >= 0.0 && overlap < 0.95, "overlap " << overlap);
-  SEWER3D_CHECK(triplet_interval_ms > 0.0 && group_delay_ms >= 0.0 && exposure_ms >= 0.0, "capture timing");
-  SEWER3D_CHECK(exposure_ms < triplet_interval_ms, "exposure " << exposure_ms << " ms longer than the triplet interval");
+  SEWER3D_CHECK(triplet_interval_ms > 0.0 && group_delay_ms >= 0.0 && exposure_ms >= 0.0,
+                "capture timing");
+  SEWER3D_CHECK(exposure_ms < triplet_interval_ms,
+                "exposure " << exposure_ms << " ms longer than the triplet interval");
   SEWER3D_CHECK(nominal_diameter_mm > 0.0, "nominal diameter");
 }
 
@@ -80,8 +90,10 @@ CapturePlan PlanCaptures(const Rig& rig, const Trajectory& trajectory, const Cap
   // The shortest measurable footprint among the modules sets the rate.
   plan.footprint_mm = 1e9;
   for (size_t k = 0; k < rig.modules.size(); ++k) {
-    const WallCoverage c = ModuleCoverage(rig, static_cast<int>(k), o.nominal_diameter_mm, Eigen::Vector2d::Zero(), true, 16);
-    SEWER3D_CHECK(c.any, "module " << rig.modules[k].name << " measures nothing of a Ø" << o.nominal_diameter_mm << " pipe");
+    const WallCoverage c = ModuleCoverage(rig, static_cast<int>(k), o.nominal_diameter_mm,
+                                          Eigen::Vector2d::Zero(), true, 16);
+    SEWER3D_CHECK(c.any, "module " << rig.modules[k].name << " measures nothing of a Ø"
+                                   << o.nominal_diameter_mm << " pipe");
     plan.footprint_mm = std::min(plan.footprint_mm, c.station_to_mm - c.station_from_mm);
   }
   plan.period_s = (1.0 - o.overlap) * plan.footprint_mm / trajectory.options().speed_mm_s;
@@ -90,12 +102,14 @@ CapturePlan PlanCaptures(const Rig& rig, const Trajectory& trajectory, const Cap
     for (size_t k = 0; k < rig.modules.size(); ++k) {
       const double t0 = j * plan.period_s + (k % 2) * o.group_delay_ms * 1e-3;
       for (int i = 0; i < 3; ++i) {
-        plan.shots.push_back({static_cast<int>(k), j, static_cast<ImageKind>(i), t0 + i * o.triplet_interval_ms * 1e-3});
+        plan.shots.push_back({static_cast<int>(k), j, static_cast<ImageKind>(i),
+                              t0 + i * o.triplet_interval_ms * 1e-3});
       }
     }
     plan.acquisitions = j + 1;
   }
-  std::stable_sort(plan.shots.begin(), plan.shots.end(), [](const Shot& a, const Shot& b) { return a.time_s < b.time_s; });
+  std::stable_sort(plan.shots.begin(), plan.shots.end(),
+                   [](const Shot& a, const Shot& b) { return a.time_s < b.time_s; });
   return plan;
 }
 

@@ -4,7 +4,6 @@
 /// (docs/simulator.md, "Motion and timing"). All times in seconds from the start of the run.
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <vector>
 
@@ -16,15 +15,15 @@ namespace sewer3d {
 
 struct MotionOptions {
   double speed_mm_s = 100.0;
-  double speed_variation = 0.05;   ///< ± fraction of the speed, period 2.3 s
-  double start_station_mm = 300.0; ///< carrier centre at t = 0
-  double travel_mm = 1000.0;       ///< the run ends when the carrier has travelled this far
+  double speed_variation = 0.05;    ///< ± fraction of the speed, period 2.3 s
+  double start_station_mm = 300.0;  ///< carrier centre at t = 0
+  double travel_mm = 1000.0;        ///< the run ends when the carrier has travelled this far
   /// Carrier centre's offset from the pipe centreline (x right, y down), mm: robots sit low.
   Eigen::Vector2d offset_mm{0.0, 15.0};
-  double wander_mm = 2.0;          ///< slow lateral wander amplitude (periods 3.1 and 4.3 s)
-  double roll_deg = 2.0;           ///< mean roll about the carrier axis
-  double roll_amplitude_deg = 1.5; ///< slow roll oscillation, period 5.7 s
-  double wobble_deg = 0.3;         ///< pitch and yaw amplitude, periods 0.9 and 1.3 s
+  double wander_mm = 2.0;           ///< slow lateral wander amplitude (periods 3.1 and 4.3 s)
+  double roll_deg = 2.0;            ///< mean roll about the carrier axis
+  double roll_amplitude_deg = 1.5;  ///< slow roll oscillation, period 5.7 s
+  double wobble_deg = 0.3;          ///< pitch and yaw amplitude, periods 0.9 and 1.3 s
 
   void Check() const;
 };
@@ -33,7 +32,7 @@ struct MotionOptions {
 class Trajectory {
  public:
   Trajectory(const PipeGeometry& pipe, const MotionOptions& options, std::uint64_t seed);
-  double StationAt(double t) const;       ///< carrier centre station, mm
+  double StationAt(double t) const;  ///< carrier centre station, mm
   Rigid3d WorldFromCarrier(double t) const;
   double DurationS() const { return duration_s_; }
   const MotionOptions& options() const { return options_; }
@@ -49,7 +48,7 @@ enum class ImageKind { kTextureBefore, kPattern, kTextureAfter };
 const char* ImageKindName(ImageKind kind);
 
 struct CaptureOptions {
-  double overlap = 0.6;              ///< along the pipe between consecutive acquisitions of a module
+  double overlap = 0.6;  ///< along the pipe between consecutive acquisitions of a module
   double triplet_interval_ms = 5.0;  ///< texture, pattern, texture this far apart
   /// Odd modules fire this much after even ones, so neighbouring projectors never light the
   /// same wall at once (their fields overlap around the circumference).
@@ -68,14 +67,15 @@ struct Shot {
 };
 
 struct CapturePlan {
-  double period_s = 0.0;     ///< between acquisitions
-  double footprint_mm = 0.0; ///< measurable length along the pipe per acquisition
+  double period_s = 0.0;      ///< between acquisitions
+  double footprint_mm = 0.0;  ///< measurable length along the pipe per acquisition
   int acquisitions = 0;
-  std::vector<Shot> shots;   ///< ordered by time
+  std::vector<Shot> shots;  ///< ordered by time
 };
 
 /// Plans acquisitions every period_s = (1 − overlap) · footprint / speed until the carrier
 /// has travelled options.travel_mm.
-CapturePlan PlanCaptures(const Rig& rig, const Trajectory& trajectory, const CaptureOptions& options);
+CapturePlan PlanCaptures(const Rig& rig, const Trajectory& trajectory,
+                         const CaptureOptions& options);
 
 }  // namespace sewer3d
