@@ -16,6 +16,7 @@ int Mod(int a, int m) { return ((a % m) + m) % m; }
 struct WindowResult {
   bool decoded = false;
   int row_offset = 0, col_offset = 0;  // array position − lattice position (mod sizes)
+  std::uint64_t corrected = 0;         // bits where the observation differs from the codeword
 };
 
 }  // namespace
@@ -65,6 +66,7 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
         result.decoded = true;
         result.row_offset = Mod(match->position.row - top, array_rows);
         result.col_offset = Mod(match->position.col - left, array_cols);
+        result.corrected = code ^ match->codeword;
       }
     }
     windows.emplace(key, result);
@@ -80,6 +82,10 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
       for (int j = 0; j < n; ++j) {
         const WindowResult w = read_window(static_cast<int>(s), lattice.node[s].x() - i, lattice.node[s].y() - j);
         if (!w.decoded) continue;
+        // The spot itself was the corrected bit: the codeword says no spot at its node. A spot
+        // whose lattice label slipped by one element always lands on such a node (spots are
+        // isolated), so it must not inherit its neighbours' offset.
+        if (w.corrected & (std::uint64_t{1} << (i * n + j))) continue;
         ++votes[{w.row_offset, w.col_offset}];
         ++total;
       }

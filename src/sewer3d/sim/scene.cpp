@@ -147,8 +147,26 @@ double DistanceToSurfaceMm(const Scene& scene, const Eigen::Vector3d& point) {
   const CylinderFrame f = FrameOf(scene);
   double clock, station, rho;
   ToCylinder(f, point, clock, station, rho);
-  const double displacement = scene.type == Scene::Type::kPipeWall ? WallDisplacementMm(scene, clock, station) : 0.0;
-  return std::abs(rho - (f.radius - displacement));
+  if (scene.type == Scene::Type::kCylinder || scene.features.empty()) return std::abs(rho - f.radius);
+  // Displaced wall: the shortest distance to the wall profile along the axis and around it
+  // within ±kReach, counting the vertical faces of steps (joint gaps and offsets), where the
+  // radial distance alone would be wrong by the step's height.
+  constexpr double kReach = 3.0, kStep = 0.05;
+  const int n = static_cast<int>(kReach / kStep);
+  double best = std::abs(rho - (f.radius - WallDisplacementMm(scene, clock, station)));
+  for (int axis = 0; axis < 2; ++axis) {
+    double previous = NAN;
+    for (int k = -n; k <= n; ++k) {
+      const double along = k * kStep;
+      const double wall = axis == 0 ? f.radius - WallDisplacementMm(scene, clock, station + along)
+                                    : f.radius - WallDisplacementMm(scene, clock + along / rho, station);
+      best = std::min(best, std::hypot(along, rho - wall));
+      // A face between two samples whose walls straddle the point's radius.
+      if (k > -n && (rho - previous) * (rho - wall) < 0.0) best = std::min(best, std::abs(along - 0.5 * kStep));
+      previous = wall;
+    }
+  }
+  return best;
 }
 
 std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o,

@@ -62,7 +62,8 @@ std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o
                                     const Eigen::Vector3d& direction);
 
 /// Distance (mm) from a camera-frame point to the surface: exact for planes and cylinders;
-/// for a pipe wall, the radial distance to the displaced wall at the point's clock and station.
+/// for a pipe wall, the shortest distance to the displaced wall profile within ±3 mm along the
+/// axis and around it (0.05 mm samples), vertical faces of steps included.
 double DistanceToSurfaceMm(const Scene& scene, const Eigen::Vector3d& point);
 
 /// Radial displacement of the pipe wall toward the axis (mm) at a clock angle and station.
