@@ -1,15 +1,10 @@
 #include "sewer3d/decode/codewords.hpp"
 
-#include <map>
-#include <unordered_map>
+#include <algorithm>
+#include <climits>
 
 namespace sewer3d {
 namespace {
-
-long long NodeKey(int group, int row, int col) {
-  return (static_cast<long long>(group) << 40) ^ (static_cast<long long>(row + (1 << 19)) << 20) ^
-         static_cast<long long>(col + (1 << 19));
-}
 
 int Mod(int a, int m) { return ((a % m) + m) % m; }
 
@@ -28,72 +23,110 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
   CodewordStats local;
   CodewordStats& st = stats ? *stats : local;
   const int n = codebook.window();
-  std::unordered_map<long long, int> occupied;  // node -> spot
-  for (size_t i = 0; i < spots.size(); ++i) {
-    if (lattice.group[i] >= 0) {
-      occupied[NodeKey(lattice.group[i], lattice.node[i].x(), lattice.node[i].y())] = static_cast<int>(i);
+  // Dense grids per group over its nodes' bounding box, grown by a window on the low sides
+  // (windows start up to n − 1 nodes before a spot): occupancy and the cached window results.
+  struct GroupGrid {
+    int r0 = 0, c0 = 0, rows = 0, cols = 0;
+    std::vector<std::uint8_t> occupied;
+    std::vector<std::int8_t> state;  // −1 not read yet, 0 unobservable or not decoded, 1 decoded
+    std::vector<WindowResult> results;
+    int Index(int r, int c) const { return (r - r0) * cols + (c - c0); }
+    bool Inside(int r, int c) const { return r >= r0 && c >= c0 && r < r0 + rows && c < c0 + cols; }
+  };
+  std::vector<GroupGrid> grids(lattice.groups);
+  {
+    std::vector<Eigen::Vector4i> box(lattice.groups, Eigen::Vector4i(INT_MAX, INT_MAX, INT_MIN, INT_MIN));
+    for (size_t i = 0; i < spots.size(); ++i) {
+      if (lattice.group[i] < 0) continue;
+      Eigen::Vector4i& b = box[lattice.group[i]];
+      const Eigen::Vector2i& node = lattice.node[i];
+      b = Eigen::Vector4i(std::min(b[0], node.x()), std::min(b[1], node.y()), std::max(b[2], node.x()),
+                          std::max(b[3], node.y()));
+    }
+    for (int g = 0; g < lattice.groups; ++g) {
+      if (box[g][0] > box[g][2]) continue;
+      GroupGrid& grid = grids[g];
+      grid.r0 = box[g][0] - (n - 1);
+      grid.c0 = box[g][1] - (n - 1);
+      grid.rows = box[g][2] - grid.r0 + 1;
+      grid.cols = box[g][3] - grid.c0 + 1;
+      grid.occupied.assign(static_cast<size_t>(grid.rows) * grid.cols, 0);
+      grid.state.assign(grid.occupied.size(), -1);
+      grid.results.resize(grid.occupied.size());
+    }
+    for (size_t i = 0; i < spots.size(); ++i) {
+      if (lattice.group[i] < 0) continue;
+      GroupGrid& grid = grids[lattice.group[i]];
+      grid.occupied[grid.Index(lattice.node[i].x(), lattice.node[i].y())] = 1;
     }
   }
-  std::unordered_map<long long, WindowResult> windows;
-  auto read_window = [&](int s, int top, int left) -> WindowResult {
-    const int group = lattice.group[s];
-    const long long key = NodeKey(group, top, left);
-    if (const auto it = windows.find(key); it != windows.end()) return it->second;
-    WindowResult result;
-    std::uint64_t code = 0;
-    bool observable = true;
+  auto inside_image = [&](const Eigen::Vector2d& q) {
+    return q.x() >= options.border_px && q.y() >= options.border_px &&
+           q.x() <= image_size.width - 1 - options.border_px && q.y() <= image_size.height - 1 - options.border_px;
+  };
+  // The window with top-left node (top, left) of spot s's group, read once; its nodes' image
+  // positions are extrapolated with s's local steps (affine, so its corners decide).
+  auto read_window = [&](int s, int top, int left) -> const WindowResult* {
+    GroupGrid& grid = grids[lattice.group[s]];
+    const int index = grid.Index(top, left);
+    if (grid.state[index] >= 0) return grid.state[index] ? &grid.results[index] : nullptr;
+    grid.state[index] = 0;
     const Eigen::Vector2d& p = spots[s].centre_px;
     const LatticeSteps& steps = lattice.steps[s];
-    for (int i = 0; i < n && observable; ++i) {
+    const Eigen::Vector2d origin =
+        p + steps.row_step * (top - lattice.node[s].x()) + steps.column_step * (left - lattice.node[s].y());
+    const Eigen::Vector2d down = steps.row_step * (n - 1), right = steps.column_step * (n - 1);
+    if (!inside_image(origin) || !inside_image(origin + down) || !inside_image(origin + right) ||
+        !inside_image(origin + down + right)) {
+      return nullptr;
+    }
+    std::uint64_t code = 0;
+    for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
-        const int row = top + i, col = left + j;
-        const Eigen::Vector2d q = p + steps.row_step * (row - lattice.node[s].x()) +
-                                  steps.column_step * (col - lattice.node[s].y());
-        if (q.x() < options.border_px || q.y() < options.border_px ||
-            q.x() > image_size.width - 1 - options.border_px ||
-            q.y() > image_size.height - 1 - options.border_px) {
-          observable = false;
-          break;
+        if (grid.Inside(top + i, left + j) && grid.occupied[grid.Index(top + i, left + j)]) {
+          code |= std::uint64_t{1} << (i * n + j);
         }
-        if (occupied.count(NodeKey(group, row, col))) code |= std::uint64_t{1} << (i * n + j);
       }
     }
-    if (observable) {
-      ++st.windows_read;
-      if (const auto match = codebook.Decode(code, codebook.min_hamming() >= 3 ? 1 : 0)) {
-        ++st.windows_decoded;
-        st.bits_corrected += match->corrected_bits;
-        result.decoded = true;
-        result.row_offset = Mod(match->position.row - top, array_rows);
-        result.col_offset = Mod(match->position.col - left, array_cols);
-        result.corrected = code ^ match->codeword;
-      }
-    }
-    windows.emplace(key, result);
-    return result;
+    ++st.windows_read;
+    const auto match = codebook.Decode(code, codebook.min_hamming() >= 3 ? 1 : 0);
+    if (!match) return nullptr;
+    ++st.windows_decoded;
+    st.bits_corrected += match->corrected_bits;
+    WindowResult& result = grid.results[index];
+    result.decoded = true;
+    result.row_offset = Mod(match->position.row - top, array_rows);
+    result.col_offset = Mod(match->position.col - left, array_cols);
+    result.corrected = code ^ match->codeword;
+    grid.state[index] = 1;
+    return &result;
   };
 
   std::vector<SpotCode> codes;
+  std::vector<std::pair<std::pair<int, int>, int>> votes;  // (offset, count), few entries
   for (size_t s = 0; s < spots.size(); ++s) {
     if (lattice.group[s] < 0) continue;
-    std::map<std::pair<int, int>, int> votes;
+    votes.clear();
     int total = 0;
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
-        const WindowResult w = read_window(static_cast<int>(s), lattice.node[s].x() - i, lattice.node[s].y() - j);
-        if (!w.decoded) continue;
+        const WindowResult* w = read_window(static_cast<int>(s), lattice.node[s].x() - i, lattice.node[s].y() - j);
+        if (!w) continue;
         // The spot itself was the corrected bit: the codeword says no spot at its node. A spot
         // whose lattice label slipped by one element always lands on such a node (spots are
         // isolated), so it must not inherit its neighbours' offset.
-        if (w.corrected & (std::uint64_t{1} << (i * n + j))) continue;
-        ++votes[{w.row_offset, w.col_offset}];
+        if (w->corrected & (std::uint64_t{1} << (i * n + j))) continue;
+        const std::pair<int, int> offset{w->row_offset, w->col_offset};
+        auto it = std::find_if(votes.begin(), votes.end(), [&](const auto& v) { return v.first == offset; });
+        if (it == votes.end()) votes.push_back({offset, 1});
+        else ++it->second;
         ++total;
       }
     }
     int best = 0;
     std::pair<int, int> winner{0, 0};
     for (const auto& [offset, count] : votes) {
-      if (count > best) best = count, winner = offset;
+      if (count > best || (count == best && offset < winner)) best = count, winner = offset;
     }
     if (best < options.min_votes || best < options.min_agreement * total) {
       if (total > 0) ++st.spots_ambiguous;

@@ -54,6 +54,7 @@ class Decoder {
   DecoderOptions options_;
   NiblackBinariser binariser_;
   cv::Mat1b mask_;
+  SpotWorkspace spot_workspace_;
   int grid_step_ = 32;
   std::vector<LatticeSteps> predicted_;  // coarse grid over the image
   int grid_cols_ = 0, grid_rows_ = 0;

@@ -3,61 +3,78 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <queue>
-#include <unordered_map>
+#include <algorithm>
 
 #include "sewer3d/core/check.hpp"
 
 namespace sewer3d {
 namespace {
 
-/// Uniform grid of spot indices for radius queries.
-class SpotGrid {
- public:
-  SpotGrid(const std::vector<Spot>& spots, double cell) : spots_(spots), cell_(cell) {
-    for (size_t i = 0; i < spots.size(); ++i) cells_[Key(spots[i].centre_px)].push_back(static_cast<int>(i));
+// Neighbours of every spot within a radius, as one flat list (CSR): a dense grid of
+// radius-sized cells over the spots' bounding box, so a query looks at 3 x 3 cells.
+struct NeighbourLists {
+  std::vector<int> offsets;  // spot i's neighbours are indices[offsets[i] .. offsets[i + 1])
+  std::vector<int> indices;
+  std::pair<const int*, const int*> Of(int i) const {
+    return {indices.data() + offsets[i], indices.data() + offsets[i + 1]};
   }
-  template <class F>
-  void ForEachNear(const Eigen::Vector2d& p, double radius, F&& f) const {
-    const int r = static_cast<int>(std::ceil(radius / cell_));
-    const auto [cx, cy] = Cell(p);
-    for (int dy = -r; dy <= r; ++dy) {
-      for (int dx = -r; dx <= r; ++dx) {
-        const auto it = cells_.find(Pack(cx + dx, cy + dy));
-        if (it == cells_.end()) continue;
-        for (int j : it->second) {
-          if ((spots_[j].centre_px - p).squaredNorm() <= radius * radius) f(j);
+};
+
+NeighbourLists FindNeighbours(const std::vector<Spot>& spots, double radius) {
+  NeighbourLists out;
+  const int n = static_cast<int>(spots.size());
+  out.offsets.assign(n + 1, 0);
+  if (n == 0) return out;
+  Eigen::Vector2d lo = spots[0].centre_px, hi = lo;
+  for (const Spot& s : spots) lo = lo.cwiseMin(s.centre_px), hi = hi.cwiseMax(s.centre_px);
+  const int gx = static_cast<int>((hi.x() - lo.x()) / radius) + 1, gy = static_cast<int>((hi.y() - lo.y()) / radius) + 1;
+  std::vector<int> cell_of(n), cell_start(static_cast<size_t>(gx) * gy + 1, 0), order(n);
+  for (int i = 0; i < n; ++i) {
+    const int cx = static_cast<int>((spots[i].centre_px.x() - lo.x()) / radius);
+    const int cy = static_cast<int>((spots[i].centre_px.y() - lo.y()) / radius);
+    cell_of[i] = cy * gx + cx;
+    ++cell_start[cell_of[i] + 1];
+  }
+  for (size_t c = 1; c < cell_start.size(); ++c) cell_start[c] += cell_start[c - 1];
+  std::vector<int> fill(cell_start.begin(), cell_start.end() - 1);
+  for (int i = 0; i < n; ++i) order[fill[cell_of[i]]++] = i;
+  const double r2 = radius * radius;
+  out.indices.reserve(static_cast<size_t>(n) * 12);
+  for (int i = 0; i < n; ++i) {
+    const int cx = cell_of[i] % gx, cy = cell_of[i] / gx;
+    for (int y = std::max(0, cy - 1); y <= std::min(gy - 1, cy + 1); ++y) {
+      for (int x = std::max(0, cx - 1); x <= std::min(gx - 1, cx + 1); ++x) {
+        const int c = y * gx + x;
+        for (int k = cell_start[c]; k < cell_start[c + 1]; ++k) {
+          const int j = order[k];
+          if (j != i && (spots[j].centre_px - spots[i].centre_px).squaredNorm() <= r2) out.indices.push_back(j);
         }
       }
     }
+    out.offsets[i + 1] = static_cast<int>(out.indices.size());
   }
+  return out;
+}
 
- private:
-  std::pair<int, int> Cell(const Eigen::Vector2d& p) const {
-    return {static_cast<int>(std::floor(p.x() / cell_)), static_cast<int>(std::floor(p.y() / cell_))};
-  }
-  static long long Pack(int x, int y) { return (static_cast<long long>(x) << 32) ^ static_cast<unsigned>(y); }
-  long long Key(const Eigen::Vector2d& p) const {
-    const auto [x, y] = Cell(p);
-    return Pack(x, y);
-  }
-  const std::vector<Spot>& spots_;
-  double cell_;
-  std::unordered_map<long long, std::vector<int>> cells_;
-};
+// Nearest integer, without the libm call Eigen's round() makes.
+inline Eigen::Vector2d Nearest(const Eigen::Vector2d& x) {
+  return {std::floor(x.x() + 0.5), std::floor(x.y() + 0.5)};
+}
 
 // Refines the steps of one spot from its neighbours: assign integer offsets with the current
 // steps, then least squares for both steps; twice.
-LatticeSteps Refine(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& neighbours,
+LatticeSteps Refine(const std::vector<Spot>& spots, int spot, std::pair<const int*, const int*> neighbours,
                     LatticeSteps steps, double max_residual) {
+  const Eigen::Vector2d& p = spots[spot].centre_px;
   for (int iteration = 0; iteration < 2; ++iteration) {
     Eigen::Matrix2d basis;
     basis << steps.row_step, steps.column_step;
     const Eigen::Matrix2d inverse = basis.inverse();
     Eigen::Matrix2d normal = Eigen::Matrix2d::Zero(), rhs = Eigen::Matrix2d::Zero();
     int used = 0;
-    for (const auto& q : neighbours) {
-      const Eigen::Vector2d d = q - p;
-      const Eigen::Vector2d ij = (inverse * d).array().round();
+    for (const int* it = neighbours.first; it != neighbours.second; ++it) {
+      const Eigen::Vector2d d = spots[*it].centre_px - p;
+      const Eigen::Vector2d ij = Nearest(inverse * d);
       if (ij.isZero() || ij.cwiseAbs().maxCoeff() > 2) continue;  // nearest ring only
       if ((inverse * d - ij).norm() > max_residual) continue;
       normal += ij * ij.transpose();
@@ -89,21 +106,12 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   labels.group.assign(n, -1);
   labels.node.assign(n, Eigen::Vector2i::Zero());
   labels.steps.resize(n);
-  const SpotGrid grid(spots, options.max_neighbour_px);
-  std::vector<std::vector<int>> neighbours(n);
-  for (int i = 0; i < n; ++i) {
-    grid.ForEachNear(spots[i].centre_px, options.max_neighbour_px, [&](int j) {
-      if (j != i) neighbours[i].push_back(j);
-    });
-  }
-  std::vector<Eigen::Vector2d> positions;
+  const NeighbourLists neighbours = FindNeighbours(spots, options.max_neighbour_px);
   // Steps change smoothly over the surface: a spot reached from a labelled neighbour starts
   // its refinement from that neighbour's steps, which follow oblique walls far better than
   // the module's fronto-parallel prediction.
   auto refine = [&](int i, const LatticeSteps& start) {
-    positions.clear();
-    for (int j : neighbours[i]) positions.push_back(spots[j].centre_px);
-    labels.steps[i] = Refine(spots[i].centre_px, positions, start, options.max_residual);
+    labels.steps[i] = Refine(spots, i, neighbours.Of(i), start, options.max_residual);
   };
   // An edge i -> j predicted with i's steps: the integer offset and how far from it.
   struct Edge {
@@ -116,9 +124,11 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
     Eigen::Matrix2d basis;
     basis << labels.steps[i].row_step, labels.steps[i].column_step;
     const Eigen::Matrix2d inverse = basis.inverse();
-    for (int j : neighbours[i]) {
+    const auto [first, last] = neighbours.Of(i);
+    for (const int* it = first; it != last; ++it) {
+      const int j = *it;
       const Eigen::Vector2d ij_real = inverse * (spots[j].centre_px - spots[i].centre_px);
-      const Eigen::Vector2d ij = ij_real.array().round();
+      const Eigen::Vector2d ij = Nearest(ij_real);
       const double residual = (ij_real - ij).norm();
       if (residual > options.max_residual) continue;
       // Far edges amplify any error of the local affine model (curved surfaces, depth

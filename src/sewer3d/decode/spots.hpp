@@ -25,9 +25,17 @@ struct SpotOptions {
   void Check() const;
 };
 
+/// Buffers kept between frames: a 5 MP label image is 20 MB, and allocating it afresh costs
+/// more page faults than the labelling itself.
+struct SpotWorkspace {
+  cv::Mat1i labels;
+  cv::Mat stats, centroids;
+};
+
 /// Finds spots in `image` (8- or 16-bit grey) from its foreground `mask` and local mean.
 /// Weights are I − mean over the component's bounding box grown by one pixel.
 std::vector<Spot> DetectSpots(const cv::Mat& image, const cv::Mat1b& mask,
-                              const cv::Mat1f& local_mean, const SpotOptions& options);
+                              const cv::Mat1f& local_mean, const SpotOptions& options,
+                              SpotWorkspace* workspace = nullptr);
 
 }  // namespace sewer3d

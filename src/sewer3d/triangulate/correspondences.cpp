@@ -14,43 +14,47 @@ void TriangulationOptions::Check() const {
   SEWER3D_CHECK(max_reprojection_px > 0.0, "max_reprojection_px");
 }
 
-std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& module,
-                                                       int array_rows, int array_cols,
-                                                       const std::vector<CodedObservation>& observations,
-                                                       const TriangulationOptions& options,
-                                                       TriangulationStats* stats) {
-  options.Check();
+Triangulator::Triangulator(const ModuleDescription& module, int array_rows, int array_cols,
+                           const TriangulationOptions& options)
+    : module_(module), array_rows_(array_rows), array_cols_(array_cols), options_(options),
+      camera_(module.camera), projector_(module.projector) {
+  options_.Check();
+  SEWER3D_CHECK(array_rows > 0 && array_cols > 0, "array size");
+  p_projector_.leftCols<3>() = module.projector_from_camera.RotationMatrix();
+  p_projector_.col(3) = module.projector_from_camera.translation;
+  const PatternLayout& layout = module.pattern;
+  element_cols_ = static_cast<int>(std::ceil(module.projector.width / layout.pitch_px)) + 1;
+  element_rows_ = static_cast<int>(std::ceil(module.projector.height / layout.pitch_px)) + 1;
+  element_xy_.assign(static_cast<size_t>(element_cols_) * element_rows_, Eigen::Vector2d::Constant(std::nan("")));
+  for (int r = 0; r < element_rows_; ++r) {
+    for (int c = 0; c < element_cols_; ++c) {
+      const Eigen::Vector2d centre = layout.ElementCentre(r, c);
+      const bool inside = centre.x() >= -0.5 && centre.y() >= -0.5 && centre.x() <= module.projector.width - 0.5 &&
+                          centre.y() <= module.projector.height - 0.5;
+      if (!inside) continue;
+      if (const auto xy = projector_.Unproject(centre)) element_xy_[static_cast<size_t>(r) * element_cols_ + c] = *xy;
+    }
+  }
+}
+
+const Eigen::Vector2d* Triangulator::Element(int r, int c) const {
+  if (r < 0 || c < 0 || r >= element_rows_ || c >= element_cols_) return nullptr;
+  const Eigen::Vector2d& xy = element_xy_[static_cast<size_t>(r) * element_cols_ + c];
+  return std::isnan(xy.x()) ? nullptr : &xy;
+}
+
+std::vector<TriangulatedPoint> Triangulator::Triangulate(const std::vector<CodedObservation>& observations,
+                                                         TriangulationStats* stats) const {
   TriangulationStats local;
   TriangulationStats& st = stats ? *stats : local;
-  const CameraModel camera(module.camera), projector(module.projector);
-  const PatternLayout& layout = module.pattern;
+  const PatternLayout& layout = module_.pattern;
   const double pitch = layout.pitch_px;
-  // Undistorted projector coordinates of each element centre inside the projector image,
-  // computed once (NaN: not yet, or outside the image / beyond the lens's fold).
-  const int element_cols = static_cast<int>(std::ceil(module.projector.width / pitch)) + 1;
-  const int element_rows = static_cast<int>(std::ceil(module.projector.height / pitch)) + 1;
-  std::vector<Eigen::Vector2d> element_xy(static_cast<size_t>(element_cols) * element_rows,
-                                          Eigen::Vector2d::Constant(std::nan("")));
-  std::vector<char> element_done(element_xy.size(), 0);
-  auto element = [&](int r, int c) -> const Eigen::Vector2d* {
-    if (r < 0 || c < 0 || r >= element_rows || c >= element_cols) return nullptr;
-    const size_t k = static_cast<size_t>(r) * element_cols + c;
-    if (!element_done[k]) {
-      element_done[k] = 1;
-      const Eigen::Vector2d centre = layout.ElementCentre(r, c);
-      const bool inside = centre.x() >= -0.5 && centre.y() >= -0.5 &&
-                          centre.x() <= module.projector.width - 0.5 && centre.y() <= module.projector.height - 0.5;
-      if (inside) {
-        if (const auto xy = projector.Unproject(centre)) element_xy[k] = *xy;
-      }
-    }
-    return std::isnan(element_xy[k].x()) ? nullptr : &element_xy[k];
-  };
+  const TriangulationOptions& options = options_;
   std::vector<TriangulatedPoint> points;
   points.reserve(observations.size());
   for (size_t k = 0; k < observations.size(); ++k) {
     const CodedObservation& o = observations[k];
-    const auto xy = camera.Unproject(o.camera_px);
+    const auto xy = camera_.Unproject(o.camera_px);
     if (!xy) {
       ++st.unprojectable;
       continue;
@@ -61,7 +65,7 @@ std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& 
     double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
     for (int i = 0; i <= 2; ++i) {  // ends and middle; the one-pitch margin covers the bend
       const double inv_z = 1.0 / options.z_max_mm + (1.0 / options.z_min_mm - 1.0 / options.z_max_mm) * i / 2.0;
-      const auto uv = projector.Project(module.projector_from_camera * (ray / inv_z));
+      const auto uv = projector_.Project(p_projector_.leftCols<3>() * (ray / inv_z) + p_projector_.col(3));
       if (!uv) continue;
       u_lo = std::min(u_lo, uv->x()), u_hi = std::max(u_hi, uv->x());
       v_lo = std::min(v_lo, uv->y()), v_hi = std::max(v_hi, uv->y());
@@ -76,20 +80,20 @@ std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& 
       const int index = static_cast<int>(std::floor((lo - pitch - offset + 0.5) / pitch - 0.5));
       return index + ((mod - index) % period + period) % period;
     };
-    const int r_start = first(v_lo, layout.offset_px.y(), o.row_mod, array_rows);
-    const int c_start = first(u_lo, layout.offset_px.x(), o.col_mod, array_cols);
+    const int r_start = first(v_lo, layout.offset_px.y(), o.row_mod, array_rows_);
+    const int c_start = first(u_lo, layout.offset_px.x(), o.col_mod, array_cols_);
     TriangulatedPoint best;
     int passing = 0;
     best.reprojection_px = 1e300;
-    for (int r = r_start; layout.ElementCentre(r, 0).y() <= v_hi + pitch; r += array_rows) {
-      for (int c = c_start; layout.ElementCentre(0, c).x() <= u_hi + pitch; c += array_cols) {
+    for (int r = r_start; layout.ElementCentre(r, 0).y() <= v_hi + pitch; r += array_rows_) {
+      for (int c = c_start; layout.ElementCentre(0, c).x() <= u_hi + pitch; c += array_cols_) {
         const Eigen::Vector2d centre = layout.ElementCentre(r, c);
-        const Eigen::Vector2d* projector_xy = element(r, c);
+        const Eigen::Vector2d* projector_xy = Element(r, c);
         if (!projector_xy) continue;
-        const auto x = TriangulateDlt(*xy, *projector_xy, module.projector_from_camera);
+        const auto x = TriangulateDlt(*xy, *projector_xy, p_projector_);
         if (!x || x->z() < options.z_min_mm || x->z() > options.z_max_mm) continue;
-        const auto back_camera = camera.Project(*x);
-        const auto back_projector = projector.Project(module.projector_from_camera * *x);
+        const auto back_camera = camera_.Project(*x);
+        const auto back_projector = projector_.Project(p_projector_.leftCols<3>() * *x + p_projector_.col(3));
         if (!back_camera || !back_projector) continue;
         const double error = std::max((*back_camera - o.camera_px).norm(), (*back_projector - centre).norm());
         if (error > options.max_reprojection_px) continue;
@@ -112,6 +116,14 @@ std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& 
     }
   }
   return points;
+}
+
+std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& module, int array_rows,
+                                                       int array_cols,
+                                                       const std::vector<CodedObservation>& observations,
+                                                       const TriangulationOptions& options,
+                                                       TriangulationStats* stats) {
+  return Triangulator(module, array_rows, array_cols, options).Triangulate(observations, stats);
 }
 
 int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,

@@ -41,6 +41,28 @@ struct TriangulationStats {
   int ambiguous = 0;           ///< more than one tile fits
 };
 
+/// Triangulation for one module, with what depends only on the module computed once: the
+/// undistorted projector coordinates of every element centre inside the projector image.
+class Triangulator {
+ public:
+  Triangulator(const ModuleDescription& module, int array_rows, int array_cols,
+               const TriangulationOptions& options);
+  std::vector<TriangulatedPoint> Triangulate(const std::vector<CodedObservation>& observations,
+                                             TriangulationStats* stats) const;
+
+ private:
+  const Eigen::Vector2d* Element(int r, int c) const;
+
+  ModuleDescription module_;
+  int array_rows_, array_cols_;
+  TriangulationOptions options_;
+  CameraModel camera_, projector_;
+  Eigen::Matrix<double, 3, 4> p_projector_;
+  int element_rows_ = 0, element_cols_ = 0;
+  std::vector<Eigen::Vector2d> element_xy_;  ///< NaN: outside the image or beyond the fold
+};
+
+/// One-off: Triangulator(module, ...).Triangulate(observations, stats).
 std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& module,
                                                        int array_rows, int array_cols,
                                                        const std::vector<CodedObservation>& observations,

@@ -14,9 +14,14 @@ namespace sewer3d {
 /// The point X (camera frame, mm) seen at normalised camera coordinates `camera_xy` and
 /// normalised projector coordinates `projector_xy`, with P_camera = [I | 0] and
 /// P_projector = [R | t] = projector_from_camera. Solves A X = 0 (four rows, x × (P X) = 0)
-/// by SVD. nullopt when the rays are parallel or the point lies behind either centre.
+/// for the right singular vector of its smallest singular value. nullopt when the rays are
+/// parallel or the point lies behind either centre.
 std::optional<Eigen::Vector3d> TriangulateDlt(const Eigen::Vector2d& camera_xy,
                                               const Eigen::Vector2d& projector_xy,
                                               const Rigid3d& projector_from_camera);
+/// The same with P_projector = [R | t] given as a matrix (no quaternion conversion per call).
+std::optional<Eigen::Vector3d> TriangulateDlt(const Eigen::Vector2d& camera_xy,
+                                              const Eigen::Vector2d& projector_xy,
+                                              const Eigen::Matrix<double, 3, 4>& p_projector);
 
 }  // namespace sewer3d

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/SVD>
 #include <random>
 
 #include "sewer3d/camera/default_module.hpp"
@@ -44,6 +45,36 @@ TEST(Dlt, DepthNoiseFollowsTheStereoGeometry) {
   const double rms = std::sqrt(sum2 / n);
   const double predicted = 150.0 * 150.0 / (f * b) * std::sqrt(2.0) * 0.1;
   EXPECT_NEAR(rms, predicted, 0.15 * predicted);
+}
+
+TEST(Dlt, SameAnswerAsTheSvdOfTheDltMatrix) {
+  // Reference: the right singular vector of the smallest singular value by Jacobi SVD, with
+  // a pixel of noise so that A has no exact null vector.
+  const ModuleDescription m = MakeDefaultModule({});
+  const Eigen::Matrix3d r = m.projector_from_camera.RotationMatrix();
+  const Eigen::Vector3d t = m.projector_from_camera.translation;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> xy(-0.6, 0.6), z(75.0, 225.0);
+  std::normal_distribution<double> noise(0.0, 1.0 / m.camera.fx);
+  for (int i = 0; i < 500; ++i) {
+    const double depth = z(rng);
+    const Eigen::Vector3d p(xy(rng) * depth, (xy(rng) + 0.25) * depth, depth);
+    const Eigen::Vector3d q = r * p + t;
+    const Eigen::Vector2d c = p.head<2>() / p.z() + Eigen::Vector2d(noise(rng), noise(rng));
+    const Eigen::Vector2d d = q.head<2>() / q.z() + Eigen::Vector2d(noise(rng), noise(rng));
+    Eigen::Matrix4d a;
+    a.row(0) << -1.0, 0.0, c.x(), 0.0;
+    a.row(1) << 0.0, -1.0, c.y(), 0.0;
+    a.row(2) << d.x() * r.row(2) - r.row(0), d.x() * t.z() - t.x();
+    a.row(3) << d.y() * r.row(2) - r.row(1), d.y() * t.z() - t.y();
+    for (int k = 0; k < 4; ++k) a.row(k).normalize();
+    const Eigen::JacobiSVD<Eigen::Matrix4d> svd(a, Eigen::ComputeFullV);
+    const Eigen::Vector4d v = svd.matrixV().col(3);
+    const Eigen::Vector3d reference = v.head<3>() / v.w();
+    const auto x = TriangulateDlt(c, d, m.projector_from_camera);
+    ASSERT_TRUE(x.has_value());
+    EXPECT_LT((*x - reference).norm(), 1e-9 * depth);
+  }
 }
 
 TEST(Dlt, RejectsPointsBehindTheCamera) {
