@@ -6,55 +6,10 @@
 #include <algorithm>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/neighbours.hpp"
 
 namespace sewer3d {
 namespace {
-
-// Neighbours of every spot within a radius, as one flat list (CSR): a dense grid of
-// radius-sized cells over the spots' bounding box, so a query looks at 3 x 3 cells.
-struct NeighbourLists {
-  std::vector<int> offsets;  // spot i's neighbours are indices[offsets[i] .. offsets[i + 1])
-  std::vector<int> indices;
-  std::pair<const int*, const int*> Of(int i) const {
-    return {indices.data() + offsets[i], indices.data() + offsets[i + 1]};
-  }
-};
-
-NeighbourLists FindNeighbours(const std::vector<Spot>& spots, double radius) {
-  NeighbourLists out;
-  const int n = static_cast<int>(spots.size());
-  out.offsets.assign(n + 1, 0);
-  if (n == 0) return out;
-  Eigen::Vector2d lo = spots[0].centre_px, hi = lo;
-  for (const Spot& s : spots) lo = lo.cwiseMin(s.centre_px), hi = hi.cwiseMax(s.centre_px);
-  const int gx = static_cast<int>((hi.x() - lo.x()) / radius) + 1, gy = static_cast<int>((hi.y() - lo.y()) / radius) + 1;
-  std::vector<int> cell_of(n), cell_start(static_cast<size_t>(gx) * gy + 1, 0), order(n);
-  for (int i = 0; i < n; ++i) {
-    const int cx = static_cast<int>((spots[i].centre_px.x() - lo.x()) / radius);
-    const int cy = static_cast<int>((spots[i].centre_px.y() - lo.y()) / radius);
-    cell_of[i] = cy * gx + cx;
-    ++cell_start[cell_of[i] + 1];
-  }
-  for (size_t c = 1; c < cell_start.size(); ++c) cell_start[c] += cell_start[c - 1];
-  std::vector<int> fill(cell_start.begin(), cell_start.end() - 1);
-  for (int i = 0; i < n; ++i) order[fill[cell_of[i]]++] = i;
-  const double r2 = radius * radius;
-  out.indices.reserve(static_cast<size_t>(n) * 12);
-  for (int i = 0; i < n; ++i) {
-    const int cx = cell_of[i] % gx, cy = cell_of[i] / gx;
-    for (int y = std::max(0, cy - 1); y <= std::min(gy - 1, cy + 1); ++y) {
-      for (int x = std::max(0, cx - 1); x <= std::min(gx - 1, cx + 1); ++x) {
-        const int c = y * gx + x;
-        for (int k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-          const int j = order[k];
-          if (j != i && (spots[j].centre_px - spots[i].centre_px).squaredNorm() <= r2) out.indices.push_back(j);
-        }
-      }
-    }
-    out.offsets[i + 1] = static_cast<int>(out.indices.size());
-  }
-  return out;
-}
 
 // Nearest integer, without the libm call Eigen's round() makes.
 inline Eigen::Vector2d Nearest(const Eigen::Vector2d& x) {
@@ -106,7 +61,8 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   labels.group.assign(n, -1);
   labels.node.assign(n, Eigen::Vector2i::Zero());
   labels.steps.resize(n);
-  const NeighbourLists neighbours = FindNeighbours(spots, options.max_neighbour_px);
+  const NeighbourLists neighbours = RadiusNeighbours(
+      n, options.max_neighbour_px, [&](int i) -> const Eigen::Vector2d& { return spots[i].centre_px; });
   // Steps change smoothly over the surface: a spot reached from a labelled neighbour starts
   // its refinement from that neighbour's steps, which follow oblique walls far better than
   // the module's fronto-parallel prediction.
@@ -141,12 +97,21 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   // only label a spot no good edge reaches, and seams between propagation fronts fall on
   // the poorest edges.
   std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> frontier;
+  // Only an edge better than the best one already queued for its target can matter (the
+  // better one labels the target first): the heap stays small.
+  std::vector<double> best_queued(n, 1e300);
+  auto push = [&](const Edge& e) {
+    if (labels.group[e.to] < 0 && e.residual < best_queued[e.to]) {
+      best_queued[e.to] = e.residual;
+      frontier.push(e);
+    }
+  };
   for (int seed = 0; seed < n; ++seed) {
     if (labels.group[seed] >= 0) continue;
     const int group = labels.groups++;
     labels.group[seed] = group;
     refine(seed, predicted[seed]);
-    edges_of(seed, [&](const Edge& e) { frontier.push(e); });
+    edges_of(seed, push);
     while (!frontier.empty()) {
       const Edge e = frontier.top();
       frontier.pop();
@@ -154,9 +119,7 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
       labels.group[e.to] = group;
       labels.node[e.to] = labels.node[e.from] + e.offset;
       refine(e.to, labels.steps[e.from]);
-      edges_of(e.to, [&](const Edge& next) {
-        if (labels.group[next.to] < 0) frontier.push(next);
-      });
+      edges_of(e.to, push);
     }
   }
   // A spot whose label most of its good edges contradict sits on a seam: unlabel it rather

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "sewer3d/core/check.hpp"
 
@@ -20,49 +21,90 @@ NiblackBinariser::NiblackBinariser(const NiblackOptions& options) : options_(opt
 namespace {
 
 // Running box sums over the clipped window: column sums over rows [v − r, v + r] are updated
-// as v advances; the row sum over those columns is another running sum. Sums of integer
-// pixels and their squares stay exact in doubles (< 2^53). The test x > m + max(k s, c) is
-// made without a square root: x − m > c and (x − m)² > k² s² (k ≥ 0).
-template <typename Pixel>
+// as v advances; the row sum over those columns is another running sum. Sums are exact: in
+// 32-bit integers for 8-bit images (151² · 255² < 2³¹), in doubles otherwise (< 2⁵³). The
+// test x > m + max(k s, c) is made without a division or square root, multiplied through by
+// the window's pixel count n: n x − S > n c and (n x − S)² > k² (n S₂ − S²) (k ≥ 0); the
+// second only for the few pixels that pass the first.
+template <typename Pixel, typename Acc>
 void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Mat1b& mask,
-              cv::Mat1f& mean_out, std::vector<double>& column_sum, std::vector<double>& column_sum2) {
+              cv::Mat1f& mean_out, std::vector<Acc>& column_sum, std::vector<Acc>& column_sum2) {
   const int rows = image.rows, cols = image.cols;
-  column_sum.assign(cols, 0.0);
-  column_sum2.assign(cols, 0.0);
-  auto add_row = [&](int v, double sign) {
+  column_sum.assign(cols, Acc(0));
+  column_sum2.assign(cols, Acc(0));
+  auto add_row = [&](int v) {
     const Pixel* row = image.ptr<Pixel>(v);
     for (int u = 0; u < cols; ++u) {
-      const double x = row[u];
-      column_sum[u] += sign * x;
-      column_sum2[u] += sign * x * x;
+      const Acc x = row[u];
+      column_sum[u] += x;
+      column_sum2[u] += x * x;
     }
   };
-  for (int v = 0; v < std::min(r, rows); ++v) add_row(v, 1.0);
-  std::vector<double> inverse_count_cols(cols);
+  auto replace_row = [&](int v_in, int v_out) {  // one pass: add row v_in, remove row v_out
+    const Pixel* in = image.ptr<Pixel>(v_in);
+    const Pixel* out = image.ptr<Pixel>(v_out);
+    for (int u = 0; u < cols; ++u) {
+      const Acc a = in[u], b = out[u];
+      column_sum[u] += a - b;
+      column_sum2[u] += a * a - b * b;
+    }
+  };
+  auto subtract_row = [&](int v) {
+    const Pixel* row = image.ptr<Pixel>(v);
+    for (int u = 0; u < cols; ++u) {
+      const Acc x = row[u];
+      column_sum[u] -= x;
+      column_sum2[u] -= x * x;
+    }
+  };
+  for (int v = 0; v < std::min(r, rows); ++v) add_row(v);
+  std::vector<int> count_cols(cols);
+  std::vector<float> inverse_count_cols(cols);
+  std::vector<Acc> threshold_n(cols);
   for (int u = 0; u < cols; ++u) {
-    inverse_count_cols[u] = 1.0 / (std::min(cols - 1, u + r) - std::max(0, u - r) + 1);
+    count_cols[u] = std::min(cols - 1, u + r) - std::max(0, u - r) + 1;
+    inverse_count_cols[u] = 1.0f / count_cols[u];
   }
+  // n c for the window's pixel count n; for integer sums e > n c ⟺ e > floor(n c), exactly.
+  int threshold_rows = -1;
+  auto set_thresholds = [&](int count_rows) {
+    if (count_rows == threshold_rows) return;
+    threshold_rows = count_rows;
+    for (int u = 0; u < cols; ++u) {
+      const double nc = min_contrast * count_rows * count_cols[u];
+      threshold_n[u] = std::is_integral_v<Acc> ? static_cast<Acc>(std::floor(nc)) : static_cast<Acc>(nc);
+    }
+  };
   const double k2 = k * k;
   for (int v = 0; v < rows; ++v) {
-    if (v + r < rows) add_row(v + r, 1.0);
-    if (v - r - 1 >= 0) add_row(v - r - 1, -1.0);
-    const double inverse_rows = 1.0 / (std::min(rows - 1, v + r) - std::max(0, v - r) + 1);
+    if (v + r < rows && v - r - 1 >= 0) {
+      replace_row(v + r, v - r - 1);
+    } else if (v + r < rows) {
+      add_row(v + r);
+    } else if (v - r - 1 >= 0) {
+      subtract_row(v - r - 1);
+    }
+    const int count_rows = std::min(rows - 1, v + r) - std::max(0, v - r) + 1;
+    const float inverse_rows = 1.0f / count_rows;
+    set_thresholds(count_rows);
     const Pixel* row = image.ptr<Pixel>(v);
     std::uint8_t* out = mask.ptr<std::uint8_t>(v);
     float* mean_row = mean_out.ptr<float>(v);
-    double s = 0.0, s2 = 0.0;
+    Acc s = 0, s2 = 0;
     for (int u = 0; u < std::min(r, cols); ++u) s += column_sum[u], s2 += column_sum2[u];
     for (int u = 0; u < cols; ++u) {
       if (u + r < cols) s += column_sum[u + r], s2 += column_sum2[u + r];
       if (u - r - 1 >= 0) s -= column_sum[u - r - 1], s2 -= column_sum2[u - r - 1];
-      const double inverse_n = inverse_rows * inverse_count_cols[u];
-      const double mean = s * inverse_n;
-      const double variance = s2 * inverse_n - mean * mean;
-      const double excess = row[u] - mean;
-      out[u] = (excess > min_contrast && (k < 0 ? excess > k * std::sqrt(std::max(0.0, variance))
-                                                : excess * excess > k2 * variance))
-                   ? 255 : 0;
-      mean_row[u] = static_cast<float>(mean);
+      const Acc n = static_cast<Acc>(count_rows * count_cols[u]);
+      bool spot = n * static_cast<Acc>(row[u]) - s > threshold_n[u];  // n (x − m) > n c
+      if (spot) {  // (n x − S)² > k² (n S₂ − S²), in doubles (exact below 2⁵³)
+        const double sum = static_cast<double>(s), nd = static_cast<double>(n);
+        const double excess_n = nd * row[u] - sum;
+        const double variance_n2 = nd * static_cast<double>(s2) - sum * sum;
+        spot = k < 0 ? excess_n > k * std::sqrt(std::max(0.0, variance_n2)) : excess_n * excess_n > k2 * variance_n2;
+      }
+      out[u] = spot ? 255 : 0;
+      mean_row[u] = static_cast<float>(s) * inverse_rows * inverse_count_cols[u];
     }
   }
 }
@@ -75,10 +117,15 @@ void NiblackBinariser::Apply(const cv::Mat& image, cv::Mat1b& mask) {
   mask.create(image.rows, image.cols);
   mean_.create(image.rows, image.cols);
   const int r = options_.window / 2;
-  if (image.depth() == CV_8U) {
-    Binarise<std::uint8_t>(image, r, options_.k, options_.min_contrast, mask, mean_, column_sum_, column_sum2_);
+  if (image.depth() == CV_8U && options_.window <= 151) {  // 151² · 255² < 2³¹
+    Binarise<std::uint8_t, std::int32_t>(image, r, options_.k, options_.min_contrast, mask, mean_, int_sum_,
+                                         int_sum2_);
+  } else if (image.depth() == CV_8U) {
+    Binarise<std::uint8_t, double>(image, r, options_.k, options_.min_contrast, mask, mean_, column_sum_,
+                                   column_sum2_);
   } else {
-    Binarise<std::uint16_t>(image, r, options_.k, options_.min_contrast, mask, mean_, column_sum_, column_sum2_);
+    Binarise<std::uint16_t, double>(image, r, options_.k, options_.min_contrast, mask, mean_, column_sum_,
+                                    column_sum2_);
   }
 }
 

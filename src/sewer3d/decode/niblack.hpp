@@ -35,6 +35,7 @@ class NiblackBinariser {
   NiblackOptions options_;
   cv::Mat1f mean_;
   std::vector<double> column_sum_, column_sum2_;
+  std::vector<std::int32_t> int_sum_, int_sum2_;  ///< 8-bit images: exact in 32 bits for windows <= 151
 };
 
 }  // namespace sewer3d

@@ -1,7 +1,8 @@
 #include "sewer3d/decode/spots.hpp"
 
 #include <algorithm>
-#include <opencv2/imgproc.hpp>
+#include <climits>
+#include <cstring>
 
 #include "sewer3d/core/check.hpp"
 
@@ -14,18 +15,76 @@ void SpotOptions::Check() const {
 
 namespace {
 
-// Weighted centroid over the box, skipping other components' pixels.
+int Find(std::vector<SpotWorkspace::Run>& runs, int i) {
+  while (runs[i].parent != i) {
+    runs[i].parent = runs[runs[i].parent].parent;  // path halving
+    i = runs[i].parent;
+  }
+  return i;
+}
+
+// Runs of non-zero mask pixels, row by row; zero bytes skipped eight at a time.
+void FindRuns(const cv::Mat1b& mask, SpotWorkspace& ws) {
+  ws.runs.clear();
+  ws.row_start.assign(mask.rows + 1, 0);
+  for (int v = 0; v < mask.rows; ++v) {
+    ws.row_start[v] = static_cast<int>(ws.runs.size());
+    const std::uint8_t* row = mask[v];
+    int u = 0;
+    while (u < mask.cols) {
+      while (u + 8 <= mask.cols) {
+        std::uint64_t word;
+        std::memcpy(&word, row + u, 8);
+        if (word != 0) break;
+        u += 8;
+      }
+      while (u < mask.cols && row[u] == 0) ++u;
+      if (u >= mask.cols) break;
+      const int start = u;
+      while (u < mask.cols && row[u] != 0) ++u;
+      const int index = static_cast<int>(ws.runs.size());
+      ws.runs.push_back({v, start, u - 1, index});
+    }
+  }
+  ws.row_start[mask.rows] = static_cast<int>(ws.runs.size());
+}
+
+// Joins runs of consecutive rows that touch (8-connectivity: columns overlap within one).
+void JoinRuns(SpotWorkspace& ws, int rows) {
+  for (int v = 1; v < rows; ++v) {
+    int p = ws.row_start[v - 1];
+    const int p_end = ws.row_start[v];
+    for (int i = ws.row_start[v]; i < ws.row_start[v + 1]; ++i) {
+      const SpotWorkspace::Run& run = ws.runs[i];
+      while (p < p_end && ws.runs[p].u1 < run.u0 - 1) ++p;
+      for (int q = p; q < p_end && ws.runs[q].u0 <= run.u1 + 1; ++q) {
+        const int a = Find(ws.runs, i), b = Find(ws.runs, q);
+        if (a != b) ws.runs[std::max(a, b)].parent = std::min(a, b);
+      }
+    }
+  }
+}
+
+// Weighted centroid over the box; pixels of the mask that are not this component's runs
+// (a neighbouring spot) are skipped. `own` lists the component's runs in row order.
 template <typename Pixel>
-bool Centroid(const cv::Mat& image, const cv::Mat1i& labels, const cv::Mat1f& local_mean, int label, int u0,
-              int v0, int u1, int v1, Spot& spot) {
+bool Centroid(const cv::Mat& image, const cv::Mat1b& mask, const cv::Mat1f& local_mean,
+              const SpotWorkspace& ws, const int* own, int own_count, int u0, int v0, int u1, int v1, Spot& spot) {
   double sum = 0.0, su = 0.0, sv = 0.0, peak = 0.0;
+  int k = 0;
   for (int v = v0; v <= v1; ++v) {
     const Pixel* row = image.ptr<Pixel>(v);
-    const int* label_row = labels[v];
+    const std::uint8_t* mask_row = mask[v];
     const float* mean_row = local_mean[v];
+    while (k < own_count && ws.runs[own[k]].v < v) ++k;
     for (int u = u0; u <= u1; ++u) {
-      const int other = label_row[u];
-      if (other != 0 && other != label) continue;  // a neighbouring spot's pixels
+      if (mask_row[u] != 0) {
+        bool mine = false;
+        for (int j = k; j < own_count && ws.runs[own[j]].v == v && !mine; ++j) {
+          mine = u >= ws.runs[own[j]].u0 && u <= ws.runs[own[j]].u1;
+        }
+        if (!mine) continue;
+      }
       const double weight = std::max(0.0, static_cast<double>(row[u]) - mean_row[u]);
       sum += weight;
       su += weight * u;
@@ -50,23 +109,52 @@ std::vector<Spot> DetectSpots(const cv::Mat& image, const cv::Mat1b& mask,
                 "spots need an 8-bit or 16-bit grey image");
   SpotWorkspace local;
   SpotWorkspace& ws = workspace ? *workspace : local;
-  const int count = cv::connectedComponentsWithStats(mask, ws.labels, ws.stats, ws.centroids, 8, CV_32S);
-  const cv::Mat& stats = ws.stats;
+  FindRuns(mask, ws);
+  JoinRuns(ws, mask.rows);
+  // Group runs by component (roots in order of first appearance: raster order of the
+  // component's first run, as a label image would number them).
+  const int run_count = static_cast<int>(ws.runs.size());
+  ws.component.assign(run_count, -1);
+  std::vector<int> first_run;  // per component: its root run
+  for (int i = 0; i < run_count; ++i) {
+    const int root = Find(ws.runs, i);
+    if (ws.component[root] < 0) {
+      ws.component[root] = static_cast<int>(first_run.size());
+      first_run.push_back(root);
+    }
+    ws.component[i] = ws.component[root];
+  }
+  const int count = static_cast<int>(first_run.size());
+  std::vector<int> start(count + 1, 0);
+  for (int i = 0; i < run_count; ++i) ++start[ws.component[i] + 1];
+  for (int c = 0; c < count; ++c) start[c + 1] += start[c];
+  ws.members.resize(run_count);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int i = 0; i < run_count; ++i) ws.members[fill[ws.component[i]]++] = i;  // row order kept
   std::vector<Spot> spots;
   spots.reserve(count);
-  for (int label = 1; label < count; ++label) {
-    const int* st = stats.ptr<int>(label);
-    const int area = st[cv::CC_STAT_AREA], w = st[cv::CC_STAT_WIDTH], h = st[cv::CC_STAT_HEIGHT];
+  for (int c = 0; c < count; ++c) {
+    const int* own = ws.members.data() + start[c];
+    const int own_count = start[c + 1] - start[c];
+    int area = 0, left = INT_MAX, right = INT_MIN;
+    for (int j = 0; j < own_count; ++j) {
+      const SpotWorkspace::Run& run = ws.runs[own[j]];
+      area += run.u1 - run.u0 + 1;
+      left = std::min(left, run.u0);
+      right = std::max(right, run.u1);
+    }
+    const int top = ws.runs[own[0]].v, bottom = ws.runs[own[own_count - 1]].v;
+    const int w = right - left + 1, h = bottom - top + 1;
     if (area < options.min_area_px || area > options.max_area_px) continue;
     if (std::max(w, h) > options.max_aspect * std::min(w, h)) continue;
-    const int u0 = std::max(0, st[cv::CC_STAT_LEFT] - 1);
-    const int v0 = std::max(0, st[cv::CC_STAT_TOP] - 1);
+    const int u0 = std::max(0, left - 1), v0 = std::max(0, top - 1);
     const int u1 = std::min(image.cols - 1, u0 + w + 1), v1 = std::min(image.rows - 1, v0 + h + 1);
     Spot spot;
     spot.area_px = area;
-    const bool ok = image.depth() == CV_8U
-                        ? Centroid<std::uint8_t>(image, ws.labels, local_mean, label, u0, v0, u1, v1, spot)
-                        : Centroid<std::uint16_t>(image, ws.labels, local_mean, label, u0, v0, u1, v1, spot);
+    const bool ok =
+        image.depth() == CV_8U
+            ? Centroid<std::uint8_t>(image, mask, local_mean, ws, own, own_count, u0, v0, u1, v1, spot)
+            : Centroid<std::uint16_t>(image, mask, local_mean, ws, own, own_count, u0, v0, u1, v1, spot);
     if (ok) spots.push_back(spot);
   }
   return spots;

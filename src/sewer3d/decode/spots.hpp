@@ -25,15 +25,22 @@ struct SpotOptions {
   void Check() const;
 };
 
-/// Buffers kept between frames: a 5 MP label image is 20 MB, and allocating it afresh costs
-/// more page faults than the labelling itself.
+/// Buffers kept between frames (runs of the mask, their components).
 struct SpotWorkspace {
-  cv::Mat1i labels;
-  cv::Mat stats, centroids;
+  struct Run {
+    int v, u0, u1;  ///< row, first and last column
+    int parent;     ///< union-find link
+  };
+  std::vector<Run> runs;
+  std::vector<int> row_start;   ///< first run of each row (rows + 1 entries)
+  std::vector<int> members;     ///< run indices grouped by component
+  std::vector<int> component;   ///< per run: its component's index
 };
 
-/// Finds spots in `image` (8- or 16-bit grey) from its foreground `mask` and local mean.
-/// Weights are I − mean over the component's bounding box grown by one pixel.
+/// Finds spots in `image` (8- or 16-bit grey) from its foreground `mask` and local mean:
+/// 8-connected components of the mask, found as runs joined by union-find (no label image).
+/// Weights are I − mean over the component's bounding box grown by one pixel, without the
+/// pixels of other components.
 std::vector<Spot> DetectSpots(const cv::Mat& image, const cv::Mat1b& mask,
                               const cv::Mat1f& local_mean, const SpotOptions& options,
                               SpotWorkspace* workspace = nullptr);

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/neighbours.hpp"
 #include "sewer3d/triangulate/dlt.hpp"
 
 namespace sewer3d {
@@ -129,35 +130,16 @@ std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& 
 int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
                         const std::vector<CodedObservation>& observations, double radius_px,
                         double min_step_mm, double fraction) {
-  // Bucket points on a grid of radius-sized cells.
-  std::unordered_map<long long, std::vector<int>> cells;
-  auto cell_of = [&](const Eigen::Vector2d& p) {
-    return std::make_pair(static_cast<int>(std::floor(p.x() / radius_px)),
-                          static_cast<int>(std::floor(p.y() / radius_px)));
-  };
-  auto key = [](int x, int y) { return (static_cast<long long>(x) << 32) ^ static_cast<unsigned>(y); };
-  for (size_t i = 0; i < points.size(); ++i) {
-    const auto [x, y] = cell_of(observations[points[i].observation].camera_px);
-    cells[key(x, y)].push_back(static_cast<int>(i));
-  }
+  const NeighbourLists neighbours = RadiusNeighbours(static_cast<int>(points.size()), radius_px,
+                                                     [&](int i) -> const Eigen::Vector2d& {
+                                                       return observations[points[i].observation].camera_px;
+                                                     });
   std::vector<char> keep(points.size(), 1);
   std::vector<double> depths;
   for (size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector2d& p = observations[points[i].observation].camera_px;
-    const auto [cx, cy] = cell_of(p);
     depths.clear();
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const auto it = cells.find(key(cx + dx, cy + dy));
-        if (it == cells.end()) continue;
-        for (int j : it->second) {
-          if (j == static_cast<int>(i)) continue;
-          if ((observations[points[j].observation].camera_px - p).norm() <= radius_px) {
-            depths.push_back(points[j].point_mm.z());
-          }
-        }
-      }
-    }
+    const auto [first, last] = neighbours.Of(static_cast<int>(i));
+    for (const int* j = first; j != last; ++j) depths.push_back(points[*j].point_mm.z());
     if (depths.size() < 2) {  // an isolated decode has nothing to confirm it
       keep[i] = 0;
       continue;
