@@ -2,7 +2,8 @@
 # Quick start, step 1: install dependencies, build, run the main job.
 # The main job today: write the default module, render one module's capture of a DN300
 # concrete pipe wall (joint, intrusion, pit, crack), reconstruct it and check it against the
-# truth. Later stages extend it to the full six-module run and the pipe model.
+# truth; then simulate a small six-module inspection run. Later stages process the run into
+# the pipe model.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
@@ -17,4 +18,8 @@ bin=./build/sewer3d
 # The wall's joint offset and intrusion pull a single-cylinder fit away from the nominal
 # diameter; the truth lines measure the points against the true (displaced) wall.
 "$bin" evaluate cylinder --cloud "$out/reconstruction/cloud.ply" --truth "$out/capture/scene.json"
-echo "demo: done; look at $out/capture/texture.png, pattern.png and $out/reconstruction/depth.png"
+# A small six-module inspection run (648 x 486 images, two acquisitions): the capture-run
+# folder later stages read (docs/formats.md); `--preset demo` is the full-size 1 m run.
+"$bin" simulate run --preset tiny --out "$out/run-tiny"
+echo "demo: done; look at $out/capture/texture.png, pattern.png, $out/reconstruction/depth.png"
+echo "      and $out/run-tiny/truth/overview.png (the unrolled pipe with every image's footprint)"

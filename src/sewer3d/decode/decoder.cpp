@@ -64,7 +64,7 @@ DecodeResult Decoder::Decode(const cv::Mat& image) {
   binariser_.Apply(image, mask_);
   result.seconds_binarise = Since(t);
   t = Clock::now();
-  result.spots = DetectSpots(image, mask_, binariser_.local_mean(), options_.spots, &spot_workspace_);
+  result.spots = DetectSpots(mask_, binariser_.excess(), options_.spots, &spot_workspace_);
   result.seconds_spots = Since(t);
   t = Clock::now();
   result.lattice = LabelLattice(result.spots, options_.lattice,

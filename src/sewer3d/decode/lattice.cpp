@@ -105,18 +105,28 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   // Only an edge better than the best one already queued for its target can matter (the
   // better one labels the target first): the heap stays small.
   std::vector<double> best_queued(n, 1e300);
-  auto push = [&](const Edge& e) {
-    if (labels.group[e.to] < 0 && e.residual < best_queued[e.to]) {
-      best_queued[e.to] = e.residual;
-      frontier.push(e);
-    }
+  // Each spot's good edges, found once when it is labelled (its steps are final then) and
+  // kept for the seam check below.
+  std::vector<std::pair<int, Eigen::Vector2i>> good_edges;
+  good_edges.reserve(static_cast<size_t>(n) * 8);
+  std::vector<int> edge_begin(n, 0), edge_end(n, 0);
+  auto label_edges = [&](int i) {
+    edge_begin[i] = static_cast<int>(good_edges.size());
+    edges_of(i, [&](const Edge& e) {
+      good_edges.emplace_back(e.to, e.offset);
+      if (labels.group[e.to] < 0 && e.residual < best_queued[e.to]) {
+        best_queued[e.to] = e.residual;
+        frontier.push(e);
+      }
+    });
+    edge_end[i] = static_cast<int>(good_edges.size());
   };
   for (int seed = 0; seed < n; ++seed) {
     if (labels.group[seed] >= 0) continue;
     const int group = labels.groups++;
     labels.group[seed] = group;
     refine(seed, predicted[seed]);
-    edges_of(seed, push);
+    label_edges(seed);
     while (!frontier.empty()) {
       const Edge e = frontier.top();
       frontier.pop();
@@ -124,7 +134,7 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
       labels.group[e.to] = group;
       labels.node[e.to] = labels.node[e.from] + e.offset;
       refine(e.to, labels.steps[e.from]);
-      edges_of(e.to, push);
+      label_edges(e.to);
     }
   }
   // A spot whose label most of its good edges contradict sits on a seam: unlabel it rather
@@ -132,10 +142,11 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   std::vector<int> contradicted;
   for (int i = 0; i < n; ++i) {
     int agree = 0, disagree = 0;
-    edges_of(i, [&](const Edge& e) {
-      if (labels.group[e.to] != labels.group[i]) return;
-      (labels.node[e.to] == labels.node[i] + e.offset ? agree : disagree) += 1;
-    });
+    for (int k = edge_begin[i]; k < edge_end[i]; ++k) {
+      const auto& [to, offset] = good_edges[k];
+      if (labels.group[to] != labels.group[i]) continue;
+      (labels.node[to] == labels.node[i] + offset ? agree : disagree) += 1;
+    }
     labels.conflicts += disagree;
     if (disagree > agree) contradicted.push_back(i);
   }

@@ -28,7 +28,7 @@ namespace {
 // second only for the few pixels that pass the first.
 template <typename Pixel, typename Acc>
 void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Mat1b& mask,
-              cv::Mat1f& mean_out, std::vector<Acc>& column_sum, std::vector<Acc>& column_sum2) {
+              cv::Mat1w& excess_out, std::vector<Acc>& column_sum, std::vector<Acc>& column_sum2) {
   const int rows = image.rows, cols = image.cols;
   column_sum.assign(cols, Acc(0));
   column_sum2.assign(cols, Acc(0));
@@ -60,7 +60,8 @@ void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Ma
   for (int v = 0; v < std::min(r, rows); ++v) add_row(v);
   std::vector<int> count_cols(cols);
   std::vector<float> inverse_count_cols(cols);
-  std::vector<Acc> threshold_n(cols);
+  std::vector<Acc> threshold_n(cols), window_sum(cols), window_sum2(cols);
+  std::vector<float> count_cols_f(cols), threshold_f(cols);
   for (int u = 0; u < cols; ++u) {
     count_cols[u] = std::min(cols - 1, u + r) - std::max(0, u - r) + 1;
     inverse_count_cols[u] = 1.0f / count_cols[u];
@@ -73,6 +74,8 @@ void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Ma
     for (int u = 0; u < cols; ++u) {
       const double nc = min_contrast * count_rows * count_cols[u];
       threshold_n[u] = std::is_integral_v<Acc> ? static_cast<Acc>(std::floor(nc)) : static_cast<Acc>(nc);
+      threshold_f[u] = static_cast<float>(threshold_n[u]);
+      count_cols_f[u] = static_cast<float>(count_cols[u]);
     }
   };
   const double k2 = k * k;
@@ -89,22 +92,39 @@ void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Ma
     set_thresholds(count_rows);
     const Pixel* row = image.ptr<Pixel>(v);
     std::uint8_t* out = mask.ptr<std::uint8_t>(v);
-    float* mean_row = mean_out.ptr<float>(v);
+    std::uint16_t* excess_row = excess_out.ptr<std::uint16_t>(v);
+    // 1) Window sums along the row (running sums: sequential, but only adds).
     Acc s = 0, s2 = 0;
     for (int u = 0; u < std::min(r, cols); ++u) s += column_sum[u], s2 += column_sum2[u];
     for (int u = 0; u < cols; ++u) {
       if (u + r < cols) s += column_sum[u + r], s2 += column_sum2[u + r];
       if (u - r - 1 >= 0) s -= column_sum[u - r - 1], s2 -= column_sum2[u - r - 1];
-      const Acc n = static_cast<Acc>(count_rows * count_cols[u]);
-      bool spot = n * static_cast<Acc>(row[u]) - s > threshold_n[u];  // n (x − m) > n c
-      if (spot) {  // (n x − S)² > k² (n S₂ − S²), in doubles (exact below 2⁵³)
-        const double sum = static_cast<double>(s), nd = static_cast<double>(n);
-        const double excess_n = nd * row[u] - sum;
-        const double variance_n2 = nd * static_cast<double>(s2) - sum * sum;
-        spot = k < 0 ? excess_n > k * std::sqrt(std::max(0.0, variance_n2)) : excess_n * excess_n > k2 * variance_n2;
-      }
-      out[u] = spot ? 255 : 0;
-      mean_row[u] = static_cast<float>(s) * inverse_rows * inverse_count_cols[u];
+      window_sum[u] = s;
+      window_sum2[u] = s2;
+    }
+    // 2) Contrast test and excess, no dependency between pixels (vectorises).
+    // In floats: n x and S stay below 2²⁴ for 8-bit pixels and windows up to 151, so the
+    // first test is exact there; 16-bit images take the double path anyway.
+    for (int u = 0; u < cols; ++u) {
+      const float x = static_cast<float>(row[u]), sum = static_cast<float>(window_sum[u]);
+      const float n = static_cast<float>(count_rows) * count_cols_f[u];
+      out[u] = n * x - sum > threshold_f[u] ? 255 : 0;  // n (x − m) > n c
+      const float excess = (x - sum * inverse_rows * inverse_count_cols[u]) * NiblackBinariser::kExcessScale;
+      // Round, then clear negative values with the sign mask: no branch on the sign of
+      // I − m, which is noise and would be mispredicted half the time.
+      int rounded = static_cast<int>(excess + 0.5f);
+      rounded &= ~(rounded >> 31);
+      excess_row[u] = static_cast<std::uint16_t>(std::min(rounded, 65535));
+    }
+    // 3) The variance test for the few that passed: (n x − S)² > k² (n S₂ − S²), exact in
+    // doubles.
+    for (int u = 0; u < cols; ++u) {
+      if (!out[u]) continue;
+      const double sum = static_cast<double>(window_sum[u]), n = static_cast<double>(count_rows) * count_cols[u];
+      const double excess_n = n * row[u] - sum;
+      const double variance_n2 = n * static_cast<double>(window_sum2[u]) - sum * sum;
+      const bool spot = k < 0 ? excess_n > k * std::sqrt(std::max(0.0, variance_n2)) : excess_n * excess_n > k2 * variance_n2;
+      if (!spot) out[u] = 0;
     }
   }
 }
@@ -115,16 +135,16 @@ void NiblackBinariser::Apply(const cv::Mat& image, cv::Mat1b& mask) {
   SEWER3D_CHECK(image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U),
                 "Niblack needs an 8-bit or 16-bit grey image");
   mask.create(image.rows, image.cols);
-  mean_.create(image.rows, image.cols);
+  excess_.create(image.rows, image.cols);
   const int r = options_.window / 2;
   if (image.depth() == CV_8U && options_.window <= 151) {  // 151² · 255² < 2³¹
-    Binarise<std::uint8_t, std::int32_t>(image, r, options_.k, options_.min_contrast, mask, mean_, int_sum_,
+    Binarise<std::uint8_t, std::int32_t>(image, r, options_.k, options_.min_contrast, mask, excess_, int_sum_,
                                          int_sum2_);
   } else if (image.depth() == CV_8U) {
-    Binarise<std::uint8_t, double>(image, r, options_.k, options_.min_contrast, mask, mean_, column_sum_,
+    Binarise<std::uint8_t, double>(image, r, options_.k, options_.min_contrast, mask, excess_, column_sum_,
                                    column_sum2_);
   } else {
-    Binarise<std::uint16_t, double>(image, r, options_.k, options_.min_contrast, mask, mean_, column_sum_,
+    Binarise<std::uint16_t, double>(image, r, options_.k, options_.min_contrast, mask, excess_, column_sum_,
                                     column_sum2_);
   }
 }

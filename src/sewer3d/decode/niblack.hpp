@@ -28,12 +28,16 @@ class NiblackBinariser {
   /// Windows are clipped at the image border.
   void Apply(const cv::Mat& image, cv::Mat1b& mask);
 
-  /// Local mean of the last image (valid after Apply), for contrast-weighted centroids.
-  const cv::Mat1f& local_mean() const { return mean_; }
+  /// Contrast of the last image over its local mean (valid after Apply), the weights of spot
+  /// centroids: round(kExcessScale · max(0, I − m)), saturated at 65535 (I − m > 4095 DN,
+  /// beyond 12-bit images). 2 bytes a pixel instead of a float mean: the spot stage is
+  /// limited by memory traffic.
+  const cv::Mat1w& excess() const { return excess_; }
+  static constexpr float kExcessScale = 16.0f;
 
  private:
   NiblackOptions options_;
-  cv::Mat1f mean_;
+  cv::Mat1w excess_;
   std::vector<double> column_sum_, column_sum2_;
   std::vector<std::int32_t> int_sum_, int_sum2_;  ///< 8-bit images: exact in 32 bits for windows <= 151
 };

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/decode/niblack.hpp"
 
 namespace sewer3d {
 
@@ -67,16 +68,15 @@ void JoinRuns(SpotWorkspace& ws, int rows) {
 
 // Weighted centroid over the box; pixels of the mask that are not this component's runs
 // (a neighbouring spot) are skipped. `own` lists the component's runs in row order.
-template <typename Pixel>
-bool Centroid(const cv::Mat& image, const cv::Mat1b& mask, const cv::Mat1f& local_mean,
-              const SpotWorkspace& ws, const int* own, int own_count, int u0, int v0, int u1, int v1, Spot& spot) {
-  double sum = 0.0, su = 0.0, sv = 0.0, peak = 0.0;
-  int k = 0;
+bool Centroid(const cv::Mat1b& mask, const cv::Mat1w& excess, const SpotWorkspace& ws, const int* own,
+              int own_count, int u0, int v0, int u1, int v1, Spot& spot) {
+  double sum = 0.0, su = 0.0, sv = 0.0;
+  int peak = 0, k = 0;
   for (int v = v0; v <= v1; ++v) {
-    const Pixel* row = image.ptr<Pixel>(v);
     const std::uint8_t* mask_row = mask[v];
-    const float* mean_row = local_mean[v];
+    const std::uint16_t* weight_row = excess[v];
     while (k < own_count && ws.runs[own[k]].v < v) ++k;
+    double row_sum = 0.0, row_su = 0.0;
     for (int u = u0; u <= u1; ++u) {
       if (mask_row[u] != 0) {
         bool mine = false;
@@ -85,28 +85,27 @@ bool Centroid(const cv::Mat& image, const cv::Mat1b& mask, const cv::Mat1f& loca
         }
         if (!mine) continue;
       }
-      const double weight = std::max(0.0, static_cast<double>(row[u]) - mean_row[u]);
-      sum += weight;
-      su += weight * u;
-      sv += weight * v;
+      const int weight = weight_row[u];
+      row_sum += weight;
+      row_su += static_cast<double>(weight) * u;
       peak = std::max(peak, weight);
     }
+    sum += row_sum;
+    su += row_su;
+    sv += row_sum * v;
   }
   if (sum <= 0.0) return false;
   spot.centre_px = {su / sum, sv / sum};
-  spot.contrast = peak;
+  spot.contrast = peak / NiblackBinariser::kExcessScale;
   return true;
 }
 
 }  // namespace
 
-std::vector<Spot> DetectSpots(const cv::Mat& image, const cv::Mat1b& mask,
-                              const cv::Mat1f& local_mean, const SpotOptions& options,
+std::vector<Spot> DetectSpots(const cv::Mat1b& mask, const cv::Mat1w& excess, const SpotOptions& options,
                               SpotWorkspace* workspace) {
   options.Check();
-  SEWER3D_CHECK(image.size() == mask.size() && image.size() == local_mean.size(), "sizes differ");
-  SEWER3D_CHECK(image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U),
-                "spots need an 8-bit or 16-bit grey image");
+  SEWER3D_CHECK(mask.size() == excess.size(), "sizes differ");
   SpotWorkspace local;
   SpotWorkspace& ws = workspace ? *workspace : local;
   FindRuns(mask, ws);
@@ -148,14 +147,10 @@ std::vector<Spot> DetectSpots(const cv::Mat& image, const cv::Mat1b& mask,
     if (area < options.min_area_px || area > options.max_area_px) continue;
     if (std::max(w, h) > options.max_aspect * std::min(w, h)) continue;
     const int u0 = std::max(0, left - 1), v0 = std::max(0, top - 1);
-    const int u1 = std::min(image.cols - 1, u0 + w + 1), v1 = std::min(image.rows - 1, v0 + h + 1);
+    const int u1 = std::min(mask.cols - 1, u0 + w + 1), v1 = std::min(mask.rows - 1, v0 + h + 1);
     Spot spot;
     spot.area_px = area;
-    const bool ok =
-        image.depth() == CV_8U
-            ? Centroid<std::uint8_t>(image, mask, local_mean, ws, own, own_count, u0, v0, u1, v1, spot)
-            : Centroid<std::uint16_t>(image, mask, local_mean, ws, own, own_count, u0, v0, u1, v1, spot);
-    if (ok) spots.push_back(spot);
+    if (Centroid(mask, excess, ws, own, own_count, u0, v0, u1, v1, spot)) spots.push_back(spot);
   }
   return spots;
 }

@@ -37,12 +37,12 @@ struct SpotWorkspace {
   std::vector<int> component;   ///< per run: its component's index
 };
 
-/// Finds spots in `image` (8- or 16-bit grey) from its foreground `mask` and local mean:
-/// 8-connected components of the mask, found as runs joined by union-find (no label image).
-/// Weights are I − mean over the component's bounding box grown by one pixel, without the
-/// pixels of other components.
-std::vector<Spot> DetectSpots(const cv::Mat& image, const cv::Mat1b& mask,
-                              const cv::Mat1f& local_mean, const SpotOptions& options,
+/// Finds spots from a foreground `mask` and the contrast image `excess` (NiblackBinariser::
+/// excess(): scaled max(0, I − local mean)): 8-connected components of the mask, found as
+/// runs joined by union-find (no label image). The centre is the centroid weighted by the
+/// excess over the component's bounding box grown by one pixel, without the pixels of other
+/// components.
+std::vector<Spot> DetectSpots(const cv::Mat1b& mask, const cv::Mat1w& excess, const SpotOptions& options,
                               SpotWorkspace* workspace = nullptr);
 
 }  // namespace sewer3d

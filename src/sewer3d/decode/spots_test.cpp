@@ -13,10 +13,12 @@
 namespace sewer3d {
 namespace {
 
-TEST(Niblack, MatchesBruteForceWindowStatistics) {
+// Both arithmetic paths: exact 32-bit sums (8-bit images) and doubles (16-bit images).
+template <typename Image>
+void CheckAgainstBruteForce(int max_value) {
   std::mt19937 rng(1);
-  cv::Mat1w image(37, 53);
-  for (auto& x : image) x = static_cast<std::uint16_t>(rng() % 1024);
+  Image image(37, 53);
+  for (auto& x : image) x = static_cast<typename Image::value_type>(rng() % (max_value + 1));
   NiblackOptions options;
   options.window = 7;
   options.k = 0.4;
@@ -38,9 +40,15 @@ TEST(Niblack, MatchesBruteForceWindowStatistics) {
       const double mean = s / n, sd = std::sqrt(std::max(0.0, s2 / n - mean * mean));
       const bool expected = image(v, u) > std::max(mean + 0.4 * sd, mean + 2.0);
       ASSERT_EQ(mask(v, u) != 0, expected) << v << "," << u;
-      ASSERT_NEAR(binariser.local_mean()(v, u), mean, 1e-3);
+      const double excess = std::max(0.0, image(v, u) - mean) * NiblackBinariser::kExcessScale;
+      ASSERT_NEAR(binariser.excess()(v, u), std::min(excess, 65535.0), 0.5 + 1e-3);  // rounded
     }
   }
+}
+
+TEST(Niblack, MatchesBruteForceWindowStatistics) {
+  CheckAgainstBruteForce<cv::Mat1w>(1023);
+  CheckAgainstBruteForce<cv::Mat1b>(255);
 }
 
 TEST(Spots, FindsRenderedSpotsWithSubpixelPrecision) {
@@ -59,7 +67,7 @@ TEST(Spots, FindsRenderedSpotsWithSubpixelPrecision) {
   NiblackBinariser binariser(NiblackOptions{});
   cv::Mat1b mask;
   binariser.Apply(frame.pattern, mask);
-  const std::vector<Spot> spots = DetectSpots(frame.pattern, mask, binariser.local_mean(), SpotOptions{});
+  const std::vector<Spot> spots = DetectSpots(mask, binariser.excess(), SpotOptions{});
 
   // Expected centres: projector ray through each element centre -> plane -> camera.
   // Spurious detections are judged against every spot the projector lights, cut ones too.

@@ -55,19 +55,19 @@ Scenario Demo() {
   Scenario s;
   s.name = "demo";
   s.world.sections = {{.length_mm = 700.0, .diameter_mm = 300.0},
-                      {.length_mm = 600.0, .diameter_mm = 300.0},
+                      {.length_mm = 400.0, .diameter_mm = 300.0},
                       {.length_mm = 1000.0, .diameter_mm = 300.0, .material = Material::kPlastic}};
   s.world.joints = {Joint("J1", 10.0, 6.0, 6.0, 1.0, 1.0, 3.0), Joint("J2", 4.0, 3.0, 1.0, 6.0)};
   s.world.features = {{.type = Feature::kConnection,
                        .id = "C1",
-                       .station_mm = 950.0,
+                       .station_mm = 900.0,
                        .clock_h = 2.0,
                        .diameter_mm = 150.0,
                        .wall_mm = 12.0,
                        .intrusion_mm = 25.0},
                       {.type = Feature::kSpalling,
                        .id = "S1",
-                       .station_mm = 1120.0,
+                       .station_mm = 1020.0,
                        .clock_h = 10.0,
                        .length_mm = 70.0,
                        .width_mm = 50.0,
@@ -83,7 +83,7 @@ Scenario Demo() {
   s.motion.start_station_mm = 300.0;
   s.motion.travel_mm = 1000.0;
   s.render.supersampling = 1;
-  s.truth_depth = TruthDepth::kPattern;
+  s.truth_depth = TruthDepth::kNone;  // 20 MB per full-size map; the world and poses define it
   return s;
 }
 
