@@ -26,12 +26,25 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
   // Dense grids per group over its nodes' bounding box, grown by a window on the low sides
   // (windows start up to n − 1 nodes before a spot): occupancy and the cached window results.
   struct GroupGrid {
-    int r0 = 0, c0 = 0, rows = 0, cols = 0;
-    std::vector<std::uint8_t> occupied;
+    int r0 = 0, c0 = 0, rows = 0, cols = 0, words = 0;  // words: 64-bit words per row (padded)
+    std::vector<std::uint64_t> occupied;                // one bit per node
+    void Set(int r, int c) {
+      const int k = c - c0;
+      occupied[static_cast<size_t>(r - r0) * words + (k >> 6)] |= std::uint64_t{1} << (k & 63);
+    }
+    // Bits of nodes (r, c .. c + width − 1), lowest bit first; 0 outside the grid.
+    std::uint64_t Bits(int r, int c, int width) const {
+      if (r < r0 || r >= r0 + rows) return 0;
+      const int k = c - c0;  // >= 0: the grid starts a window before any node
+      const std::uint64_t* row = occupied.data() + static_cast<size_t>(r - r0) * words;
+      const int w = k >> 6, shift = k & 63;
+      std::uint64_t bits = row[w] >> shift;
+      if (shift != 0) bits |= row[w + 1] << (64 - shift);
+      return bits & ((std::uint64_t{1} << width) - 1);
+    }
     std::vector<std::int8_t> state;  // −1 not read yet, 0 unobservable or not decoded, 1 decoded
     std::vector<WindowResult> results;
     int Index(int r, int c) const { return (r - r0) * cols + (c - c0); }
-    bool Inside(int r, int c) const { return r >= r0 && c >= c0 && r < r0 + rows && c < c0 + cols; }
   };
   std::vector<GroupGrid> grids(lattice.groups);
   {
@@ -50,14 +63,15 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
       grid.c0 = box[g][1] - (n - 1);
       grid.rows = box[g][2] - grid.r0 + 1;
       grid.cols = box[g][3] - grid.c0 + 1;
-      grid.occupied.assign(static_cast<size_t>(grid.rows) * grid.cols, 0);
-      grid.state.assign(grid.occupied.size(), -1);
-      grid.results.resize(grid.occupied.size());
+      grid.words = (grid.cols + n) / 64 + 2;  // room for a window past the last column
+      grid.occupied.assign(static_cast<size_t>(grid.rows) * grid.words, 0);
+      grid.state.assign(static_cast<size_t>(grid.rows) * grid.cols, -1);
+      grid.results.resize(grid.state.size());
     }
     for (size_t i = 0; i < spots.size(); ++i) {
       if (lattice.group[i] < 0) continue;
       GroupGrid& grid = grids[lattice.group[i]];
-      grid.occupied[grid.Index(lattice.node[i].x(), lattice.node[i].y())] = 1;
+      grid.Set(lattice.node[i].x(), lattice.node[i].y());
     }
   }
   auto inside_image = [&](const Eigen::Vector2d& q) {
@@ -81,13 +95,7 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
       return nullptr;
     }
     std::uint64_t code = 0;
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) {
-        if (grid.Inside(top + i, left + j) && grid.occupied[grid.Index(top + i, left + j)]) {
-          code |= std::uint64_t{1} << (i * n + j);
-        }
-      }
-    }
+    for (int i = 0; i < n; ++i) code |= grid.Bits(top + i, left, n) << (i * n);
     ++st.windows_read;
     const auto match = codebook.Decode(code, codebook.min_hamming() >= 3 ? 1 : 0);
     if (!match) return nullptr;

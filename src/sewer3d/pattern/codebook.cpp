@@ -1,5 +1,8 @@
 #include "sewer3d/pattern/codebook.hpp"
 
+#include <algorithm>
+#include <bit>
+
 namespace sewer3d {
 
 Codebook::Codebook(const BinaryArray& array, const PatternConstraints& constraints)
@@ -15,6 +18,9 @@ Codebook::Codebook(const BinaryArray& array, const PatternConstraints& constrain
       const auto [it, inserted] = table_.emplace(TiledWindowCode(array, r, c, n), ArrayPosition{r, c});
       SEWER3D_CHECK(inserted, "window at (" << r << ", " << c << ") repeats the one at ("
                                             << it->second.row << ", " << it->second.col << ")");
+      const int weight = std::popcount(it->first);
+      min_weight_ = std::min(min_weight_, weight);
+      max_weight_ = std::max(max_weight_, weight);
     }
   }
 }
@@ -31,6 +37,10 @@ std::optional<CodewordMatch> Codebook::Decode(std::uint64_t code, int max_correc
   SEWER3D_CHECK(2 * max_corrected_bits < min_hamming_,
                 "correcting " << max_corrected_bits << " bits needs min Hamming > "
                               << 2 * max_corrected_bits);
+  // No codeword within reach of a word whose weight is too far from theirs: skips the 36
+  // flipped lookups for most words that cannot decode (empty or crowded windows).
+  const int weight = std::popcount(code);
+  if (weight < min_weight_ - max_corrected_bits || weight > max_weight_ + max_corrected_bits) return std::nullopt;
   if (const auto exact = Find(code)) return CodewordMatch{*exact, code, 0};
   if (max_corrected_bits == 0) return std::nullopt;
   const int bits = window_ * window_;

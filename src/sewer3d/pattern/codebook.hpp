@@ -47,6 +47,7 @@ class Codebook {
  private:
   int window_;
   int min_hamming_;
+  int min_weight_ = 64, max_weight_ = 0;  ///< popcount range of the codewords
   std::unordered_map<std::uint64_t, ArrayPosition> table_;
 };
 
