@@ -127,5 +127,25 @@ head -3 "$data/posegraph/tinyGrid3D.g2o" >"$tmp/g/cut.g2o"
 echo "EDGE_SE3:QUAT 0 1 1 0 0 0 0 0 1 100" >>"$tmp/g/cut.g2o"
 expect_error "line 4" "$bin" posegraph --in "$tmp/g/cut.g2o" --out "$tmp/g/x.g2o"
 
+# calibrate camera: real images, a board-less image skipped, too few views, mixed sizes.
+boards="$data/opencv-chessboard"
+mkdir -p "$tmp/c"
+for size in 640x480 320x240; do
+  "$bin" module --out "$tmp/c/m$size" --camera-size "$size" >/dev/null
+  "$bin" simulate frame --module "$tmp/c/m$size/module.json" --scene plane --supersampling 1 \
+    --out "$tmp/c/plain$size" >/dev/null
+done
+expect_ok "$bin" calibrate camera --images "$boards"/left0[1-4].jpg "$tmp/c/plain640x480/texture.png" --board 9x6 \
+  --square-mm 25 --out "$tmp/c/camera.json"
+grep -q "texture.png: 9x6 board not found, skipped" "$tmp/out" || fail "calibrate camera did not list the board-less image"
+grep -q '"rms_px"' "$tmp/c/camera.json" || fail "calibrate camera wrote no rms_px"
+[ -s "$tmp/c/left03_corners.png" ] || fail "calibrate camera wrote no corner picture"
+expect_error "at least 3" "$bin" calibrate camera --images "$boards/left01.jpg" "$boards/left02.jpg" --out "$tmp/c/x.json"
+expect_error "one camera, one size" "$bin" calibrate camera --images "$boards/left01.jpg" \
+  "$tmp/c/plain320x240/texture.png" --out "$tmp/c/x.json"
+expect_error "COLSxROWS" "$bin" calibrate camera --images "$boards/left01.jpg" --board nine --out "$tmp/c/x.json"
+printf 'x' >"$tmp/c/cut.png"
+expect_error "cut.png" "$bin" calibrate camera --images "$boards/left01.jpg" "$tmp/c/cut.png" --out "$tmp/c/x.json"
+
 if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
 echo "all CLI checks passed"

@@ -106,6 +106,9 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o);
 void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& prefix,
                        RenderOptions& o);
 
+/// A camera's intrinsics in the module file's form, over the fields `j` already holds.
+nlohmann::json IntrinsicsJson(const CameraIntrinsics& c, nlohmann::json j = nlohmann::json::object());
+
 const char* MaterialName(Material m);
 /// Throws via `in` when the name is not a material.
 Material ParseMaterial(const JsonReader& in, const std::string& name, const std::string& field);

@@ -7,6 +7,7 @@
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/json_reader.hpp"
 
 namespace sewer3d {
 namespace {
@@ -108,7 +109,14 @@ CameraIntrinsics ReadIntrinsics(const FieldReader& in, const json& root, const s
   return c;
 }
 
-json IntrinsicsJson(const CameraIntrinsics& c, json j) {
+json ObjectOr(const json& doc, const char* key) {
+  const auto it = doc.find(key);
+  return it != doc.end() && it->is_object() ? *it : json::object();
+}
+
+}  // namespace
+
+nlohmann::json IntrinsicsJson(const CameraIntrinsics& c, nlohmann::json j) {
   j["width"] = c.width;
   j["height"] = c.height;
   j["fx"] = c.fx;
@@ -119,12 +127,6 @@ json IntrinsicsJson(const CameraIntrinsics& c, json j) {
   return j;
 }
 
-json ObjectOr(const json& doc, const char* key) {
-  const auto it = doc.find(key);
-  return it != doc.end() && it->is_object() ? *it : json::object();
-}
-
-}  // namespace
 
 ModuleDescription ParseModule(const std::string& text, const std::filesystem::path& path) {
   json root;

@@ -1,0 +1,35 @@
+#pragma once
+/// \file
+/// Files of a camera calibration: the result JSON and, per image, a picture of the detected
+/// corners coloured by reprojection error. Errors are FileError.
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "sewer3d/calib/camera_calibration.hpp"
+
+namespace sewer3d {
+
+struct CameraCalibrationFile {
+  CalibrationResult result;
+  std::vector<std::string> images;   ///< used, in the order of result's views
+  std::vector<std::string> skipped;  ///< board not found
+  int board_cols = 0, board_rows = 0;
+  double square_mm = 0.0;
+};
+
+/// camera.json: {"camera": {module.json camera fields}, "rms_px", "sigma": {...},
+/// "views": [{"image", "rms_px"}], "skipped": [...], "board": {...}, "iterations", "converged"}.
+void WriteCameraCalibration(const std::filesystem::path& path, const CameraCalibrationFile& file);
+
+/// The image with each corner drawn as a disk coloured from green (0) to red (≥ 3 × rms_px)
+/// and its residual as a line 20× enlarged.
+void WriteCornerErrorImage(const std::filesystem::path& path, const cv::Mat& grey,
+                           const std::vector<Eigen::Vector2d>& corners, const std::vector<Eigen::Vector2d>& residuals,
+                           double rms_px);
+
+}  // namespace sewer3d
