@@ -18,7 +18,8 @@ struct ReprojectionCost {
   Eigen::Vector2d observed;
 
   template <typename T>
-  bool operator()(const T* focal_centre, const T* k, const T* rotation, const T* translation, T* residual) const {
+  bool operator()(const T* focal_centre, const T* k, const T* rotation, const T* translation,
+                  T* residual) const {
     const T point[3] = {T(board.x()), T(board.y()), T(board.z())};
     T p[3];
     ceres::AngleAxisRotatePoint(rotation, point, p);
@@ -35,7 +36,8 @@ struct ReprojectionCost {
 }  // namespace
 
 std::vector<Eigen::Vector3d> BoardCorners(int cols, int rows, double square_mm) {
-  SEWER3D_CHECK(cols >= 2 && rows >= 2 && square_mm > 0.0, "board " << cols << "x" << rows << ", square " << square_mm);
+  SEWER3D_CHECK(cols >= 2 && rows >= 2 && square_mm > 0.0,
+                "board " << cols << "x" << rows << ", square " << square_mm);
   std::vector<Eigen::Vector3d> corners;
   for (int i = 0; i < rows; ++i) {
     for (int j = 0; j < cols; ++j) corners.emplace_back(j * square_mm, i * square_mm, 0.0);
@@ -43,11 +45,13 @@ std::vector<Eigen::Vector3d> BoardCorners(int cols, int rows, double square_mm) 
   return corners;
 }
 
-CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views, const std::vector<Eigen::Vector3d>& board,
-                                  int width, int height, const CalibrationOptions& options) {
+CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views,
+                                  const std::vector<Eigen::Vector3d>& board, int width, int height,
+                                  const CalibrationOptions& options) {
   SEWER3D_CHECK(views.size() >= 3, "calibration needs at least 3 views, got " << views.size());
   SEWER3D_CHECK(width > 0 && height > 0, "image size");
-  for (const CalibrationView& v : views) SEWER3D_CHECK(v.corners_px.size() == board.size(), "view without all corners");
+  for (const CalibrationView& v : views)
+    SEWER3D_CHECK(v.corners_px.size() == board.size(), "view without all corners");
   // Zhang's initialisation (OpenCV): focal lengths from the views' homographies with the
   // principal point at the image centre, then each view's pose without distortion.
   std::vector<std::vector<cv::Point3f>> object(views.size());
@@ -59,20 +63,23 @@ CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views, con
     }
   }
   const cv::Mat k0 = cv::initCameraMatrix2D(object, image, cv::Size(width, height));
-  double focal_centre[4] = {k0.at<double>(0, 0), k0.at<double>(1, 1), k0.at<double>(0, 2), k0.at<double>(1, 2)};
+  double focal_centre[4] = {k0.at<double>(0, 0), k0.at<double>(1, 1), k0.at<double>(0, 2),
+                            k0.at<double>(1, 2)};
   double k[3] = {0.0, 0.0, 0.0};
   std::vector<std::array<double, 6>> poses(views.size());
   for (size_t v = 0; v < views.size(); ++v) {
     cv::Mat rvec, tvec;
     cv::solvePnP(object[v], image[v], k0, cv::noArray(), rvec, tvec);
-    for (int i = 0; i < 3; ++i) poses[v][i] = rvec.at<double>(i), poses[v][3 + i] = tvec.at<double>(i);
+    for (int i = 0; i < 3; ++i)
+      poses[v][i] = rvec.at<double>(i), poses[v][3 + i] = tvec.at<double>(i);
   }
   ceres::Problem problem;
   for (size_t v = 0; v < views.size(); ++v) {
     for (size_t i = 0; i < board.size(); ++i) {
       auto* cost = new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 4, 3, 3, 3>(
           new ReprojectionCost{board[i], views[v].corners_px[i]});
-      problem.AddResidualBlock(cost, nullptr, focal_centre, k, poses[v].data(), poses[v].data() + 3);
+      problem.AddResidualBlock(cost, nullptr, focal_centre, k, poses[v].data(),
+                               poses[v].data() + 3);
     }
   }
   if (options.fix_k3) problem.SetManifold(k, new ceres::SubsetManifold(3, {2}));
@@ -97,13 +104,16 @@ CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views, con
   for (size_t v = 0; v < views.size(); ++v) {
     const Eigen::Vector3d rvec(poses[v][0], poses[v][1], poses[v][2]);
     const double angle = rvec.norm();
-    const Eigen::Quaterniond q(angle > 0 ? Eigen::AngleAxisd(angle, rvec / angle) : Eigen::AngleAxisd::Identity());
-    result.camera_from_board.emplace_back(q, Eigen::Vector3d(poses[v][3], poses[v][4], poses[v][5]));
+    const Eigen::Quaterniond q(angle > 0 ? Eigen::AngleAxisd(angle, rvec / angle)
+                                         : Eigen::AngleAxisd::Identity());
+    result.camera_from_board.emplace_back(q,
+                                          Eigen::Vector3d(poses[v][3], poses[v][4], poses[v][5]));
     std::vector<Eigen::Vector2d> residuals;
     double view_sum = 0.0;
     for (size_t i = 0; i < board.size(); ++i) {
       Eigen::Vector2d r;
-      ReprojectionCost{board[i], views[v].corners_px[i]}(focal_centre, k, poses[v].data(), poses[v].data() + 3, r.data());
+      ReprojectionCost{board[i], views[v].corners_px[i]}(focal_centre, k, poses[v].data(),
+                                                         poses[v].data() + 3, r.data());
       residuals.push_back(-r);  // observed − projected
       view_sum += r.squaredNorm();
     }
@@ -123,8 +133,10 @@ CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views, con
     double cfc[16], ck[9];
     covariance.GetCovarianceBlock(focal_centre, focal_centre, cfc);
     covariance.GetCovarianceBlock(k, k, ck);
-    for (int i = 0; i < 4; ++i) result.sigma[i] = std::sqrt(std::max(0.0, cfc[i * 4 + i] * variance));
-    for (int i = 0; i < 3; ++i) result.sigma[4 + i] = std::sqrt(std::max(0.0, ck[i * 3 + i] * variance));
+    for (int i = 0; i < 4; ++i)
+      result.sigma[i] = std::sqrt(std::max(0.0, cfc[i * 4 + i] * variance));
+    for (int i = 0; i < 3; ++i)
+      result.sigma[4 + i] = std::sqrt(std::max(0.0, ck[i * 3 + i] * variance));
   }
   return result;
 }

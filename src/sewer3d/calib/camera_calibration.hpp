@@ -7,7 +7,6 @@
 /// the intrinsics from the estimate's covariance.
 
 #include <Eigen/Core>
-
 #include <vector>
 
 #include "sewer3d/camera/camera_model.hpp"
@@ -41,7 +40,8 @@ struct CalibrationOptions {
 };
 
 /// Needs at least 3 views with all corners; throws std::invalid_argument otherwise.
-CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views, const std::vector<Eigen::Vector3d>& board,
-                                  int image_width, int image_height, const CalibrationOptions& options = {});
+CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views,
+                                  const std::vector<Eigen::Vector3d>& board, int image_width,
+                                  int image_height, const CalibrationOptions& options = {});
 
 }  // namespace sewer3d

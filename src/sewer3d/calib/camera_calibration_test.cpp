@@ -7,6 +7,7 @@
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "sewer3d/calib/chessboard.hpp"
@@ -16,8 +17,10 @@ namespace {
 
 std::vector<CalibrationView> DetectAll() {
   std::vector<CalibrationView> views;
-  for (const char* name : {"01", "02", "03", "04", "05", "06", "07", "08", "09", "11", "12", "13", "14"}) {
-    const std::string path = std::string(SEWER3D_TEST_DATA_DIR) + "/opencv-chessboard/left" + name + ".jpg";
+  for (const char* name :
+       {"01", "02", "03", "04", "05", "06", "07", "08", "09", "11", "12", "13", "14"}) {
+    const std::string path =
+        std::string(SEWER3D_TEST_DATA_DIR) + "/opencv-chessboard/left" + name + ".jpg";
     const cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
     EXPECT_FALSE(grey.empty()) << path;
     const auto corners = DetectChessboard(grey, 9, 6);
@@ -43,14 +46,18 @@ TEST(CameraCalibration, AgreesWithOpenCvOnRealImages) {
   }
   cv::Mat k, d;
   std::vector<cv::Mat> rvecs, tvecs;
-  const double cv_rms = cv::calibrateCamera(object, image, {640, 480}, k, d, rvecs, tvecs, cv::CALIB_ZERO_TANGENT_DIST,
-                                            cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
-  std::printf("ours:   fx %.3f fy %.3f cx %.3f cy %.3f k (%.5f %.5f %.5f) RMS %.4f px (sigma fx %.3f cx %.3f)\n",
-              ours.intrinsics.fx, ours.intrinsics.fy, ours.intrinsics.cx, ours.intrinsics.cy, ours.intrinsics.k[0],
-              ours.intrinsics.k[1], ours.intrinsics.k[2], ours.rms_px, ours.sigma[0], ours.sigma[2]);
-  std::printf("OpenCV: fx %.3f fy %.3f cx %.3f cy %.3f k (%.5f %.5f %.5f) RMS %.4f px\n", k.at<double>(0, 0),
-              k.at<double>(1, 1), k.at<double>(0, 2), k.at<double>(1, 2), d.at<double>(0), d.at<double>(1),
-              d.at<double>(4), cv_rms);
+  const double cv_rms = cv::calibrateCamera(
+      object, image, {640, 480}, k, d, rvecs, tvecs, cv::CALIB_ZERO_TANGENT_DIST,
+      cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
+  std::printf(
+      "ours:   fx %.3f fy %.3f cx %.3f cy %.3f k (%.5f %.5f %.5f) RMS %.4f px (sigma fx %.3f cx "
+      "%.3f)\n",
+      ours.intrinsics.fx, ours.intrinsics.fy, ours.intrinsics.cx, ours.intrinsics.cy,
+      ours.intrinsics.k[0], ours.intrinsics.k[1], ours.intrinsics.k[2], ours.rms_px, ours.sigma[0],
+      ours.sigma[2]);
+  std::printf("OpenCV: fx %.3f fy %.3f cx %.3f cy %.3f k (%.5f %.5f %.5f) RMS %.4f px\n",
+              k.at<double>(0, 0), k.at<double>(1, 1), k.at<double>(0, 2), k.at<double>(1, 2),
+              d.at<double>(0), d.at<double>(1), d.at<double>(4), cv_rms);
   EXPECT_TRUE(ours.converged);
   EXPECT_NEAR(ours.intrinsics.fx / k.at<double>(0, 0), 1.0, 1e-3);
   EXPECT_NEAR(ours.intrinsics.fy / k.at<double>(1, 1), 1.0, 1e-3);
@@ -76,6 +83,65 @@ TEST(CameraCalibration, RejectsTooFewViews) {
 TEST(Chessboard, ReportsABoardThatIsNotThere) {
   const cv::Mat blank(480, 640, CV_8U, cv::Scalar(128));
   EXPECT_FALSE(DetectChessboard(blank, 9, 6).has_value());
+}
+
+}  // namespace
+}  // namespace sewer3d
+
+// Rendered checkerboard captures of a module with known intrinsics (realistic noise).
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/sim/board.hpp"
+#include "sewer3d/sim/renderer.hpp"
+
+namespace sewer3d {
+namespace {
+
+TEST(CameraCalibration, RecoversTheTrueCameraFromRenderedBoards) {
+  DefaultModuleOptions options;
+  options.camera_width = 1296;
+  options.camera_height = 972;
+  const ModuleDescription module = MakeDefaultModule(options);
+  Checkerboard board;
+  const auto poses = RandomBoardPoses(module, board, 10, 3);
+  std::vector<CalibrationView> views;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    RenderOptions o;
+    o.supersampling = 2;  // one sample per pixel leaves the square edges aliased
+    o.images = RenderImages::kTexture;
+    o.truth_depth = false;
+    o.seed = 10 + i;
+    const RenderedFrame frame =
+        RenderFrame(module, DefaultPatternArray(), BoardSurface(board, poses[i]), o);
+    cv::Mat grey;
+    cv::Mat rgb8;
+    frame.texture.convertTo(rgb8, CV_8U);
+    cv::cvtColor(rgb8, grey, cv::COLOR_RGB2GRAY);
+    const auto corners = DetectChessboard(grey, board.cols, board.rows);
+    ASSERT_TRUE(corners.has_value()) << "pose " << i;
+    views.push_back({*corners});
+  }
+  const CalibrationResult r =
+      CalibrateCamera(views, BoardCorners(board.cols, board.rows, board.square_mm),
+                      module.camera.width, module.camera.height);
+  const CameraIntrinsics& c = r.intrinsics;
+  std::printf(
+      "true fx %.3f cx %.3f cy %.3f k1 %.4f; calibrated fx %.3f fy %.3f cx %.3f cy %.3f k1 %.4f, "
+      "RMS %.3f px\n",
+      module.camera.fx, module.camera.cx, module.camera.cy, module.camera.k[0], c.fx, c.fy, c.cx,
+      c.cy, c.k[0], r.rms_px);
+  // Bounds: a few standard deviations of the estimate (sigma printed by the CLI: ~0.05 %).
+  EXPECT_NEAR(c.fx / module.camera.fx, 1.0, 2e-3);
+  EXPECT_NEAR(c.fy / module.camera.fy, 1.0, 2e-3);
+  EXPECT_NEAR(c.cx, module.camera.cx, 1.5);
+  EXPECT_NEAR(c.cy, module.camera.cy, 1.5);
+  EXPECT_NEAR(c.k[0], module.camera.k[0], 0.01);
+  EXPECT_LT(r.rms_px, 0.3);
+  // The poses are recovered too.
+  for (size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_LT((r.camera_from_board[i].translation - poses[i].translation).norm(),
+              0.01 * poses[i].translation.norm());
+  }
 }
 
 }  // namespace

@@ -7,8 +7,10 @@
 
 namespace sewer3d {
 
-std::optional<std::vector<Eigen::Vector2d>> DetectChessboard(const cv::Mat& grey, int cols, int rows) {
-  SEWER3D_CHECK(grey.channels() == 1 && grey.depth() == CV_8U, "checkerboard detection needs an 8-bit grey image");
+std::optional<std::vector<Eigen::Vector2d>> DetectChessboard(const cv::Mat& grey, int cols,
+                                                             int rows) {
+  SEWER3D_CHECK(grey.channels() == 1 && grey.depth() == CV_8U,
+                "checkerboard detection needs an 8-bit grey image");
   SEWER3D_CHECK(cols >= 2 && rows >= 2, "board " << cols << "x" << rows);
   std::vector<cv::Point2f> corners;
   if (!cv::findChessboardCorners(grey, cv::Size(cols, rows), corners,

@@ -147,5 +147,13 @@ expect_error "COLSxROWS" "$bin" calibrate camera --images "$boards/left01.jpg" -
 printf 'x' >"$tmp/c/cut.png"
 expect_error "cut.png" "$bin" calibrate camera --images "$boards/left01.jpg" "$tmp/c/cut.png" --out "$tmp/c/x.json"
 
+# simulate calibration: rendered board captures a calibration reads.
+expect_ok "$bin" simulate calibration --module "$tmp/c/m640x480/module.json" --poses 3 --supersampling 1 \
+  --out "$tmp/c/sim"
+for f in board.json truth/module.json truth/poses.json pose_00/texture.png pose_02/pattern.png; do
+  [ -s "$tmp/c/sim/$f" ] || fail "simulate calibration did not write $f"
+done
+expect_error "COLSxROWS" "$bin" simulate calibration --module "$tmp/c/m640x480/module.json" --board 9 --out "$tmp/c/s2"
+
 if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
 echo "all CLI checks passed"

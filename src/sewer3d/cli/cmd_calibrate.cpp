@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/chessboard.hpp"
@@ -36,8 +37,9 @@ int RunCamera(const CameraArgs& a) {
     const cv::Mat grey = ReadImage(path, cv::IMREAD_GRAYSCALE);
     if (size.empty()) size = grey.size();
     if (grey.size() != size) {
-      throw FileError(path, fmt::format("image is {}x{}, the first image {}x{}: one camera, one size", grey.cols,
-                                        grey.rows, size.width, size.height));
+      throw FileError(path,
+                      fmt::format("image is {}x{}, the first image {}x{}: one camera, one size",
+                                  grey.cols, grey.rows, size.width, size.height));
     }
     const auto corners = DetectChessboard(grey, file.board_cols, file.board_rows);
     if (!corners) {
@@ -50,8 +52,10 @@ int RunCamera(const CameraArgs& a) {
     file.images.push_back(path);
   }
   if (views.size() < 3) {
-    fmt::print(stderr, "sewer3d: error: the board was found in {} of {} images; calibration needs at least 3\n",
-               views.size(), a.images.size());
+    fmt::print(
+        stderr,
+        "sewer3d: error: the board was found in {} of {} images; calibration needs at least 3\n",
+        views.size(), a.images.size());
     return 1;
   }
   file.result = CalibrateCamera(views, board, size.width, size.height);
@@ -59,20 +63,33 @@ int RunCamera(const CameraArgs& a) {
   WriteCameraCalibration(a.out, file);
   const std::filesystem::path folder = std::filesystem::path(a.out).parent_path();
   if (!a.no_pictures) {
+    // Named after the image; after its folder and the image when names repeat (pose_00/texture.png,
+    // …).
+    std::set<std::string> stems;
+    bool repeated = false;
+    for (const std::string& image : file.images)
+      repeated |= !stems.insert(std::filesystem::path(image).stem().string()).second;
     for (size_t v = 0; v < views.size(); ++v) {
-      const auto picture = folder / (std::filesystem::path(file.images[v]).stem().string() + "_corners.png");
+      const std::filesystem::path image(file.images[v]);
+      const std::string name =
+          repeated ? image.parent_path().filename().string() + "_" + image.stem().string()
+                   : image.stem().string();
+      const auto picture = folder / (name + "_corners.png");
       WriteCornerErrorImage(picture, greys[v], views[v].corners_px, r.residuals_px[v], r.rms_px);
     }
   }
   const CameraIntrinsics& c = r.intrinsics;
-  fmt::print("calibrated {}x{} camera from {} of {} images ({} corners each): RMS {:.4f} px{}\n", c.width, c.height,
-             views.size(), a.images.size(), board.size(), r.rms_px, r.converged ? "" : " (not converged)");
-  fmt::print("fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f} px\n", c.fx, r.sigma[0],
-             c.fy, r.sigma[1], c.cx, r.sigma[2], c.cy, r.sigma[3]);
-  fmt::print("k  {:.5f} ± {:.5f}, {:.5f} ± {:.5f}, {:.5f} ± {:.5f}\n", c.k[0], r.sigma[4], c.k[1], r.sigma[5], c.k[2],
-             r.sigma[6]);
-  for (size_t v = 0; v < views.size(); ++v) fmt::print("  {:.4f} px  {}\n", r.view_rms_px[v], file.images[v]);
-  fmt::print("wrote {}{}\n", a.out, a.no_pictures ? "" : " and a <image>_corners.png per image beside it");
+  fmt::print("calibrated {}x{} camera from {} of {} images ({} corners each): RMS {:.4f} px{}\n",
+             c.width, c.height, views.size(), a.images.size(), board.size(), r.rms_px,
+             r.converged ? "" : " (not converged)");
+  fmt::print("fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f} px\n",
+             c.fx, r.sigma[0], c.fy, r.sigma[1], c.cx, r.sigma[2], c.cy, r.sigma[3]);
+  fmt::print("k  {:.5f} ± {:.5f}, {:.5f} ± {:.5f}, {:.5f} ± {:.5f}\n", c.k[0], r.sigma[4], c.k[1],
+             r.sigma[5], c.k[2], r.sigma[6]);
+  for (size_t v = 0; v < views.size(); ++v)
+    fmt::print("  {:.4f} px  {}\n", r.view_rms_px[v], file.images[v]);
+  fmt::print("wrote {}{}\n", a.out,
+             a.no_pictures ? "" : " and a <image>_corners.png per image beside it");
   return 0;
 }
 
@@ -80,9 +97,11 @@ int RunCamera(const CameraArgs& a) {
 
 Command AddCalibrateCommand(CLI::App& app) {
   auto args = std::make_shared<CameraArgs>();
-  CLI::App* sub = app.add_subcommand("calibrate", "Calibrate cameras and modules from checkerboard images");
+  CLI::App* sub =
+      app.add_subcommand("calibrate", "Calibrate cameras and modules from checkerboard images");
   sub->require_subcommand(1);
-  CLI::App* camera = sub->add_subcommand("camera", "Camera intrinsics (pinhole + 3-term radial) from checkerboard images");
+  CLI::App* camera = sub->add_subcommand(
+      "camera", "Camera intrinsics (pinhole + 3-term radial) from checkerboard images");
   camera->add_option("--images", args->images, "Checkerboard images (one camera, one size)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -91,12 +110,16 @@ Command AddCalibrateCommand(CLI::App& app) {
       ->check(CLI::Validator(
           [](std::string& s) {
             const auto size = ParseSize(s);
-            return size && size->first >= 2 && size->second >= 2 ? std::string() : "expected COLSxROWS, got " + s;
+            return size && size->first >= 2 && size->second >= 2 ? std::string()
+                                                                 : "expected COLSxROWS, got " + s;
           },
           "COLSxROWS"));
-  camera->add_option("--square-mm", args->square_mm, "Square size")->capture_default_str()->check(CLI::PositiveNumber);
+  camera->add_option("--square-mm", args->square_mm, "Square size")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   camera->add_option("--out", args->out, "Result JSON (camera.json)")->required();
-  camera->add_flag("--no-pictures", args->no_pictures, "Do not write the per-image corner pictures");
+  camera->add_flag("--no-pictures", args->no_pictures,
+                   "Do not write the per-image corner pictures");
   return {sub, [args, camera] { return camera->parsed() ? RunCamera(*args) : 2; }};
 }
 

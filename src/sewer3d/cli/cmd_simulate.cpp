@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/scene_io.hpp"
 #include "sewer3d/camera/default_module.hpp"
@@ -130,6 +131,7 @@ Command AddSimulateCommand(CLI::App& app) {
   };
   auto args = std::make_shared<Args>();
   auto run_args = std::make_shared<RunArgs>();
+  auto calibration_args = std::make_shared<CalibrationArgs>();
   CLI::App* sim = app.add_subcommand("simulate", "Render simulated captures");
   sim->require_subcommand(1);
   CLI::App* frame = sim->add_subcommand("frame", "Render one module's pattern and texture images of a scene");
@@ -161,7 +163,9 @@ Command AddSimulateCommand(CLI::App& app) {
       ->capture_default_str()->check(CLI::Range(0.0, 1000.0));
   frame->add_flag("--ideal", args->ideal, "No noise, defocus, ambient light or vignetting");
   AddRunCommand(*sim, *run_args);
-  return {sim, [args, run_args, frame] {
+  AddCalibrationCommand(*sim, *calibration_args);
+  return {sim, [args, run_args, calibration_args, frame] {
+            if (calibration_args->app->parsed()) return RunCalibration(*calibration_args);
             if (!frame->parsed()) return RunRun(*run_args);
             const LoadedModule loaded = LoadModule(args->module);
             Scene scene;

@@ -14,10 +14,14 @@ void WriteCameraCalibration(const std::filesystem::path& path, const CameraCalib
   nlohmann::json j;
   j["camera"] = IntrinsicsJson(r.intrinsics);
   j["rms_px"] = r.rms_px;
-  j["sigma"] = {{"fx", r.sigma[0]}, {"fy", r.sigma[1]}, {"cx", r.sigma[2]}, {"cy", r.sigma[3]},
+  j["sigma"] = {{"fx", r.sigma[0]},
+                {"fy", r.sigma[1]},
+                {"cx", r.sigma[2]},
+                {"cy", r.sigma[3]},
                 {"k", {r.sigma[4], r.sigma[5], r.sigma[6]}}};
   j["views"] = nlohmann::json::array();
-  for (size_t v = 0; v < f.images.size(); ++v) j["views"].push_back({{"image", f.images[v]}, {"rms_px", r.view_rms_px[v]}});
+  for (size_t v = 0; v < f.images.size(); ++v)
+    j["views"].push_back({{"image", f.images[v]}, {"rms_px", r.view_rms_px[v]}});
   j["skipped"] = f.skipped;
   j["board"] = {{"cols", f.board_cols}, {"rows", f.board_rows}, {"square_mm", f.square_mm}};
   j["iterations"] = r.iterations;
@@ -26,8 +30,8 @@ void WriteCameraCalibration(const std::filesystem::path& path, const CameraCalib
 }
 
 void WriteCornerErrorImage(const std::filesystem::path& path, const cv::Mat& grey,
-                           const std::vector<Eigen::Vector2d>& corners, const std::vector<Eigen::Vector2d>& residuals,
-                           double rms_px) {
+                           const std::vector<Eigen::Vector2d>& corners,
+                           const std::vector<Eigen::Vector2d>& residuals, double rms_px) {
   cv::Mat picture;
   cv::cvtColor(grey, picture, cv::COLOR_GRAY2BGR);
   const double full = std::max(1e-9, 3.0 * rms_px);
@@ -36,10 +40,11 @@ void WriteCornerErrorImage(const std::filesystem::path& path, const cv::Mat& gre
     const cv::Scalar colour(0, 255 * (1.0 - t), 255 * t);  // BGR: green to red
     const cv::Point2d p(corners[i].x(), corners[i].y());
     cv::circle(picture, p, 4, colour, cv::FILLED, cv::LINE_AA);
-    cv::line(picture, p, p + 20.0 * cv::Point2d(residuals[i].x(), residuals[i].y()), colour, 1, cv::LINE_AA);
+    cv::line(picture, p, p + 20.0 * cv::Point2d(residuals[i].x(), residuals[i].y()), colour, 1,
+             cv::LINE_AA);
   }
-  cv::putText(picture, cv::format("RMS %.3f px (red: >= %.2f px)", rms_px, full), {8, 20}, cv::FONT_HERSHEY_SIMPLEX,
-              0.6, {0, 255, 255}, 1, cv::LINE_AA);
+  cv::putText(picture, cv::format("RMS %.3f px (red: >= %.2f px)", rms_px, full), {8, 20},
+              cv::FONT_HERSHEY_SIMPLEX, 0.6, {0, 255, 255}, 1, cv::LINE_AA);
   WriteImage(path, picture);
 }
 

@@ -4,7 +4,6 @@
 /// corners coloured by reprojection error. Errors are FileError.
 
 #include <Eigen/Core>
-
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <string>
@@ -29,7 +28,7 @@ void WriteCameraCalibration(const std::filesystem::path& path, const CameraCalib
 /// The image with each corner drawn as a disk coloured from green (0) to red (≥ 3 × rms_px)
 /// and its residual as a line 20× enlarged.
 void WriteCornerErrorImage(const std::filesystem::path& path, const cv::Mat& grey,
-                           const std::vector<Eigen::Vector2d>& corners, const std::vector<Eigen::Vector2d>& residuals,
-                           double rms_px);
+                           const std::vector<Eigen::Vector2d>& corners,
+                           const std::vector<Eigen::Vector2d>& residuals, double rms_px);
 
 }  // namespace sewer3d

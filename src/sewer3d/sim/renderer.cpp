@@ -83,7 +83,9 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
   const auto hit = s.surface.Intersect(origin, direction);
   if (!hit) return out;
   const RenderOptions& o = s.o;
-  const Eigen::Vector3d albedo = MaterialAlbedo(hit->material, s.surface.MaterialSeed(), hit->surface_mm);
+  const Eigen::Vector3d albedo = hit->albedo.allFinite()
+                                     ? hit->albedo
+                                     : MaterialAlbedo(hit->material, s.surface.MaterialSeed(), hit->surface_mm);
   const double grey = albedo.mean();
   const double vignetting = o.vignetting ? std::pow(cos_alpha, 4) : 1.0;
   if (o.images != RenderImages::kPattern) {

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,6 +56,8 @@ struct SurfaceHit {
   Eigen::Vector3d normal;          ///< unit, facing the ray origin
   Eigen::Vector2d surface_mm;      ///< 2-D surface coordinates for textures (unrolled wall)
   Material material = Material::kConcrete;  ///< what the surface is made of there
+  /// Albedo given by the surface itself (a printed target); NaN: from the material.
+  Eigen::Vector3d albedo = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// First intersection with t > 0 of origin + t * direction; nullopt when the ray misses.

@@ -1,0 +1,90 @@
+// `sewer3d simulate calibration`: rendered checkerboard captures of a module for calibration,
+// each pose twice (board lit, pattern off; pattern on, ambient off), with the truth.
+
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/simulate_commands.hpp"
+#include "sewer3d/io/module_io.hpp"
+#include "sewer3d/io/scene_io.hpp"
+#include "sewer3d/io/text_file.hpp"
+#include "sewer3d/sim/board.hpp"
+#include "sewer3d/sim/renderer.hpp"
+
+namespace sewer3d::cli {
+
+void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& a) {
+  CLI::App* sub =
+      sim.add_subcommand("calibration", "Render checkerboard captures of a module for calibration");
+  sub->add_option("--module", a.module, "The true module.json")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--poses", a.poses, "Board poses")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 200));
+  sub->add_option("--out", a.out, "Capture folder")->required();
+  sub->add_option("--seed", a.seed, "Poses and noise seed")->capture_default_str();
+  sub->add_option("--board", a.board, "Inner corners COLSxROWS")->capture_default_str();
+  sub->add_option("--square-mm", a.square_mm, "Square size")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--supersampling", a.supersampling, "S x S samples per pixel")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16));
+  a.app = sub;
+}
+
+int RunCalibration(const CalibrationArgs& a) {
+  const auto size = ParseSize(a.board);
+  if (!size || size->first < 2 || size->second < 2) {
+    fmt::print(stderr, "sewer3d: error: --board: expected COLSxROWS, got {}\n", a.board);
+    return 2;
+  }
+  const LoadedModule loaded = LoadModule(a.module);
+  Checkerboard board;
+  board.cols = size->first;
+  board.rows = size->second;
+  board.square_mm = a.square_mm;
+  const std::vector<Rigid3d> poses = RandomBoardPoses(loaded.module, board, a.poses, a.seed);
+  const std::filesystem::path out(a.out);
+  nlohmann::json truth;
+  truth["board"] = {{"cols", board.cols}, {"rows", board.rows}, {"square_mm", board.square_mm}};
+  truth["poses"] = nlohmann::json::array();
+  WriteTextFile(out / "board.json", nlohmann::json(truth["board"]).dump(2) + "\n");
+  SaveModule(out / "truth" / "module.json", loaded.module);
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const std::filesystem::path dir = out / fmt::format("pose_{:02d}", i);
+    const BoardSurface surface(board, poses[i]);
+    RenderOptions o;
+    o.supersampling = a.supersampling;
+    o.seed = a.seed * 1000 + i;
+    o.images = RenderImages::kTexture;  // board lit, pattern off
+    const RenderedFrame texture = RenderFrame(loaded.module, loaded.pattern, surface, o);
+    WriteTextureImage(dir / "texture.png", texture, o.sensor.bits);
+    o.images = RenderImages::kPattern;  // pattern on, ambient light off
+    o.ambient_level = 0.0;
+    o.truth_depth = false;
+    const RenderedFrame pattern = RenderFrame(loaded.module, loaded.pattern, surface, o);
+    WritePatternImage(dir / "pattern.png", pattern, o.sensor.bits);
+    const Eigen::Matrix3d r = poses[i].RotationMatrix();
+    const Eigen::Vector3d& t = poses[i].translation;
+    truth["poses"].push_back(
+        {{"camera_from_board",
+          {{"rotation",
+            {r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}},
+           {"translation_mm", {t.x(), t.y(), t.z()}}}}});
+    fmt::print(stderr, "\rsimulate calibration: {}/{} poses ", i + 1, poses.size());
+  }
+  fmt::print(stderr, "\n");
+  WriteTextFile(out / "truth" / "poses.json", truth.dump(2) + "\n");
+  fmt::print(
+      "wrote {} poses of a {}x{} board ({} mm squares) to {}: pose_NN/texture.png, pattern.png; "
+      "truth/\n",
+      poses.size(), board.cols, board.rows, board.square_mm, a.out);
+  return 0;
+}
+
+}  // namespace sewer3d::cli

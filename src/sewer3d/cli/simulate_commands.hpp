@@ -1,0 +1,23 @@
+#pragma once
+/// \file
+/// Pieces of `sewer3d simulate` kept in their own files.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+
+namespace sewer3d::cli {
+
+struct CalibrationArgs {
+  CLI::App* app = nullptr;
+  std::string module, out, board = "9x6";
+  int poses = 20;
+  std::uint64_t seed = 1;
+  double square_mm = 10.0;
+  int supersampling = 3;
+};
+
+void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& args);
+int RunCalibration(const CalibrationArgs& args);
+
+}  // namespace sewer3d::cli
