@@ -6,34 +6,10 @@
 #include <cmath>
 #include <opencv2/calib3d.hpp>
 
+#include "sewer3d/calib/reprojection.hpp"
 #include "sewer3d/core/check.hpp"
 
 namespace sewer3d {
-namespace {
-
-// Pixel of a board point: rotate (angle-axis) and translate into the camera, then the
-// module's camera model, x_d = x (1 + k1 r² + k2 r⁴ + k3 r⁶).
-struct ReprojectionCost {
-  Eigen::Vector3d board;
-  Eigen::Vector2d observed;
-
-  template <typename T>
-  bool operator()(const T* focal_centre, const T* k, const T* rotation, const T* translation,
-                  T* residual) const {
-    const T point[3] = {T(board.x()), T(board.y()), T(board.z())};
-    T p[3];
-    ceres::AngleAxisRotatePoint(rotation, point, p);
-    for (int i = 0; i < 3; ++i) p[i] += translation[i];
-    const T x = p[0] / p[2], y = p[1] / p[2];
-    const T r2 = x * x + y * y;
-    const T d = T(1.0) + r2 * (k[0] + r2 * (k[1] + r2 * k[2]));
-    residual[0] = focal_centre[0] * x * d + focal_centre[2] - T(observed.x());
-    residual[1] = focal_centre[1] * y * d + focal_centre[3] - T(observed.y());
-    return true;
-  }
-};
-
-}  // namespace
 
 std::vector<Eigen::Vector3d> BoardCorners(int cols, int rows, double square_mm) {
   SEWER3D_CHECK(cols >= 2 && rows >= 2 && square_mm > 0.0,

@@ -155,5 +155,10 @@ for f in board.json truth/module.json truth/poses.json pose_00/texture.png pose_
 done
 expect_error "COLSxROWS" "$bin" simulate calibration --module "$tmp/c/m640x480/module.json" --board 9 --out "$tmp/c/s2"
 
+# calibrate module: the capture folder must hold at least 3 poses.
+mkdir -p "$tmp/c/few" && cp -r "$tmp/c/sim/pose_00" "$tmp/c/few/"
+expect_error "at least 3" "$bin" calibrate module --captures "$tmp/c/few" --board 9x6 --out "$tmp/c/mod.json"
+expect_error "--captures" "$bin" calibrate module --captures "$tmp/c/none" --out "$tmp/c/mod.json"
+
 if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
 echo "all CLI checks passed"

@@ -1,0 +1,179 @@
+#include "sewer3d/calib/module_calibration.hpp"
+
+#include <ceres/ceres.h>
+#include <ceres/rotation.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+
+#include "sewer3d/calib/camera_calibration.hpp"
+#include "sewer3d/calib/reprojection.hpp"
+#include "sewer3d/core/check.hpp"
+
+namespace sewer3d {
+namespace {
+
+std::array<double, 6> ToAngleAxis(const Rigid3d& pose) {
+  const Eigen::AngleAxisd aa(pose.rotation);
+  const Eigen::Vector3d r = aa.angle() * aa.axis();
+  return {r.x(), r.y(), r.z(), pose.translation.x(), pose.translation.y(), pose.translation.z()};
+}
+
+Rigid3d FromAngleAxis(const double* p) {
+  const Eigen::Vector3d r(p[0], p[1], p[2]);
+  const double angle = r.norm();
+  const Eigen::Quaterniond q(angle > 0 ? Eigen::AngleAxisd(angle, r / angle)
+                                       : Eigen::AngleAxisd::Identity());
+  return {q, Eigen::Vector3d(p[3], p[4], p[5])};
+}
+
+}  // namespace
+
+std::vector<std::optional<Eigen::Vector2d>> CornersInProjector(
+    const std::vector<Eigen::Vector2d>& corners, const std::vector<Eigen::Vector2d>& camera_px,
+    const std::vector<Eigen::Vector2d>& projector_px, const CornerTransferOptions& o) {
+  SEWER3D_CHECK(camera_px.size() == projector_px.size(), "spot correspondences");
+  std::vector<std::optional<Eigen::Vector2d>> out;
+  std::vector<cv::Point2d> src, dst;
+  for (const Eigen::Vector2d& corner : corners) {
+    src.clear();
+    dst.clear();
+    for (size_t i = 0; i < camera_px.size(); ++i) {
+      if ((camera_px[i] - corner).squaredNorm() > o.radius_px * o.radius_px) continue;
+      src.emplace_back(camera_px[i].x(), camera_px[i].y());
+      dst.emplace_back(projector_px[i].x(), projector_px[i].y());
+    }
+    if (static_cast<int>(src.size()) < o.min_spots) {
+      out.emplace_back();
+      continue;
+    }
+    cv::Mat inliers;
+    const cv::Mat h = cv::findHomography(src, dst, cv::RANSAC, o.ransac_px, inliers);
+    if (h.empty() || cv::countNonZero(inliers) < o.min_spots) {
+      out.emplace_back();
+      continue;
+    }
+    const Eigen::Vector3d q(
+        h.at<double>(0, 0) * corner.x() + h.at<double>(0, 1) * corner.y() + h.at<double>(0, 2),
+        h.at<double>(1, 0) * corner.x() + h.at<double>(1, 1) * corner.y() + h.at<double>(1, 2),
+        h.at<double>(2, 0) * corner.x() + h.at<double>(2, 1) * corner.y() + h.at<double>(2, 2));
+    out.emplace_back(q.head<2>() / q.z());
+  }
+  return out;
+}
+
+ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>& views,
+                                        const std::vector<Eigen::Vector3d>& board, int camera_width,
+                                        int camera_height, int projector_width,
+                                        int projector_height) {
+  SEWER3D_CHECK(views.size() >= 3,
+                "module calibration needs at least 3 views, got " << views.size());
+  // Each device alone first (Zhang + refinement), then both together.
+  std::vector<CalibrationView> camera_views, projector_views;
+  for (const auto& v : views) {
+    camera_views.push_back({v.camera_corners});
+    projector_views.push_back({v.projector_corners});
+  }
+  const CalibrationResult camera =
+      CalibrateCamera(camera_views, board, camera_width, camera_height);
+  const CalibrationResult projector =
+      CalibrateCamera(projector_views, board, projector_width, projector_height);
+  // Extrinsics: the first view's projector_from_board · board_from_camera.
+  const Rigid3d extrinsic0 = projector.camera_from_board[0] * camera.camera_from_board[0].Inverse();
+
+  double camera_fc[4] = {camera.intrinsics.fx, camera.intrinsics.fy, camera.intrinsics.cx,
+                         camera.intrinsics.cy};
+  double camera_k[3] = {camera.intrinsics.k[0], camera.intrinsics.k[1], camera.intrinsics.k[2]};
+  double projector_fc[4] = {projector.intrinsics.fx, projector.intrinsics.fy,
+                            projector.intrinsics.cx, projector.intrinsics.cy};
+  double projector_k[3] = {projector.intrinsics.k[0], projector.intrinsics.k[1],
+                           projector.intrinsics.k[2]};
+  std::array<double, 6> extrinsic = ToAngleAxis(extrinsic0);
+  std::vector<std::array<double, 6>> poses;
+  for (const Rigid3d& p : camera.camera_from_board) poses.push_back(ToAngleAxis(p));
+  ceres::Problem problem;
+  for (size_t v = 0; v < views.size(); ++v) {
+    for (size_t i = 0; i < board.size(); ++i) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 4, 3, 3, 3>(
+                                   new ReprojectionCost{board[i], views[v].camera_corners[i]}),
+                               nullptr, camera_fc, camera_k, poses[v].data(), poses[v].data() + 3);
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<StereoReprojectionCost, 2, 4, 3, 3, 3, 3, 3>(
+              new StereoReprojectionCost{board[i], views[v].projector_corners[i]}),
+          nullptr, projector_fc, projector_k, poses[v].data(), poses[v].data() + 3,
+          extrinsic.data(), extrinsic.data() + 3);
+    }
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_SCHUR;
+  solver.max_num_iterations = 200;
+  solver.function_tolerance = 1e-14;
+  solver.gradient_tolerance = 1e-14;
+  solver.parameter_tolerance = 1e-12;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+
+  ModuleCalibrationResult r;
+  r.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  r.converged = summary.termination_type == ceres::CONVERGENCE;
+  auto intrinsics = [](const double* fc, const double* k, int w, int h) {
+    CameraIntrinsics c;
+    c.width = w, c.height = h, c.fx = fc[0], c.fy = fc[1], c.cx = fc[2], c.cy = fc[3],
+    c.k = {k[0], k[1], k[2]};
+    return c;
+  };
+  r.camera = intrinsics(camera_fc, camera_k, camera_width, camera_height);
+  r.projector = intrinsics(projector_fc, projector_k, projector_width, projector_height);
+  r.projector_from_camera = FromAngleAxis(extrinsic.data());
+  double camera_total = 0.0, projector_total = 0.0;
+  for (size_t v = 0; v < views.size(); ++v) {
+    double cs = 0.0, ps = 0.0;
+    for (size_t i = 0; i < board.size(); ++i) {
+      Eigen::Vector2d rc, rp;
+      ReprojectionCost{board[i], views[v].camera_corners[i]}(camera_fc, camera_k, poses[v].data(),
+                                                             poses[v].data() + 3, rc.data());
+      StereoReprojectionCost{board[i], views[v].projector_corners[i]}(
+          projector_fc, projector_k, poses[v].data(), poses[v].data() + 3, extrinsic.data(),
+          extrinsic.data() + 3, rp.data());
+      cs += rc.squaredNorm();
+      ps += rp.squaredNorm();
+    }
+    camera_total += cs;
+    projector_total += ps;
+    r.view_camera_rms_px.push_back(std::sqrt(cs / board.size()));
+    r.view_projector_rms_px.push_back(std::sqrt(ps / board.size()));
+  }
+  const double points = static_cast<double>(views.size() * board.size());
+  r.camera_rms_px = std::sqrt(camera_total / points);
+  r.projector_rms_px = std::sqrt(projector_total / points);
+  // Uncertainties from the covariance, scaled by the residual variance per coordinate.
+  ceres::Covariance covariance({});
+  const std::vector<std::pair<const double*, const double*>> blocks{
+      {camera_fc, camera_fc},
+      {projector_fc, projector_fc},
+      {extrinsic.data(), extrinsic.data()},
+      {extrinsic.data() + 3, extrinsic.data() + 3}};
+  if (covariance.Compute(blocks, &problem)) {
+    const double dof = 4.0 * points - 20.0 - 6.0 * views.size();
+    const double variance = dof > 0 ? (camera_total + projector_total) / dof : 0.0;
+    double c4[16], p4[16], rot[9], tr[9];
+    covariance.GetCovarianceBlock(camera_fc, camera_fc, c4);
+    covariance.GetCovarianceBlock(projector_fc, projector_fc, p4);
+    covariance.GetCovarianceBlock(extrinsic.data(), extrinsic.data(), rot);
+    covariance.GetCovarianceBlock(extrinsic.data() + 3, extrinsic.data() + 3, tr);
+    for (int i = 0; i < 4; ++i) {
+      r.sigma[i] = std::sqrt(std::max(0.0, c4[i * 5] * variance));
+      r.sigma[4 + i] = std::sqrt(std::max(0.0, p4[i * 5] * variance));
+    }
+    // Baseline length |t|: σ² = tᵀ Σ t / |t|².
+    const Eigen::Vector3d t(extrinsic[3], extrinsic[4], extrinsic[5]);
+    const Eigen::Matrix3d st = Eigen::Map<const Eigen::Matrix3d>(tr) * variance;
+    r.sigma[8] = std::sqrt(std::max(0.0, t.dot(st * t))) / std::max(1e-12, t.norm());
+    r.sigma[9] = std::sqrt(std::max({rot[0], rot[4], rot[8], 0.0}) * variance) * 180.0 /
+                 3.14159265358979323846;
+  }
+  return r;
+}
+
+}  // namespace sewer3d

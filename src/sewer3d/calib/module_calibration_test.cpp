@@ -1,0 +1,81 @@
+// Module calibration on exact synthetic correspondences with pixel noise, and the corner
+// transfer by local homographies.
+
+#include "sewer3d/calib/module_calibration.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <random>
+
+#include "sewer3d/calib/camera_calibration.hpp"
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/sim/board.hpp"
+
+namespace sewer3d {
+namespace {
+
+TEST(ModuleCalibration, RecoversCameraProjectorAndExtrinsics) {
+  DefaultModuleOptions options;
+  options.camera_width = 1296;
+  options.camera_height = 972;
+  const ModuleDescription truth = MakeDefaultModule(options);
+  Checkerboard board;
+  const auto poses = RandomBoardPoses(truth, board, 20, 5);
+  const auto corners = BoardCorners(board.cols, board.rows, board.square_mm);
+  const CameraModel camera(truth.camera), projector(truth.projector);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.1);  // px, a good corner detector's
+  std::vector<ModuleCalibrationView> views;
+  for (const Rigid3d& pose : poses) {
+    ModuleCalibrationView v;
+    for (const Eigen::Vector3d& x : corners) {
+      const Eigen::Vector3d p = pose * x;
+      v.camera_corners.push_back(*camera.Project(p) + Eigen::Vector2d(noise(rng), noise(rng)));
+      v.projector_corners.push_back(*projector.Project(truth.projector_from_camera * p) +
+                                    Eigen::Vector2d(noise(rng), noise(rng)));
+    }
+    views.push_back(v);
+  }
+  const ModuleCalibrationResult r =
+      CalibrateModule(views, corners, truth.camera.width, truth.camera.height,
+                      truth.projector.width, truth.projector.height);
+  EXPECT_TRUE(r.converged);
+  // RMS of 2-D residuals with σ = 0.1 px per coordinate: 0.1 √2, less the fitted freedom.
+  EXPECT_NEAR(r.camera_rms_px, 0.1 * std::sqrt(2.0), 0.01);
+  EXPECT_NEAR(r.projector_rms_px, 0.1 * std::sqrt(2.0), 0.01);
+  // The bounds: focal lengths 0.1 %, principal points 1 px, baseline 0.1 mm, 0.05°.
+  EXPECT_NEAR(r.camera.fx / truth.camera.fx, 1.0, 1e-3);
+  EXPECT_NEAR(r.projector.fy / truth.projector.fy, 1.0, 1e-3);
+  EXPECT_NEAR(r.camera.cx, truth.camera.cx, 1.0);
+  EXPECT_NEAR(r.projector.cy, truth.projector.cy, 1.0);
+  const double baseline = r.projector_from_camera.translation.norm();
+  EXPECT_NEAR(baseline, truth.projector_from_camera.translation.norm(), 0.1);
+  EXPECT_LT(r.projector_from_camera.rotation.angularDistance(truth.projector_from_camera.rotation) *
+                180.0 / M_PI,
+            0.05);
+  EXPECT_GT(r.sigma[8], 0.0);
+}
+
+TEST(CornerTransfer, FollowsTheLocalHomography) {
+  Eigen::Matrix3d h;
+  h << 1.1, 0.05, 30.0, -0.02, 0.95, 12.0, 1e-5, 2e-5, 1.0;
+  std::vector<Eigen::Vector2d> camera, projector;
+  for (int y = 0; y < 400; y += 8) {
+    for (int x = 0; x < 400; x += 8) {
+      const Eigen::Vector3d q = h * Eigen::Vector3d(x, y, 1.0);
+      camera.emplace_back(x, y);
+      projector.push_back(q.head<2>() / q.z());
+    }
+  }
+  projector[1000] += Eigen::Vector2d(40.0, 0.0);  // a wrong decode: RANSAC drops it
+  const std::vector<Eigen::Vector2d> corners{{200.5, 199.25}, {1000.0, 1000.0}};
+  const auto out = CornersInProjector(corners, camera, projector);
+  ASSERT_TRUE(out[0].has_value());
+  const Eigen::Vector3d q = h * Eigen::Vector3d(200.5, 199.25, 1.0);
+  EXPECT_LT((*out[0] - q.head<2>() / q.z()).norm(), 1e-6);
+  EXPECT_FALSE(out[1].has_value());  // no spots near it
+}
+
+}  // namespace
+}  // namespace sewer3d
