@@ -15,7 +15,7 @@
 namespace sewer3d {
 
 struct CornerTransferOptions {
-  double radius_px = 60.0;  ///< decoded spots used around each corner (camera px)
+  double radius_px = 90.0;  ///< decoded spots used around each corner (camera px)
   int min_spots = 12;       ///< fewer: the corner is not transferred
   double ransac_px = 1.0;   ///< inlier threshold of the homography, projector px
 };
