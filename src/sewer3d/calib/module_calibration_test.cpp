@@ -73,7 +73,7 @@ TEST(CornerTransfer, FollowsTheLocalHomography) {
   const auto out = CornersInProjector(corners, camera, projector);
   ASSERT_TRUE(out[0].has_value());
   const Eigen::Vector3d q = h * Eigen::Vector3d(200.5, 199.25, 1.0);
-  EXPECT_LT((*out[0] - q.head<2>() / q.z()).norm(), 1e-6);
+  EXPECT_LT((*out[0] - q.head<2>() / q.z()).norm(), 1e-5);  // findHomography refines to ~1e-6 px
   EXPECT_FALSE(out[1].has_value());  // no spots near it
 }
 
