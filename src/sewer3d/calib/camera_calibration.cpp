@@ -4,6 +4,7 @@
 #include <ceres/rotation.h>
 
 #include <cmath>
+#include <tuple>
 #include <opencv2/calib3d.hpp>
 
 #include "sewer3d/calib/reprojection.hpp"
@@ -59,31 +60,12 @@ CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views,
     }
   }
   if (options.fix_k3) problem.SetManifold(k, new ceres::SubsetManifold(3, {2}));
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_SCHUR;
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = 1e-14;
-  solver.gradient_tolerance = 1e-14;
-  solver.parameter_tolerance = 1e-12;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-
   CalibrationResult result;
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
-  CameraIntrinsics& c = result.intrinsics;
-  c.width = width;
-  c.height = height;
-  c.fx = focal_centre[0], c.fy = focal_centre[1], c.cx = focal_centre[2], c.cy = focal_centre[3];
-  c.k = {k[0], k[1], k[2]};
+  std::tie(result.iterations, result.converged) = SolveCalibration(problem, options.max_iterations);
+  result.intrinsics = IntrinsicsFrom(focal_centre, k, width, height);
   double total = 0.0;
   for (size_t v = 0; v < views.size(); ++v) {
-    const Eigen::Vector3d rvec(poses[v][0], poses[v][1], poses[v][2]);
-    const double angle = rvec.norm();
-    const Eigen::Quaterniond q(angle > 0 ? Eigen::AngleAxisd(angle, rvec / angle)
-                                         : Eigen::AngleAxisd::Identity());
-    result.camera_from_board.emplace_back(q,
-                                          Eigen::Vector3d(poses[v][3], poses[v][4], poses[v][5]));
+    result.camera_from_board.push_back(PoseFromAngleAxis(poses[v].data()));
     std::vector<Eigen::Vector2d> residuals;
     double view_sum = 0.0;
     for (size_t i = 0; i < board.size(); ++i) {

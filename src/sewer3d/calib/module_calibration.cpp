@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <tuple>
 #include <opencv2/calib3d.hpp>
 
 #include "sewer3d/calib/camera_calibration.hpp"
@@ -12,23 +13,6 @@
 #include "sewer3d/core/check.hpp"
 
 namespace sewer3d {
-namespace {
-
-std::array<double, 6> ToAngleAxis(const Rigid3d& pose) {
-  const Eigen::AngleAxisd aa(pose.rotation);
-  const Eigen::Vector3d r = aa.angle() * aa.axis();
-  return {r.x(), r.y(), r.z(), pose.translation.x(), pose.translation.y(), pose.translation.z()};
-}
-
-Rigid3d FromAngleAxis(const double* p) {
-  const Eigen::Vector3d r(p[0], p[1], p[2]);
-  const double angle = r.norm();
-  const Eigen::Quaterniond q(angle > 0 ? Eigen::AngleAxisd(angle, r / angle)
-                                       : Eigen::AngleAxisd::Identity());
-  return {q, Eigen::Vector3d(p[3], p[4], p[5])};
-}
-
-}  // namespace
 
 std::vector<std::optional<Eigen::Vector2d>> CornersInProjector(
     const std::vector<Eigen::Vector2d>& corners, const std::vector<Eigen::Vector2d>& camera_px,
@@ -89,9 +73,9 @@ ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>
                             projector.intrinsics.cx, projector.intrinsics.cy};
   double projector_k[3] = {projector.intrinsics.k[0], projector.intrinsics.k[1],
                            projector.intrinsics.k[2]};
-  std::array<double, 6> extrinsic = ToAngleAxis(extrinsic0);
+  std::array<double, 6> extrinsic = AngleAxisOf(extrinsic0);
   std::vector<std::array<double, 6>> poses;
-  for (const Rigid3d& p : camera.camera_from_board) poses.push_back(ToAngleAxis(p));
+  for (const Rigid3d& p : camera.camera_from_board) poses.push_back(AngleAxisOf(p));
   ceres::Problem problem;
   for (size_t v = 0; v < views.size(); ++v) {
     for (size_t i = 0; i < board.size(); ++i) {
@@ -105,27 +89,11 @@ ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>
           extrinsic.data(), extrinsic.data() + 3);
     }
   }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_SCHUR;
-  solver.max_num_iterations = 200;
-  solver.function_tolerance = 1e-14;
-  solver.gradient_tolerance = 1e-14;
-  solver.parameter_tolerance = 1e-12;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-
   ModuleCalibrationResult r;
-  r.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  r.converged = summary.termination_type == ceres::CONVERGENCE;
-  auto intrinsics = [](const double* fc, const double* k, int w, int h) {
-    CameraIntrinsics c;
-    c.width = w, c.height = h, c.fx = fc[0], c.fy = fc[1], c.cx = fc[2], c.cy = fc[3],
-    c.k = {k[0], k[1], k[2]};
-    return c;
-  };
-  r.camera = intrinsics(camera_fc, camera_k, camera_width, camera_height);
-  r.projector = intrinsics(projector_fc, projector_k, projector_width, projector_height);
-  r.projector_from_camera = FromAngleAxis(extrinsic.data());
+  std::tie(r.iterations, r.converged) = SolveCalibration(problem, 200);
+  r.camera = IntrinsicsFrom(camera_fc, camera_k, camera_width, camera_height);
+  r.projector = IntrinsicsFrom(projector_fc, projector_k, projector_width, projector_height);
+  r.projector_from_camera = PoseFromAngleAxis(extrinsic.data());
   double camera_total = 0.0, projector_total = 0.0;
   for (size_t v = 0; v < views.size(); ++v) {
     double cs = 0.0, ps = 0.0;

@@ -58,4 +58,42 @@ struct StereoReprojectionCost {
   }
 };
 
+// Poses as Ceres parameters: angle-axis (3) then translation (3).
+inline std::array<double, 6> AngleAxisOf(const Rigid3d& pose) {
+  const Eigen::AngleAxisd aa(pose.rotation);
+  const Eigen::Vector3d r = aa.angle() * aa.axis();
+  return {r.x(), r.y(), r.z(), pose.translation.x(), pose.translation.y(), pose.translation.z()};
+}
+
+inline Rigid3d PoseFromAngleAxis(const double* p) {
+  const Eigen::Vector3d r(p[0], p[1], p[2]);
+  const double angle = r.norm();
+  const Eigen::Quaterniond q(angle > 0 ? Eigen::AngleAxisd(angle, r / angle) : Eigen::AngleAxisd::Identity());
+  return {q, Eigen::Vector3d(p[3], p[4], p[5])};
+}
+
+// Intrinsics from the parameter blocks (fx, fy, cx, cy) and (k1, k2, k3).
+inline CameraIntrinsics IntrinsicsFrom(const double* focal_centre, const double* k, int width, int height) {
+  CameraIntrinsics c;
+  c.width = width;
+  c.height = height;
+  c.fx = focal_centre[0], c.fy = focal_centre[1], c.cx = focal_centre[2], c.cy = focal_centre[3];
+  c.k = {k[0], k[1], k[2]};
+  return c;
+}
+
+// Levenberg–Marquardt to tight tolerances (calibration problems are small); returns the
+// iterations taken and whether Ceres reported convergence.
+inline std::pair<int, bool> SolveCalibration(ceres::Problem& problem, int max_iterations) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_SCHUR;
+  options.max_num_iterations = max_iterations;
+  options.function_tolerance = 1e-14;
+  options.gradient_tolerance = 1e-14;
+  options.parameter_tolerance = 1e-12;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  return {static_cast<int>(summary.iterations.size()) - 1, summary.termination_type == ceres::CONVERGENCE};
+}
+
 }  // namespace sewer3d
