@@ -8,6 +8,7 @@
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
+#include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/scene_io.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -31,7 +32,11 @@ void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& a) {
   sub->add_option("--square-mm", a.square_mm, "Square size")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  sub->add_option("--supersampling", a.supersampling, "S x S samples per pixel")
+  sub->add_option("--supersampling", a.supersampling, "S x S samples per pixel of the pattern images")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16));
+  sub->add_option("--texture-supersampling", a.texture_supersampling,
+                  "S x S samples per pixel of the board images (corner accuracy needs S >= 4)")
       ->capture_default_str()
       ->check(CLI::Range(1, 16));
   a.app = sub;
@@ -54,16 +59,20 @@ int RunCalibration(const CalibrationArgs& a) {
   truth["board"] = {{"cols", board.cols}, {"rows", board.rows}, {"square_mm", board.square_mm}};
   truth["poses"] = nlohmann::json::array();
   WriteTextFile(out / "board.json", nlohmann::json(truth["board"]).dump(2) + "\n");
-  SaveModule(out / "truth" / "module.json", loaded.module);
+  ModuleDescription truth_module = loaded.module;  // loadable on its own: pattern beside it
+  truth_module.pattern.matrix_path = "pattern.png";
+  SaveModule(out / "truth" / "module.json", truth_module);
+  WritePatternMatrix(out / "truth" / "pattern.png", loaded.pattern);
   for (size_t i = 0; i < poses.size(); ++i) {
     const std::filesystem::path dir = out / fmt::format("pose_{:02d}", i);
     const BoardSurface surface(board, poses[i]);
     RenderOptions o;
-    o.supersampling = a.supersampling;
+    o.supersampling = a.texture_supersampling;
     o.seed = a.seed * 1000 + i;
     o.images = RenderImages::kTexture;  // board lit, pattern off
     const RenderedFrame texture = RenderFrame(loaded.module, loaded.pattern, surface, o);
     WriteTextureImage(dir / "texture.png", texture, o.sensor.bits);
+    o.supersampling = a.supersampling;
     o.images = RenderImages::kPattern;  // pattern on, ambient light off
     o.ambient_level = 0.0;
     o.truth_depth = false;
