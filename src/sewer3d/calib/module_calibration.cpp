@@ -18,6 +18,20 @@ std::vector<std::optional<Eigen::Vector2d>> CornersInProjector(
     const std::vector<Eigen::Vector2d>& corners, const std::vector<Eigen::Vector2d>& camera_px,
     const std::vector<Eigen::Vector2d>& projector_px, const CornerTransferOptions& o) {
   SEWER3D_CHECK(camera_px.size() == projector_px.size(), "spot correspondences");
+  SEWER3D_CHECK(o.camera.has_value() == o.projector.has_value(),
+                "corner transfer: camera and projector models go together");
+  // Coordinates of the fit: pixels, or undistorted normalised coordinates of both devices.
+  std::optional<CameraModel> camera, projector;
+  double threshold = o.ransac_px;
+  if (o.camera) {
+    camera.emplace(*o.camera);
+    projector.emplace(*o.projector);
+    threshold = o.ransac_px / o.projector->fx;
+  }
+  const auto to_fit = [](const std::optional<CameraModel>& model,
+                         const Eigen::Vector2d& px) -> std::optional<Eigen::Vector2d> {
+    return model ? model->Unproject(px) : std::optional<Eigen::Vector2d>(px);
+  };
   std::vector<std::optional<Eigen::Vector2d>> out;
   std::vector<cv::Point2d> src, dst;
   for (const Eigen::Vector2d& corner : corners) {
@@ -25,24 +39,32 @@ std::vector<std::optional<Eigen::Vector2d>> CornersInProjector(
     dst.clear();
     for (size_t i = 0; i < camera_px.size(); ++i) {
       if ((camera_px[i] - corner).squaredNorm() > o.radius_px * o.radius_px) continue;
-      src.emplace_back(camera_px[i].x(), camera_px[i].y());
-      dst.emplace_back(projector_px[i].x(), projector_px[i].y());
+      const auto a = to_fit(camera, camera_px[i]);
+      const auto b = to_fit(projector, projector_px[i]);
+      if (!a || !b) continue;
+      src.emplace_back(a->x(), a->y());
+      dst.emplace_back(b->x(), b->y());
     }
-    if (static_cast<int>(src.size()) < o.min_spots) {
+    const auto c = to_fit(camera, corner);
+    if (static_cast<int>(src.size()) < o.min_spots || !c) {
       out.emplace_back();
       continue;
     }
     cv::Mat inliers;
-    const cv::Mat h = cv::findHomography(src, dst, cv::RANSAC, o.ransac_px, inliers);
+    const cv::Mat h = cv::findHomography(src, dst, cv::RANSAC, threshold, inliers);
     if (h.empty() || cv::countNonZero(inliers) < o.min_spots) {
       out.emplace_back();
       continue;
     }
-    const Eigen::Vector3d q(
-        h.at<double>(0, 0) * corner.x() + h.at<double>(0, 1) * corner.y() + h.at<double>(0, 2),
-        h.at<double>(1, 0) * corner.x() + h.at<double>(1, 1) * corner.y() + h.at<double>(1, 2),
-        h.at<double>(2, 0) * corner.x() + h.at<double>(2, 1) * corner.y() + h.at<double>(2, 2));
-    out.emplace_back(q.head<2>() / q.z());
+    Eigen::Matrix3d hm;
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) hm(r, k) = h.at<double>(r, k);
+    const Eigen::Vector3d q = hm * c->homogeneous();
+    if (!projector) {
+      out.emplace_back(q.head<2>() / q.z());
+    } else {
+      out.push_back(projector->Project(q / q.z()));
+    }
   }
   return out;
 }

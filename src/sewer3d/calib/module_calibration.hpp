@@ -18,6 +18,10 @@ struct CornerTransferOptions {
   double radius_px = 90.0;  ///< decoded spots used around each corner (camera px)
   int min_spots = 12;       ///< fewer: the corner is not transferred
   double ransac_px = 1.0;   ///< inlier threshold of the homography, projector px
+  /// When both are set, the homography is fitted between undistorted normalised coordinates,
+  /// where a plane's image map is exactly one (Moreno & Taubin fit in pixels, where lens
+  /// distortion bends it); a second pass with the first calibration's models uses this.
+  std::optional<CameraIntrinsics> camera, projector;
 };
 
 /// Projector pixel of each camera corner: homography camera → projector fitted by RANSAC to
