@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# End-to-end calibration check (issue 5; docs/calibration.md): simulate checkerboard captures
+# of the default module, calibrate the module from them, print the recovered-vs-true table,
+# then reconstruct the accuracy scenes (scripts/accuracy.sh) once with the true and once with
+# the calibrated module. Usage (after scripts/build.sh):
+#   scripts/calibration_accuracy.sh [OUT_DIR] [CAMERA_SIZE WxH, default 2592x1944]
+# Full size takes about 20 minutes on 2 cores (rendering the captures).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/accuracy_lib.sh
+bin=./build/sewer3d
+out=${1:-out/calibration_accuracy}
+size=${2:-2592x1944}
+mkdir -p "$out"
+"$bin" module --out "$out/true" --camera-size "$size" >/dev/null
+if [[ ! -f "$out/captures/truth/poses.json" ]]; then
+  "$bin" simulate calibration --module "$out/true/module.json" --poses 20 --out "$out/captures" --supersampling 2 >/dev/null
+fi
+"$bin" calibrate module --captures "$out/captures" --board 9x6 --square-mm 10 \
+  --out "$out/calibrated/module.json" 2>"$out/calibrate.err" | tee "$out/calibrate.txt" | head -4
+echo
+python3 scripts/compare_modules.py "$out/true/module.json" "$out/calibrated/module.json"
+echo
+printf '| capture | fit RMS, true module (mm) | fit RMS, calibrated (mm) | change | RMS to truth, true (mm) | RMS to truth, calibrated (mm) | diameter, true / calibrated (mm) |\n'
+printf '|---|---|---|---|---|---|---|\n'
+for scene in "${ACCURACY_SCENES[@]}"; do
+  read -r name surface args <<<"$scene"
+  # shellcheck disable=SC2086
+  render_scene "$out/$name" "$out/true/module.json" $args
+  read -r _ _ rms_t _ dia_t truth_t _ _ <<<"$(measure_scene "$out/$name" "$surface" "$out/true/module.json" true)"
+  read -r _ _ rms_c _ dia_c truth_c _ _ <<<"$(measure_scene "$out/$name" "$surface" "$out/calibrated/module.json" calibrated)"
+  change=$(python3 -c "print(f'{100 * ($rms_c - $rms_t) / $rms_t:+.1f} %')")
+  printf '| %s | %s | %s | %s | %s | %s | %s / %s |\n' "$name" "$rms_t" "$rms_c" "$change" "$truth_t" "$truth_c" "$dia_t" "$dia_c"
+done
