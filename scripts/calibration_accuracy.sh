@@ -4,7 +4,8 @@
 # then reconstruct the accuracy scenes (scripts/accuracy.sh) once with the true and once with
 # the calibrated module. Usage (after scripts/build.sh):
 #   scripts/calibration_accuracy.sh [OUT_DIR] [CAMERA_SIZE WxH, default 2592x1944]
-# Full size takes about 20 minutes on 2 cores (rendering the captures).
+# Full size takes about half an hour on 2 cores (rendering the captures; an existing
+# OUT_DIR/captures is reused).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/accuracy_lib.sh
