@@ -149,10 +149,11 @@ expect_error "cut.png" "$bin" calibrate camera --images "$boards/left01.jpg" "$t
 
 # simulate calibration: rendered board captures a calibration reads.
 expect_ok "$bin" simulate calibration --module "$tmp/c/m640x480/module.json" --poses 3 --supersampling 1 \
-  --out "$tmp/c/sim"
-for f in board.json truth/module.json truth/poses.json pose_00/texture.png pose_02/pattern.png; do
+  --texture-supersampling 1 --out "$tmp/c/sim"
+for f in board.json truth/module.json truth/pattern.png truth/poses.json pose_00/texture.png pose_02/pattern.png; do
   [ -s "$tmp/c/sim/$f" ] || fail "simulate calibration did not write $f"
 done
+expect_ok "$bin" describe --module "$tmp/c/sim/truth/module.json"  # the truth module loads on its own
 expect_error "COLSxROWS" "$bin" simulate calibration --module "$tmp/c/m640x480/module.json" --board 9 --out "$tmp/c/s2"
 
 # calibrate module: the capture folder must hold at least 3 poses.
