@@ -4,6 +4,7 @@
 #include <ceres/rotation.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 #include <opencv2/calib3d.hpp>
@@ -67,6 +68,24 @@ std::vector<std::optional<Eigen::Vector2d>> CornersInProjector(
     }
   }
   return out;
+}
+
+int RetransferCorners(std::vector<ModuleCalibrationView>& views,
+                      const std::vector<SpotCorrespondences>& spots, const CameraIntrinsics& camera,
+                      const CameraIntrinsics& projector, const CornerTransferOptions& options) {
+  SEWER3D_CHECK(views.size() == spots.size(), "one spot set per view");
+  CornerTransferOptions undistorted = options;
+  undistorted.camera = camera;
+  undistorted.projector = projector;
+  int updated = 0;
+  for (size_t v = 0; v < views.size(); ++v) {
+    const auto again =
+        CornersInProjector(views[v].camera_corners, spots[v].camera_px, spots[v].projector_px, undistorted);
+    if (!std::all_of(again.begin(), again.end(), [](const auto& c) { return c.has_value(); })) continue;
+    for (size_t i = 0; i < again.size(); ++i) views[v].projector_corners[i] = *again[i];
+    ++updated;
+  }
+  return updated;
 }
 
 ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>& views,

@@ -37,6 +37,11 @@ struct ModuleCalibrationView {
   std::vector<Eigen::Vector2d> projector_corners;  ///< every board corner
 };
 
+/// One view's decoded spots: camera pixel and projector element centre of each.
+struct SpotCorrespondences {
+  std::vector<Eigen::Vector2d> camera_px, projector_px;
+};
+
 struct ModuleCalibrationResult {
   CameraIntrinsics camera, projector;
   Rigid3d projector_from_camera;
@@ -54,5 +59,13 @@ ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>
                                         const std::vector<Eigen::Vector3d>& board, int camera_width,
                                         int camera_height, int projector_width,
                                         int projector_height);
+
+/// Second pass of the corner transfer: every view's corners carried again with the lens
+/// models of `camera` and `projector` (homographies fitted in undistorted coordinates). A view
+/// keeps its projector corners where one of them cannot be carried now. Returns the number of
+/// views updated.
+int RetransferCorners(std::vector<ModuleCalibrationView>& views,
+                      const std::vector<SpotCorrespondences>& spots, const CameraIntrinsics& camera,
+                      const CameraIntrinsics& projector, const CornerTransferOptions& options = {});
 
 }  // namespace sewer3d

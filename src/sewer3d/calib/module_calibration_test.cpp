@@ -16,11 +16,15 @@
 namespace sewer3d {
 namespace {
 
-TEST(ModuleCalibration, RecoversCameraProjectorAndExtrinsics) {
+ModuleDescription HalfSizeDefaultModule() {
   DefaultModuleOptions options;
   options.camera_width = 1296;
   options.camera_height = 972;
-  const ModuleDescription truth = MakeDefaultModule(options);
+  return MakeDefaultModule(options);
+}
+
+TEST(ModuleCalibration, RecoversCameraProjectorAndExtrinsics) {
+  const ModuleDescription truth = HalfSizeDefaultModule();
   Checkerboard board;
   const auto poses = RandomBoardPoses(truth, board, 20, 5);
   const auto corners = BoardCorners(board.cols, board.rows, board.square_mm);
@@ -81,10 +85,7 @@ TEST(CornerTransfer, FollowsTheLocalHomography) {
 TEST(CornerTransfer, UndistortedFitIsExactOnALensDistortedPlane) {
   // A plane seen by the default module (k1 = -0.08 on both sides): the camera -> projector map
   // is a homography only between undistorted coordinates.
-  DefaultModuleOptions options;
-  options.camera_width = 1296;
-  options.camera_height = 972;
-  const ModuleDescription truth = MakeDefaultModule(options);
+  const ModuleDescription truth = HalfSizeDefaultModule();
   const CameraModel camera(truth.camera), projector(truth.projector);
   const Eigen::Vector3d normal = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
   const double distance = 120.0;  // mm, plane n.x = d
@@ -103,7 +104,7 @@ TEST(CornerTransfer, UndistortedFitIsExactOnALensDistortedPlane) {
       projector_px.push_back(*q);
     }
   }
-  // Corners near the image edge, where distortion bends the pixel map most.
+  // Two corners near the image's corners, where distortion bends the pixel map most, one central.
   const std::vector<Eigen::Vector2d> corners{{150.3, 140.7}, {1150.2, 830.9}, {640.0, 480.0}};
   std::vector<Eigen::Vector2d> expected;
   for (const auto& c : corners) {
@@ -124,6 +125,12 @@ TEST(CornerTransfer, UndistortedFitIsExactOnALensDistortedPlane) {
   // The pixel fit's bending error is what the second pass removes: visible at the edge.
   EXPECT_GT(worst_pixels, 0.05);  // 0.18 px measured
   std::printf("corner transfer, pixel homography: worst error %.4f px\n", worst_pixels);
+  // The second pass over a view replaces its pixel-fit corners by the exact ones.
+  std::vector<ModuleCalibrationView> views{{corners, {*in_pixels[0], *in_pixels[1], *in_pixels[2]}}};
+  ASSERT_EQ(RetransferCorners(views, {{camera_px, projector_px}}, truth.camera, truth.projector), 1);
+  for (size_t i = 0; i < corners.size(); ++i) {
+    EXPECT_LT((views[0].projector_corners[i] - expected[i]).norm(), 1e-4) << "corner " << i;
+  }
 }
 
 }  // namespace

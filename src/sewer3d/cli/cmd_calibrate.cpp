@@ -145,10 +145,7 @@ int RunModule(const ModuleArgs& a) {
   }
   Decoder decoder(nominal, pattern, InferConstraints(pattern), DecoderOptions{});
   const Triangulator triangulator(nominal, pattern.rows, pattern.cols, TriangulationOptions{});
-  struct PoseSpots {
-    std::vector<Eigen::Vector2d> corners, camera_px, projector_px;
-  };
-  std::vector<PoseSpots> spots;
+  std::vector<SpotCorrespondences> spots;
   std::vector<ModuleCalibrationView> views;
   std::vector<std::string> used;
   for (const fs::path& pose : poses) {
@@ -165,13 +162,12 @@ int RunModule(const ModuleArgs& a) {
     const DecodeResult decoded = decoder.Decode(pattern_image);
     std::vector<CodedObservation> observations;
     for (const SpotCode& c : decoded.codes) observations.push_back({decoded.spots[c.spot].centre_px, c.row, c.col});
-    PoseSpots ps;
-    ps.corners = *corners;
+    SpotCorrespondences ps;
     for (const TriangulatedPoint& p : triangulator.Triangulate(observations, nullptr)) {
       ps.camera_px.push_back(observations[p.observation].camera_px);
       ps.projector_px.push_back(nominal.pattern.ElementCentre(p.row, p.col));
     }
-    const auto transferred = CornersInProjector(ps.corners, ps.camera_px, ps.projector_px);
+    const auto transferred = CornersInProjector(*corners, ps.camera_px, ps.projector_px);
     const auto missing = std::count_if(transferred.begin(), transferred.end(), [](const auto& c) { return !c; });
     if (missing > 0) {
       fmt::print("{}: {} of {} corners without enough decoded spots around them, skipped\n", pose.string(), missing,
@@ -192,20 +188,10 @@ int RunModule(const ModuleArgs& a) {
                poses.size());
     return 1;
   }
-  // Second pass: corners carried again with the first calibration's lens models, the local
-  // homographies fitted in undistorted coordinates (a pose keeps its first-pass corners where
-  // a corner fails now).
+  // Second pass: corners carried again with the first calibration's lens models.
   const ModuleCalibrationResult first_pass = CalibrateModule(views, board, nominal.camera.width, nominal.camera.height,
                                                              nominal.projector.width, nominal.projector.height);
-  CornerTransferOptions undistorted;
-  undistorted.camera = first_pass.camera;
-  undistorted.projector = first_pass.projector;
-  for (size_t v = 0; v < views.size(); ++v) {
-    const auto again = CornersInProjector(spots[v].corners, spots[v].camera_px, spots[v].projector_px, undistorted);
-    if (std::all_of(again.begin(), again.end(), [](const auto& c) { return c.has_value(); })) {
-      for (size_t i = 0; i < again.size(); ++i) views[v].projector_corners[i] = *again[i];
-    }
-  }
+  RetransferCorners(views, spots, first_pass.camera, first_pass.projector);
   const ModuleCalibrationResult r = CalibrateModule(views, board, nominal.camera.width, nominal.camera.height,
                                                     nominal.projector.width, nominal.projector.height);
   ModuleDescription module = nominal;
