@@ -9,53 +9,16 @@
 
 #include "sewer3d/posegraph/edge_cost.hpp"
 #include "sewer3d/posegraph/solver.hpp"
+#include "sewer3d/posegraph/test_graphs.hpp"
 
 namespace sewer3d {
 namespace {
 
-Rigid3d RandomPose(std::mt19937& rng, double spread_mm) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return {Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)),
-          Eigen::Vector3d(n(rng), n(rng), n(rng)) * spread_mm};
-}
-
-Rigid3d Perturb(const Rigid3d& pose, std::mt19937& rng, double rot_rad, double trans_mm) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  const Eigen::Vector3d w(n(rng) * rot_rad, n(rng) * rot_rad, n(rng) * rot_rad);
-  const Eigen::Quaterniond dq(Eigen::AngleAxisd(w.norm(), w.normalized()));
-  return {pose.rotation * dq, pose.translation + Eigen::Vector3d(n(rng), n(rng), n(rng)) * trans_mm};
-}
-
-Matrix6d RandomInformation(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  Matrix6d a;
-  for (int i = 0; i < 36; ++i) a(i) = n(rng);
-  return a * a.transpose() + Matrix6d::Identity();
-}
-
-double RotationErrorDeg(const Rigid3d& a, const Rigid3d& b) {
-  return a.rotation.angularDistance(b.rotation) * 180.0 / M_PI;
-}
-
-// A ring of poses with odometry and a few loop closures, measured exactly from `truth`.
-PoseGraph RingGraph(const std::vector<Rigid3d>& truth, std::mt19937& rng, double rot_noise,
-                    double trans_noise) {
-  PoseGraph graph;
-  for (size_t i = 0; i < truth.size(); ++i) graph.SetNode(static_cast<int>(i), truth[i]);
-  const int n = static_cast<int>(truth.size());
-  auto add = [&](int a, int b) {
-    PoseEdge e;
-    e.from = a;
-    e.to = b;
-    e.a_from_b = Perturb(truth[a].Inverse() * truth[b], rng, rot_noise, trans_noise);
-    e.information.diagonal() << 1, 1, 1, 400, 400, 400;
-    graph.AddEdge(e);
-  };
-  for (int i = 0; i + 1 < n; ++i) add(i, i + 1);
-  for (int i = 0; i + 5 < n; i += 3) add(i, i + 5);
-  add(n - 1, 0);
-  return graph;
-}
+using test_graphs::Perturb;
+using test_graphs::RandomInformation;
+using test_graphs::RandomPose;
+using test_graphs::RingGraph;
+using test_graphs::RotationErrorDeg;
 
 TEST(EdgeCost, JacobiansMatchFiniteDifferences) {
   std::mt19937 rng(1);

@@ -1,0 +1,138 @@
+#include "sewer3d/posegraph/rotation_form.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <sstream>
+#include <unordered_map>
+
+namespace sewer3d {
+namespace {
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+void AddBlock(Triplets& t, int row, int col, const Eigen::Matrix3d& m) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) t.emplace_back(row + r, col + c, m(r, c));
+  }
+}
+
+/// Why the edge's cost is not quadratic in the rotations, or empty.
+std::string Disqualification(const PoseEdge& e) {
+  std::ostringstream why;
+  const Eigen::Matrix3d omega_t = e.information.topLeftCorner<3, 3>();
+  const double tau = omega_t.trace() / 3.0;
+  const double scale = std::max(tau, e.information.bottomRightCorner<3, 3>().cwiseAbs().maxCoeff());
+  if (e.huber_delta > 0.0) {
+    why << "edge " << e.from << " -> " << e.to << " has a robust loss";
+  } else if ((omega_t - tau * Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 * tau) {
+    why << "edge " << e.from << " -> " << e.to << " has anisotropic translation information";
+  } else if (e.information.topRightCorner<3, 3>().cwiseAbs().maxCoeff() > 1e-6 * scale) {
+    why << "edge " << e.from << " -> " << e.to << " couples translation and rotation information";
+  }
+  return why.str();
+}
+
+}  // namespace
+
+Eigen::Matrix3d DominatedRotationInformation(const Eigen::Matrix3d& information) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (information + information.transpose()));
+  Eigen::Vector3d lambda = es.eigenvalues();  // ascending
+  if (lambda(2) <= lambda(0) + lambda(1)) return information;
+  lambda(2) = lambda(0) + lambda(1);
+  return es.eigenvectors() * lambda.asDiagonal() * es.eigenvectors().transpose();
+}
+
+std::optional<RotationForm> RotationForm::Build(const PoseGraph& graph, std::string* why,
+                                                RotationInformation rotation_information) {
+  auto fail = [&](const std::string& reason) {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  if (graph.edges().empty()) return fail("the graph has no edges");
+  RotationForm form;
+  std::unordered_map<int, int> index;
+  for (const auto& [id, pose] : graph.nodes()) {
+    index[id] = static_cast<int>(form.ids_.size());
+    form.ids_.push_back(id);
+  }
+  const int n = form.NodeCount();
+  Triplets direct, coupling, laplacian, dominance;
+  for (const PoseEdge& e : graph.edges()) {
+    if (const std::string reason = Disqualification(e); !reason.empty()) return fail(reason);
+    const int a = index.at(e.from), b = index.at(e.to);
+    Eigen::Matrix3d omega_r = e.information.bottomRightCorner<3, 3>();
+    if (const Eigen::Matrix3d dominated = DominatedRotationInformation(omega_r); dominated != omega_r) {
+      ++form.dominated_edges_;
+      if (rotation_information == RotationInformation::kDominated) omega_r = dominated;
+    }
+    const Eigen::Matrix3d m =
+        0.5 * (omega_r + omega_r.transpose()) - 0.5 * omega_r.trace() * Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d rotation_ab = e.a_from_b.RotationMatrix();
+    // tr(M E) = tr(R_a (½ M R̂) R_bᵀ) + tr(R_b (½ R̂ᵀ M) R_aᵀ): blocks (a, b) and (b, a).
+    AddBlock(direct, 3 * a, 3 * b, 0.5 * m * rotation_ab);
+    AddBlock(direct, 3 * b, 3 * a, 0.5 * rotation_ab.transpose() * m);
+    form.constant_ += 0.5 * omega_r.trace();
+    // ½ τ ‖p_b − p_a − R_a p̂‖², with R_a p̂ = X_aᵀ p̂: the C, B and Laplacian blocks.
+    const double half_tau = 0.5 * e.information.topLeftCorner<3, 3>().trace() / 3.0;
+    const Eigen::Vector3d t = e.a_from_b.translation;
+    AddBlock(direct, 3 * a, 3 * a, half_tau * t * t.transpose());
+    for (int k = 0; k < 3; ++k) {
+      if (b > 0) coupling.emplace_back(b - 1, 3 * a + k, -half_tau * t(k));
+      if (a > 0) coupling.emplace_back(a - 1, 3 * a + k, half_tau * t(k));
+    }
+    if (a > 0) laplacian.emplace_back(a - 1, a - 1, half_tau);
+    if (b > 0) laplacian.emplace_back(b - 1, b - 1, half_tau);
+    if (a > 0 && b > 0) {
+      laplacian.emplace_back(a - 1, b - 1, -half_tau);
+      laplacian.emplace_back(b - 1, a - 1, -half_tau);
+    }
+    // Diagonal blocks ½‖M‖ I make this edge's 6 × 6 rotation block positive semidefinite.
+    const double norm_m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m, Eigen::EigenvaluesOnly)
+                              .eigenvalues()
+                              .cwiseAbs()
+                              .maxCoeff();
+    AddBlock(dominance, 3 * a, 3 * a, 0.5 * norm_m * Eigen::Matrix3d::Identity());
+    AddBlock(dominance, 3 * b, 3 * b, 0.5 * norm_m * Eigen::Matrix3d::Identity());
+  }
+  form.direct_.resize(3 * n, 3 * n);
+  form.direct_.setFromTriplets(direct.begin(), direct.end());
+  form.coupling_.resize(n - 1, 3 * n);
+  form.coupling_.setFromTriplets(coupling.begin(), coupling.end());
+  form.laplacian_.resize(n - 1, n - 1);
+  form.laplacian_.setFromTriplets(laplacian.begin(), laplacian.end());
+  if (n > 1) {
+    auto factor = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(form.laplacian_);
+    // A disconnected graph leaves a singular Laplacian: a (near-)zero pivot.
+    const double max_diagonal = form.laplacian_.diagonal().maxCoeff();
+    if (factor->info() != Eigen::Success || !(factor->vectorD().minCoeff() > 1e-12 * max_diagonal)) {
+      return fail("the graph is not connected");
+    }
+    form.laplacian_factor_ = std::move(factor);
+  }
+  Eigen::SparseMatrix<double> dominant(3 * n, 3 * n);
+  dominant.setFromTriplets(dominance.begin(), dominance.end());
+  form.approximation_ = form.direct_ + dominant;
+  const double regularisation = 1e-6 * form.approximation_.diagonal().maxCoeff();
+  for (int i = 0; i < 3 * n; ++i) form.approximation_.coeffRef(i, i) += regularisation;
+  return form;
+}
+
+Eigen::MatrixXd RotationForm::Apply(const Eigen::MatrixXd& x) const {
+  Eigen::MatrixXd qx = direct_ * x;
+  if (laplacian_factor_) qx -= coupling_.transpose() * laplacian_factor_->solve(coupling_ * x);
+  return qx;
+}
+
+double RotationForm::Cost(const Eigen::MatrixXd& x, const Eigen::MatrixXd& qx) const {
+  return x.cwiseProduct(qx).sum() + constant_;
+}
+
+double RotationForm::Cost(const Eigen::MatrixXd& x) const { return Cost(x, Apply(x)); }
+
+Eigen::MatrixXd RotationForm::Positions(const Eigen::MatrixXd& x) const {
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(NodeCount(), x.cols());
+  if (laplacian_factor_) p.bottomRows(NodeCount() - 1) = -laplacian_factor_->solve(coupling_ * x);
+  return p;
+}
+
+}  // namespace sewer3d
