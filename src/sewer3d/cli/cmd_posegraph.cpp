@@ -1,7 +1,9 @@
 // `sewer3d posegraph`: optimises a g2o pose graph and prints the report.
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
+#include <cmath>
 #include <thread>
 
 #include "sewer3d/cli/command.hpp"
@@ -20,6 +22,23 @@ std::optional<double> ParseRobust(const std::string& text) {
   const double delta = std::strtod(number.c_str(), &end);
   if (number.empty() || *end != '\0' || !(delta > 0.0) || !std::isfinite(delta)) return std::nullopt;
   return delta;
+}
+
+void PrintCertificate(const PoseGraphReport& r) {
+  if (!r.certificate_applicable) {
+    fmt::print("certificate not applicable: {}\n", r.certificate_reason.empty() ? "LM failed" : r.certificate_reason);
+    return;
+  }
+  if (!std::isfinite(r.lower_bound)) {
+    fmt::print("certificate failed: {}\n", r.certificate_reason);
+    return;
+  }
+  fmt::print("certificate lower bound {:.7g} (relaxation rank {}{}{}, {:.3f} s){}\n", r.lower_bound,
+             r.relaxation_rank, r.relaxation_solved ? "" : ", not solved: bound is loose",
+             r.dominated_relaxation ? fmt::format(", rotation information lowered on {} edges", r.dominated_edges) : "",
+             r.certificate_seconds, r.certificate_improved ? "; its solution was lower and is taken" : "");
+  fmt::print("            final cost is within {:.2g} of the global optimum{}\n", std::max(0.0, r.RelativeGap()),
+             r.RelativeGap() <= 1e-4 ? ": certified" : "");
 }
 
 }  // namespace
@@ -47,6 +66,9 @@ Command AddPoseGraphCommand(CLI::App& app) {
   sub->add_option("--threads", args->options.num_threads, "Threads for Ceres")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
+  sub->add_flag("--certify", args->options.certify,
+                "Bound the global optimum (semidefinite relaxation, Riemannian staircase); "
+                "takes its solution where it is lower");
   return {sub, [args] {
             PoseGraphOptions options = args->options;
             options.init = args->init == "odometry" ? PoseGraphInit::kGiven
@@ -64,6 +86,7 @@ Command AddPoseGraphCommand(CLI::App& app) {
                        r.final_cost, r.iterations, r.solve_seconds, options.num_threads);
             fmt::print("termination {}\n", r.termination);
             fmt::print("usable      {}\n", r.usable ? "yes" : "no");
+            if (options.certify) PrintCertificate(r);
             WriteG2o(args->out, graph);
             fmt::print("wrote {}\n", args->out);
             if (!r.usable) {

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/posegraph/certificate.hpp"
 #include "sewer3d/posegraph/edge_cost.hpp"
 
 namespace sewer3d {
@@ -155,33 +156,17 @@ bool ChordalInitialisation(PoseGraph& graph) {
   return true;
 }
 
-PoseGraphReport OptimisePoseGraph(PoseGraph& graph, const PoseGraphOptions& options) {
-  options.Check();
-  PoseGraphReport report;
-  report.nodes = static_cast<int>(graph.nodes().size());
-  report.edges = static_cast<int>(graph.edges().size());
-  report.given_cost = GraphCost(graph);
-  report.init_used = "given";
+namespace {
 
-  const auto init_start = Clock::now();
-  if (options.init != PoseGraphInit::kGiven) {
-    PoseGraph chordal = graph;
-    if (ChordalInitialisation(chordal)) {
-      const double chordal_cost = GraphCost(chordal);
-      if (options.init == PoseGraphInit::kChordal || chordal_cost < report.given_cost) {
-        graph = std::move(chordal);
-        report.init_used = "chordal";
-      }
-    } else if (options.init == PoseGraphInit::kChordal) {
-      report.termination = "chordal initialisation failed: graph not connected to its anchor";
-      report.init_seconds = Seconds(init_start);
-      report.initial_cost = report.final_cost = report.given_cost;
-      return report;
-    }
-  }
-  report.init_seconds = Seconds(init_start);
-  report.initial_cost = GraphCost(graph);
+struct LmResult {
+  int iterations = 0;
+  double seconds = 0.0;
+  std::string termination;
+  bool usable = false;
+};
 
+/// Levenberg–Marquardt on the graph's poses, in place (left unchanged if the solve diverges).
+LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
   // Parameter blocks: contiguous copies of each node's position and quaternion (x y z w).
   const Indexing ix = MakeIndexing(graph);
   const size_t count = ix.id_of_index.size();
@@ -219,20 +204,88 @@ PoseGraphReport OptimisePoseGraph(PoseGraph& graph, const PoseGraphOptions& opti
   ceres::Solver::Summary summary;
   const auto solve_start = Clock::now();
   if (problem.NumResidualBlocks() > 0) ceres::Solve(solver_options, &problem, &summary);
-  report.solve_seconds = Seconds(solve_start);
+  LmResult result;
+  result.seconds = Seconds(solve_start);
 
   bool finite = true;
   for (size_t i = 0; i < count; ++i) finite = finite && p[i].allFinite() && q[i].coeffs().allFinite();
   if (finite) {  // a diverged solve leaves the initial poses in place
     for (size_t i = 0; i < count; ++i) graph.mutable_node(ix.id_of_index[i]) = Rigid3d(q[i], p[i]);
   }
-  report.final_cost = GraphCost(graph);
-  report.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
-  report.termination = problem.NumResidualBlocks() == 0
+  result.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
+  result.termination = problem.NumResidualBlocks() == 0
                            ? "no edges"
                            : ceres::TerminationTypeToString(summary.termination_type) +
                                  std::string(": ") + summary.message;
-  report.usable = finite && (problem.NumResidualBlocks() == 0 || summary.IsSolutionUsable());
+  result.usable = finite && (problem.NumResidualBlocks() == 0 || summary.IsSolutionUsable());
+  return result;
+}
+
+/// The staircase from LM's result: lower bound, and its rounded solution refined by LM where
+/// that ends lower.
+void Certify(PoseGraph& graph, const PoseGraphOptions& options, PoseGraphReport& report) {
+  const auto start = Clock::now();
+  if (options.huber_delta > 0.0) {
+    report.certificate_reason = "robust loss";
+    return;
+  }
+  PoseGraph rounded;
+  const CertificateReport c = CertifyPoseGraph(graph, CertificateOptions(), &rounded);
+  report.certificate_applicable = c.applicable;
+  report.certificate_reason = c.reason;
+  if (!c.applicable) return;
+  report.lower_bound = c.lower_bound;
+  report.relaxation_rank = c.rank;
+  report.relaxation_solved = c.relaxation_solved;
+  report.dominated_edges = c.dominated_edges;
+  report.dominated_relaxation = c.dominated_relaxation;
+  const LmResult refined = SolveLm(rounded, options);
+  const double refined_cost = GraphCost(rounded);
+  if (refined.usable && refined_cost < report.final_cost) {
+    graph = std::move(rounded);
+    report.final_cost = refined_cost;
+    report.iterations += refined.iterations;
+    report.certificate_improved = true;
+  }
+  report.certificate_seconds = Seconds(start);
+}
+
+}  // namespace
+
+PoseGraphReport OptimisePoseGraph(PoseGraph& graph, const PoseGraphOptions& options) {
+  options.Check();
+  PoseGraphReport report;
+  report.nodes = static_cast<int>(graph.nodes().size());
+  report.edges = static_cast<int>(graph.edges().size());
+  report.given_cost = GraphCost(graph);
+  report.init_used = "given";
+
+  const auto init_start = Clock::now();
+  if (options.init != PoseGraphInit::kGiven) {
+    PoseGraph chordal = graph;
+    if (ChordalInitialisation(chordal)) {
+      const double chordal_cost = GraphCost(chordal);
+      if (options.init == PoseGraphInit::kChordal || chordal_cost < report.given_cost) {
+        graph = std::move(chordal);
+        report.init_used = "chordal";
+      }
+    } else if (options.init == PoseGraphInit::kChordal) {
+      report.termination = "chordal initialisation failed: graph not connected to its anchor";
+      report.init_seconds = Seconds(init_start);
+      report.initial_cost = report.final_cost = report.given_cost;
+      return report;
+    }
+  }
+  report.init_seconds = Seconds(init_start);
+  report.initial_cost = GraphCost(graph);
+
+  const LmResult lm = SolveLm(graph, options);
+  report.solve_seconds = lm.seconds;
+  report.iterations = lm.iterations;
+  report.termination = lm.termination;
+  report.usable = lm.usable;
+  report.final_cost = GraphCost(graph);
+  if (options.certify && report.usable) Certify(graph, options, report);
   return report;
 }
 

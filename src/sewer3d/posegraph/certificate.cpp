@@ -1,0 +1,389 @@
+#include "sewer3d/posegraph/certificate.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <Spectra/SymEigsSolver.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/posegraph/rotation_form.hpp"
+
+namespace sewer3d {
+namespace {
+
+using Eigen::MatrixXd;
+using Blocks = std::vector<Eigen::Matrix3d>;
+
+/// Spectra's relative convergence tolerance.
+constexpr double kLanczosTolerance = 1e-12;
+
+/// Graphs up to this many nodes get a dense eigendecomposition of S (3n × 3n).
+constexpr int kDenseNodes = 300;
+
+/// The exact relaxation counts as tight when its rounded solution is this close to its bound.
+constexpr double kTightGap = 1e-4;
+
+Eigen::Matrix3d Sym(const Eigen::Matrix3d& m) { return 0.5 * (m + m.transpose()); }
+
+/// Tangent projection on the product of Stiefel manifolds {X_i X_iᵀ = I}: V_i − sym(V_i X_iᵀ) X_i.
+MatrixXd Project(const MatrixXd& x, const MatrixXd& v) {
+  MatrixXd out = v;
+  for (Eigen::Index i = 0; i < x.rows(); i += 3) {
+    const auto xi = x.middleRows<3>(i);
+    out.middleRows<3>(i) -= Sym(v.middleRows<3>(i) * xi.transpose()) * xi;
+  }
+  return out;
+}
+
+/// Polar retraction, block by block: (Z Zᵀ)^(−½) Z with Z = X_i + V_i.
+MatrixXd Retract(const MatrixXd& x, const MatrixXd& v) {
+  MatrixXd out = x + v;
+  for (Eigen::Index i = 0; i < x.rows(); i += 3) {
+    const Eigen::Matrix3d zz = out.middleRows<3>(i) * out.middleRows<3>(i).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(zz);
+    const Eigen::Matrix3d inverse_root = es.eigenvectors() *
+                                         es.eigenvalues().cwiseSqrt().cwiseInverse().asDiagonal() *
+                                         es.eigenvectors().transpose();
+    out.middleRows<3>(i) = inverse_root * out.middleRows<3>(i);
+  }
+  return out;
+}
+
+/// Lagrange multipliers Λ_i = sym((QX)_i X_iᵀ).
+Blocks Multipliers(const MatrixXd& x, const MatrixXd& qx) {
+  Blocks lambda(x.rows() / 3);
+  for (size_t i = 0; i < lambda.size(); ++i) {
+    lambda[i] = Sym(qx.middleRows<3>(3 * i) * x.middleRows<3>(3 * i).transpose());
+  }
+  return lambda;
+}
+
+/// (Q − Diag(Λ)) V.
+MatrixXd CertificateProduct(const RotationForm& form, const Blocks& lambda, const MatrixXd& v) {
+  MatrixXd out = form.Apply(v);
+  for (size_t i = 0; i < lambda.size(); ++i) out.middleRows<3>(3 * i) -= lambda[i] * v.middleRows<3>(3 * i);
+  return out;
+}
+
+double Inner(const MatrixXd& a, const MatrixXd& b) { return a.cwiseProduct(b).sum(); }
+
+/// The current point of the lifted problem with everything derived from it.
+struct Point {
+  MatrixXd x, qx;
+  Blocks lambda;
+  MatrixXd gradient;  // Riemannian: 2 (QX − ΛX)
+  double cost = 0.0;  // tr(XᵀQX) + c
+
+  Point(const RotationForm& form, MatrixXd at) : x(std::move(at)), qx(form.Apply(x)) {
+    lambda = Multipliers(x, qx);
+    gradient = 2.0 * qx;
+    for (size_t i = 0; i < lambda.size(); ++i) gradient.middleRows<3>(3 * i) -= 2.0 * lambda[i] * x.middleRows<3>(3 * i);
+    cost = form.Cost(x, qx);
+  }
+};
+
+class TrustRegion {
+ public:
+  TrustRegion(const RotationForm& form, const CertificateOptions& options)
+      : form_(form), options_(options), preconditioner_(form.Approximation()) {}
+
+  /// Minimises from `point` to a first-order critical point; returns iterations used.
+  int Minimise(Point& point) {
+    double radius = -1.0;
+    int iteration = 0;
+    for (; iteration < options_.max_iterations; ++iteration) {
+      const double gradient_norm = point.gradient.norm();
+      if (gradient_norm <= options_.relative_gradient_tolerance * point.qx.norm()) break;
+      if (radius < 0.0) radius = Eigen::numext::mini(1.0, gradient_norm);
+      bool on_boundary = false;
+      MatrixXd hessian_step;
+      const MatrixXd step = TruncatedCg(point, radius, hessian_step, on_boundary);
+      const double model_decrease = -(Inner(point.gradient, step) + 0.5 * Inner(step, hessian_step));
+      Point candidate(form_, Retract(point.x, step));
+      // ρ regularised against round-off near convergence (as Manopt does).
+      const double round_off = 1e3 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(point.cost));
+      const double rho = (point.cost - candidate.cost + round_off) / (model_decrease + round_off);
+      if (rho < 0.25) {
+        radius *= 0.25;
+      } else if (rho > 0.75 && on_boundary) {
+        radius *= 2.0;
+      }
+      if (rho > 0.1) {
+        point = std::move(candidate);
+      } else if (radius < 1e-10) {
+        break;
+      }
+    }
+    return iteration;
+  }
+
+ private:
+  MatrixXd Hessian(const Point& p, const MatrixXd& v) const {
+    return 2.0 * Project(p.x, CertificateProduct(form_, p.lambda, v));
+  }
+
+  MatrixXd Precondition(const Point& p, const MatrixXd& v) const {
+    return Project(p.x, preconditioner_.solve(v));
+  }
+
+  /// Steihaug–Toint truncated CG on the model ⟨g, η⟩ + ½⟨η, Hη⟩ within the trust region
+  /// measured in the preconditioner's norm (Absil, Baker, Gallivan 2007).
+  MatrixXd TruncatedCg(const Point& p, double radius, MatrixXd& h_eta, bool& on_boundary) const {
+    MatrixXd eta = MatrixXd::Zero(p.x.rows(), p.x.cols());
+    h_eta = eta;
+    MatrixXd r = p.gradient;
+    MatrixXd z = Precondition(p, r);
+    double z_r = Inner(z, r);
+    MatrixXd delta = -z;
+    double e_pe = 0.0, e_pd = 0.0, d_pd = z_r;
+    const double r0 = r.norm();
+    for (int j = 0; j < options_.max_cg_iterations; ++j) {
+      const MatrixXd h_delta = Hessian(p, delta);
+      const double d_hd = Inner(delta, h_delta);
+      const double alpha = z_r / d_hd;
+      const double e_pe_next = e_pe + 2.0 * alpha * e_pd + alpha * alpha * d_pd;
+      if (d_hd <= 0.0 || e_pe_next >= radius * radius) {
+        const double tau = (-e_pd + std::sqrt(e_pd * e_pd + d_pd * (radius * radius - e_pe))) / d_pd;
+        eta += tau * delta;
+        h_eta += tau * h_delta;
+        on_boundary = true;
+        return eta;
+      }
+      e_pe = e_pe_next;
+      eta += alpha * delta;
+      h_eta += alpha * h_delta;
+      r = Project(p.x, r + alpha * h_delta);
+      const double r_norm = r.norm();
+      if (r_norm <= r0 * std::min(r0, 0.1)) break;  // κ = 0.1, θ = 1: superlinear
+      z = Precondition(p, r);
+      const double z_r_next = Inner(z, r);
+      const double beta = z_r_next / z_r;
+      z_r = z_r_next;
+      delta = -z + beta * delta;
+      e_pd = beta * (e_pd + alpha * d_pd);
+      d_pd = z_r + beta * beta * d_pd;
+    }
+    return eta;
+  }
+
+  const RotationForm& form_;
+  const CertificateOptions& options_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> preconditioner_;
+};
+
+/// y = (S + shift·I) x for Spectra.
+class CertificateOperator {
+ public:
+  using Scalar = double;
+  CertificateOperator(const RotationForm& form, const Blocks& lambda, double shift)
+      : form_(form), lambda_(lambda), shift_(shift) {}
+  Eigen::Index rows() const { return 3 * form_.NodeCount(); }
+  Eigen::Index cols() const { return rows(); }
+  void perform_op(const double* in, double* out) const {
+    const Eigen::Map<const Eigen::VectorXd> x(in, rows());
+    Eigen::Map<Eigen::VectorXd> y(out, rows());
+    y = CertificateProduct(form_, lambda_, x) + shift_ * x;
+  }
+
+ private:
+  const RotationForm& form_;
+  const Blocks& lambda_;
+  double shift_;
+};
+
+struct Eigenpair {
+  double value = 0.0;
+  Eigen::VectorXd vector;
+  bool converged = false;
+  int restarts = 0;
+  double residual = 0.0;  // ‖S v − λ v‖ for the unit vector v: an eigenvalue lies that close
+};
+
+Eigenpair DominantEigenpair(const RotationForm& form, const Blocks& lambda, double shift) {
+  CertificateOperator op(form, lambda, shift);
+  const int n = static_cast<int>(op.rows());
+  Spectra::SymEigsSolver<CertificateOperator> solver(op, 1, std::min(n, 60));
+  solver.init();
+  Eigenpair pair;
+  solver.compute(Spectra::SortRule::LargestMagn, 5000, kLanczosTolerance);
+  pair.restarts = static_cast<int>(solver.num_iterations());
+  pair.converged = solver.info() == Spectra::CompInfo::Successful;
+  if (pair.converged) {
+    pair.value = solver.eigenvalues()(0) - shift;
+    pair.vector = solver.eigenvectors().col(0);
+  }
+  return pair;
+}
+
+/// λ_min(S) by a dense eigendecomposition, for small graphs.
+Eigenpair DenseMinimumEigenpair(const RotationForm& form, const Blocks& lambda, double* largest) {
+  const int n = 3 * form.NodeCount();
+  const MatrixXd s = CertificateProduct(form, lambda, MatrixXd::Identity(n, n));
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> es(0.5 * (s + s.transpose()));
+  Eigenpair pair;
+  pair.converged = es.info() == Eigen::Success;
+  pair.value = es.eigenvalues()(0);
+  pair.vector = es.eigenvectors().col(0);
+  *largest = es.eigenvalues().cwiseAbs().maxCoeff();
+  return pair;
+}
+
+/// λ_min(S) and its eigenvector. Large graphs: Lanczos for the dominant eigenvalue λ_d first;
+/// if it is positive, the dominant eigenvalue of S − λ_d I is λ_min − λ_d.
+Eigenpair MinimumEigenpair(const RotationForm& form, const Blocks& lambda, double* largest) {
+  Eigenpair lowest;
+  if (form.NodeCount() <= kDenseNodes) {
+    lowest = DenseMinimumEigenpair(form, lambda, largest);
+  } else {
+    const Eigenpair dominant = DominantEigenpair(form, lambda, 0.0);
+    *largest = std::abs(dominant.value);
+    lowest = dominant;
+    if (dominant.converged && dominant.value >= 0.0) {
+      lowest = DominantEigenpair(form, lambda, -dominant.value);
+      lowest.restarts += dominant.restarts;
+    }
+  }
+  if (lowest.converged) {
+    const Eigen::VectorXd v = lowest.vector.normalized();
+    lowest.residual = (CertificateProduct(form, lambda, v) - lowest.value * v).norm();
+  }
+  return lowest;
+}
+
+/// Rounds X (3n × r) to rotations: the top-3 right singular subspace, the sign that gives
+/// most blocks a positive determinant, each block projected onto SO(3). Returns 3n × 3.
+MatrixXd Round(const MatrixXd& x) {
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> es(x.transpose() * x);
+  MatrixXd basis = es.eigenvectors().rightCols(3);  // r × 3, largest three
+  MatrixXd rotations = x * basis;
+  int positive = 0;
+  for (Eigen::Index i = 0; i < x.rows(); i += 3) positive += rotations.middleRows<3>(i).determinant() > 0.0;
+  if (2 * positive < x.rows() / 3) rotations.col(2) *= -1.0;
+  for (Eigen::Index i = 0; i < x.rows(); i += 3) {
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(Eigen::Matrix3d(rotations.middleRows<3>(i)),
+                                                Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+    d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+    rotations.middleRows<3>(i) = svd.matrixU() * d * svd.matrixV().transpose();
+  }
+  return rotations;
+}
+
+/// Escapes the saddle at rank r along the eigenvector v of λ_min < 0: X⁺ = R([X 0] + α[0 v]),
+/// halving α until the cost drops.
+std::optional<MatrixXd> Escape(const RotationForm& form, const Point& point, const Eigen::VectorXd& v) {
+  MatrixXd lifted = MatrixXd::Zero(point.x.rows(), point.x.cols() + 1);
+  lifted.leftCols(point.x.cols()) = point.x;
+  MatrixXd direction = MatrixXd::Zero(lifted.rows(), lifted.cols());
+  direction.rightCols(1) = v.normalized();
+  for (double alpha = std::sqrt(static_cast<double>(form.NodeCount())); alpha > 1e-8; alpha *= 0.5) {
+    MatrixXd candidate = Retract(lifted, alpha * direction);
+    if (form.Cost(candidate) < point.cost) return candidate;
+  }
+  return std::nullopt;
+}
+
+/// The graph with the rounded rotations (3n × 3) and their best positions, in the input's
+/// gauge: the anchor (first fixed node, else the first node) keeps its pose.
+PoseGraph RoundedGraph(const PoseGraph& graph, const RotationForm& form, const MatrixXd& rotations) {
+  const MatrixXd positions = form.Positions(rotations);
+  PoseGraph out = graph;
+  for (int i = 0; i < form.NodeCount(); ++i) {
+    const Eigen::Matrix3d r = rotations.middleRows<3>(3 * i).transpose();
+    out.mutable_node(form.Ids()[i]) = Rigid3d(Eigen::Quaterniond(r), Eigen::Vector3d(positions.row(i).transpose()));
+  }
+  const int anchor = graph.fixed_nodes().empty() ? form.Ids()[0] : graph.fixed_nodes()[0];
+  const Rigid3d world_from_rounded = graph.node(anchor) * out.node(anchor).Inverse();
+  for (const auto& [id, pose] : graph.nodes()) out.mutable_node(id) = world_from_rounded * out.node(id);
+  return out;
+}
+
+}  // namespace
+
+void CertificateOptions::Check() const {
+  SEWER3D_CHECK(max_rank >= 3, "max_rank " << max_rank);
+  SEWER3D_CHECK(max_iterations > 0 && max_cg_iterations > 0, "iteration limits");
+  SEWER3D_CHECK(relative_gradient_tolerance > 0.0, "relative_gradient_tolerance");
+  SEWER3D_CHECK(relative_eigenvalue_tolerance > 0.0, "relative_eigenvalue_tolerance");
+}
+
+namespace {
+
+/// One staircase on `relaxed` from rotations `x` (3n × 3); fills the relaxation fields of
+/// `report` and returns the rounded rotations.
+MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x, const CertificateOptions& options,
+                   CertificateReport& report) {
+  Point point(relaxed, x);
+  TrustRegion trust_region(relaxed, options);
+  report.lower_bound = -std::numeric_limits<double>::infinity();
+  for (report.rank = 3;; ++report.rank) {
+    report.iterations += trust_region.Minimise(point);
+    report.relaxation_cost = point.cost;
+    double largest = 0.0;
+    const Eigenpair lowest = MinimumEigenpair(relaxed, point.lambda, &largest);
+    report.eigen_iterations += lowest.restarts;
+    if (!lowest.converged) {
+      report.reason = "the certificate's eigenvalue did not converge";
+      break;
+    }
+    report.min_eigenvalue = lowest.value;
+    // Weak duality with Λ' = Λ + min(λ_min, 0) I, less the eigenpair's residual.
+    report.lower_bound = point.cost + 3.0 * x.rows() * std::min(lowest.value - lowest.residual, 0.0);
+    report.relaxation_solved = lowest.value >= -options.relative_eigenvalue_tolerance * largest;
+    if (report.relaxation_solved || report.rank >= options.max_rank) break;
+    std::optional<MatrixXd> escaped = Escape(relaxed, point, lowest.vector);
+    if (!escaped) break;
+    point = Point(relaxed, std::move(*escaped));
+  }
+  return Round(point.x);
+}
+
+}  // namespace
+
+CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOptions& options,
+                                   PoseGraph* rounded) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  CertificateReport report;
+  if (graph.fixed_nodes().size() > 1) {
+    report.reason = "more than one node is fixed";
+    return report;
+  }
+  const std::optional<RotationForm> form = RotationForm::Build(graph, &report.reason);
+  if (!form) return report;
+  report.applicable = true;
+  report.dominated_edges = form->DominatedEdges();
+  const int n = form->NodeCount();
+  MatrixXd x(3 * n, 3);
+  for (int i = 0; i < n; ++i) x.middleRows<3>(3 * i) = graph.node(form->Ids()[i]).RotationMatrix().transpose();
+  report.start_cost = form->Cost(x);
+
+  MatrixXd rotations = Staircase(*form, x, options, report);
+  report.rounded_cost = form->Cost(rotations);
+  // Where strongly anisotropic rotation information leaves the exact relaxation loose, the
+  // relaxation with dominated information (a lower cost everywhere) may bound better.
+  const bool loose = !(report.rounded_cost - report.lower_bound <= kTightGap * std::abs(report.rounded_cost));
+  if (loose && report.dominated_edges > 0) {
+    const std::optional<RotationForm> dominated = RotationForm::Build(graph, nullptr, RotationInformation::kDominated);
+    CertificateReport second = report;
+    const MatrixXd candidate = Staircase(*dominated, x, options, second);
+    second.rounded_cost = form->Cost(candidate);
+    const double exact_rounded_cost = report.rounded_cost;
+    if (second.lower_bound > report.lower_bound) {
+      report = second;
+      report.dominated_relaxation = true;
+    }
+    report.iterations = second.iterations;
+    report.eigen_iterations = second.eigen_iterations;
+    report.rounded_cost = std::min(exact_rounded_cost, second.rounded_cost);
+    if (second.rounded_cost < exact_rounded_cost) rotations = candidate;
+  }
+  if (rounded) *rounded = RoundedGraph(graph, *form, rotations);
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace sewer3d

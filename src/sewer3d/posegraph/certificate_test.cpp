@@ -1,0 +1,214 @@
+// The rotation form (exactness against the Ceres cost, refusals) and the Riemannian staircase
+// (recovery, certificate, lower bound) on synthetic graphs.
+#include "sewer3d/posegraph/certificate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include "sewer3d/posegraph/rotation_form.hpp"
+#include "sewer3d/posegraph/solver.hpp"
+#include "sewer3d/posegraph/test_graphs.hpp"
+
+namespace sewer3d {
+namespace {
+
+using test_graphs::Perturb;
+using test_graphs::RandomPose;
+using test_graphs::RingGraph;
+using test_graphs::RotationErrorDeg;
+
+/// Isotropic translation information τI (τ in [0.5, 4] / mm²) and a rotation block
+/// 100 (I + s·sym(N)) (N standard normal, eigenvalues floored at 5): at s = 0.2 the largest
+/// eigenvalue stays below the sum of the other two on almost every edge, at s = 1 it exceeds it
+/// on most (DominatedRotationInformation).
+Matrix6d IsotropicTranslationInformation(std::mt19937& rng, double s) {
+  std::uniform_real_distribution<double> tau(0.5, 4.0);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Matrix3d a;
+  for (int i = 0; i < 9; ++i) a(i) = n(rng);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(Eigen::Matrix3d::Identity() + 0.5 * s * (a + a.transpose()));
+  Matrix6d information = Matrix6d::Zero();
+  information.topLeftCorner<3, 3>() = tau(rng) * Eigen::Matrix3d::Identity();
+  information.bottomRightCorner<3, 3>() =
+      100.0 * es.eigenvectors() * es.eigenvalues().cwiseMax(0.05).asDiagonal() * es.eigenvectors().transpose();
+  return information;
+}
+Matrix6d MildlyAnisotropic(std::mt19937& rng) { return IsotropicTranslationInformation(rng, 0.2); }
+Matrix6d StronglyAnisotropic(std::mt19937& rng) { return IsotropicTranslationInformation(rng, 1.0); }
+
+int DominatedEdges(const PoseGraph& graph) {
+  int count = 0;
+  for (const PoseEdge& e : graph.edges()) {
+    const Eigen::Matrix3d omega = e.information.bottomRightCorner<3, 3>();
+    count += DominatedRotationInformation(omega) != omega;
+  }
+  return count;
+}
+
+std::vector<Rigid3d> RandomTruth(std::mt19937& rng, int count) {
+  std::vector<Rigid3d> truth;
+  for (int i = 0; i < count; ++i) truth.push_back(RandomPose(rng, 100.0));
+  return truth;
+}
+
+Eigen::MatrixXd RotationsOf(const PoseGraph& graph) {
+  Eigen::MatrixXd x(3 * graph.nodes().size(), 3);
+  int i = 0;
+  for (const auto& [id, pose] : graph.nodes()) x.middleRows<3>(3 * i++) = pose.RotationMatrix().transpose();
+  return x;
+}
+
+TEST(RotationForm, EqualsTheGraphCostWithTheBestPositions) {
+  std::mt19937 rng(11);
+  const std::vector<Rigid3d> truth = RandomTruth(rng, 15);
+  PoseGraph graph = RingGraph(truth, rng, 0.05, 2.0, StronglyAnisotropic);
+  ASSERT_GT(DominatedEdges(graph), 10);
+  std::string why;
+  const auto form = RotationForm::Build(graph, &why);
+  ASSERT_TRUE(form) << why;
+  for (int trial = 0; trial < 5; ++trial) {
+    for (int id = 0; id < 15; ++id) graph.mutable_node(id) = Perturb(truth[id], rng, 1.0, 50.0);
+    const Eigen::MatrixXd x = RotationsOf(graph);
+    const double form_cost = form->Cost(x);
+    // The form minimises over positions: never above the cost at any positions...
+    EXPECT_LE(form_cost, GraphCost(graph) * (1.0 + 1e-12));
+    // ...and equal to it at the positions it returns.
+    const Eigen::MatrixXd p = form->Positions(x);
+    for (int id = 0; id < 15; ++id) {
+      graph.mutable_node(id).translation = p.row(id).transpose();
+    }
+    EXPECT_NEAR(GraphCost(graph), form_cost, 1e-10 * form_cost);
+  }
+}
+
+TEST(RotationForm, RefusesGraphsWhoseCostIsNotQuadraticInTheRotations) {
+  std::mt19937 rng(12);
+  const std::vector<Rigid3d> truth = RandomTruth(rng, 8);
+  const PoseGraph good = RingGraph(truth, rng, 0.01, 1.0, MildlyAnisotropic);
+  std::string why;
+  ASSERT_TRUE(RotationForm::Build(good, &why)) << why;
+  auto refused = [&](PoseGraph graph, const std::string& expected) {
+    const bool built = RotationForm::Build(graph, &why).has_value();
+    EXPECT_FALSE(built) << expected;
+    EXPECT_NE(why.find(expected), std::string::npos) << why;
+  };
+  PoseGraph anisotropic = good;
+  anisotropic.mutable_edges()[2].information(1, 1) *= 1.5;
+  refused(anisotropic, "anisotropic translation information");
+  PoseGraph coupled = good;
+  coupled.mutable_edges()[3].information(0, 4) = coupled.mutable_edges()[3].information(4, 0) = 0.3;
+  refused(coupled, "couples translation and rotation");
+  PoseGraph robust = good;
+  robust.mutable_edges()[0].huber_delta = 1.0;
+  refused(robust, "robust loss");
+  PoseGraph disconnected = good;
+  disconnected.SetNode(99, truth[0]);
+  refused(disconnected, "not connected");
+  PoseGraph empty;
+  empty.SetNode(0, truth[0]);
+  refused(empty, "no edges");
+
+  PoseGraph two_fixed = good;
+  two_fixed.fixed_nodes() = {0, 4};
+  const CertificateReport report = CertifyPoseGraph(two_fixed, CertificateOptions());
+  EXPECT_FALSE(report.applicable);
+  EXPECT_EQ(report.reason, "more than one node is fixed");
+  PoseGraphOptions options;
+  options.certify = true;
+  options.huber_delta = 2.0;
+  PoseGraph huber = good;
+  const PoseGraphReport lm = OptimisePoseGraph(huber, options);
+  EXPECT_FALSE(lm.certificate_applicable);
+  EXPECT_EQ(lm.certificate_reason, "robust loss");
+}
+
+TEST(Certificate, NoiseFreeRingIsRecoveredFromAFarStartAndCertifiedAtZero) {
+  for (auto information : {MildlyAnisotropic, StronglyAnisotropic}) {
+    std::mt19937 rng(13);
+    const std::vector<Rigid3d> truth = RandomTruth(rng, 20);
+    PoseGraph graph = RingGraph(truth, rng, 0.0, 0.0, information);
+    for (int id = 1; id < 20; ++id) graph.mutable_node(id) = Perturb(truth[id], rng, 1.5, 100.0);
+    ASSERT_GT(GraphCost(graph), 1e4);
+    PoseGraph rounded;
+    const CertificateReport report = CertifyPoseGraph(graph, CertificateOptions(), &rounded);
+    ASSERT_TRUE(report.applicable) << report.reason;
+    EXPECT_TRUE(report.relaxation_solved);
+    // Strongly anisotropic rotation information needs the dominated relaxation: the exact
+    // one's lifted cost goes negative (about −2.7e3 here).
+    EXPECT_EQ(report.dominated_relaxation, information == StronglyAnisotropic);
+    EXPECT_NEAR(report.lower_bound, 0.0, 1e-6);
+    EXPECT_LT(report.rounded_cost, 1e-9);
+    EXPECT_LT(GraphCost(rounded), 1e-9);
+    // Node 0 (the gauge) kept its true pose, so every pose is the truth (to the staircase's
+    // 1e-8 relative gradient tolerance; poses spread over ~100 mm).
+    for (int id = 0; id < 20; ++id) {
+      EXPECT_LT(RotationErrorDeg(rounded.node(id), truth[id]), 1e-5) << id;
+      EXPECT_LT((rounded.node(id).translation - truth[id].translation).norm(), 1e-5) << id;
+    }
+  }
+}
+
+/// Minima LM reaches on `measured` from the truth and from 7 starts with rotations 2 rad off.
+std::vector<double> MultiStartMinima(const PoseGraph& measured, const std::vector<Rigid3d>& truth,
+                                     std::mt19937& rng) {
+  PoseGraphOptions options;
+  options.init = PoseGraphInit::kGiven;
+  options.function_tolerance = 1e-12;
+  std::vector<double> minima;
+  for (int start = 0; start < 8; ++start) {
+    PoseGraph graph = measured;
+    for (size_t id = 1; id < truth.size(); ++id) {
+      graph.mutable_node(static_cast<int>(id)) = Perturb(truth[id], rng, start == 0 ? 0.0 : 2.0, 50.0);
+    }
+    const PoseGraphReport lm = OptimisePoseGraph(graph, options);
+    EXPECT_TRUE(lm.usable);
+    minima.push_back(lm.final_cost);
+  }
+  return minima;
+}
+
+PoseGraphReport Certified(PoseGraph graph) {
+  PoseGraphOptions options;
+  options.init = PoseGraphInit::kGiven;
+  options.function_tolerance = 1e-12;
+  options.certify = true;
+  return OptimisePoseGraph(graph, options);
+}
+
+TEST(Certificate, BoundsEveryLocalMinimumAndCertifiesTheBest) {
+  std::mt19937 rng(14);
+  const std::vector<Rigid3d> truth = RandomTruth(rng, 30);
+  // Noise 0.1 rad (6°) per axis per edge and 5 mm.
+  const PoseGraph measured = RingGraph(truth, rng, 0.1, 5.0, MildlyAnisotropic);
+  const std::vector<double> minima = MultiStartMinima(measured, truth, rng);
+  const double best = *std::min_element(minima.begin(), minima.end());
+  const PoseGraphReport report = Certified(measured);
+  ASSERT_TRUE(report.certificate_applicable) << report.certificate_reason;
+  EXPECT_TRUE(report.relaxation_solved);
+  for (double cost : minima) EXPECT_GE(cost, report.lower_bound * (1.0 - 1e-9));
+  // The relaxation is tight: the best minimum is the global optimum, and LM + certify finds it.
+  EXPECT_LE(best - report.lower_bound, 1e-6 * best);
+  EXPECT_NEAR(report.final_cost, best, 1e-6 * best);
+  EXPECT_LT(report.RelativeGap(), 1e-6);
+}
+
+TEST(Certificate, StronglyAnisotropicGraphsGetAValidLooserBound) {
+  std::mt19937 rng(15);
+  const std::vector<Rigid3d> truth = RandomTruth(rng, 30);
+  const PoseGraph measured = RingGraph(truth, rng, 0.1, 5.0, StronglyAnisotropic);
+  ASSERT_GT(DominatedEdges(measured), 20);
+  const std::vector<double> minima = MultiStartMinima(measured, truth, rng);
+  const double best = *std::min_element(minima.begin(), minima.end());
+  const PoseGraphReport report = Certified(measured);
+  ASSERT_TRUE(report.certificate_applicable) << report.certificate_reason;
+  for (double cost : minima) EXPECT_GE(cost, report.lower_bound * (1.0 - 1e-9));
+  EXPECT_LE(report.final_cost, best * (1.0 + 1e-6));
+  // Lowering the information of the dominated edges costs tightness, not validity: here the
+  // bound is 27 % of the best minimum; the exact relaxation's is negative.
+  EXPECT_TRUE(report.dominated_relaxation);
+  EXPECT_GT(report.lower_bound, 0.2 * best);
+}
+
+}  // namespace
+}  // namespace sewer3d
