@@ -9,13 +9,19 @@
 #include <limits>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/posegraph/lifted_cost.hpp"
 #include "sewer3d/posegraph/rotation_form.hpp"
 
 namespace sewer3d {
 namespace {
 
 using Eigen::MatrixXd;
-using Blocks = std::vector<Eigen::Matrix3d>;
+using lifted::Point;
+using lifted::CertificateProduct;
+using lifted::Inner;
+using lifted::MultiplierBlocks;
+using lifted::Project;
+using lifted::Retract;
 
 /// Spectra's relative convergence tolerance.
 constexpr double kLanczosTolerance = 1e-12;
@@ -25,65 +31,6 @@ constexpr int kDenseNodes = 300;
 
 /// The exact relaxation counts as tight when its rounded solution is this close to its bound.
 constexpr double kTightGap = 1e-4;
-
-Eigen::Matrix3d Sym(const Eigen::Matrix3d& m) { return 0.5 * (m + m.transpose()); }
-
-/// Tangent projection on the product of Stiefel manifolds {X_i X_iᵀ = I}: V_i − sym(V_i X_iᵀ) X_i.
-MatrixXd Project(const MatrixXd& x, const MatrixXd& v) {
-  MatrixXd out = v;
-  for (Eigen::Index i = 0; i < x.rows(); i += 3) {
-    const auto xi = x.middleRows<3>(i);
-    out.middleRows<3>(i) -= Sym(v.middleRows<3>(i) * xi.transpose()) * xi;
-  }
-  return out;
-}
-
-/// Polar retraction, block by block: (Z Zᵀ)^(−½) Z with Z = X_i + V_i.
-MatrixXd Retract(const MatrixXd& x, const MatrixXd& v) {
-  MatrixXd out = x + v;
-  for (Eigen::Index i = 0; i < x.rows(); i += 3) {
-    const Eigen::Matrix3d zz = out.middleRows<3>(i) * out.middleRows<3>(i).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(zz);
-    const Eigen::Matrix3d inverse_root = es.eigenvectors() *
-                                         es.eigenvalues().cwiseSqrt().cwiseInverse().asDiagonal() *
-                                         es.eigenvectors().transpose();
-    out.middleRows<3>(i) = inverse_root * out.middleRows<3>(i);
-  }
-  return out;
-}
-
-/// Lagrange multipliers Λ_i = sym((QX)_i X_iᵀ).
-Blocks Multipliers(const MatrixXd& x, const MatrixXd& qx) {
-  Blocks lambda(x.rows() / 3);
-  for (size_t i = 0; i < lambda.size(); ++i) {
-    lambda[i] = Sym(qx.middleRows<3>(3 * i) * x.middleRows<3>(3 * i).transpose());
-  }
-  return lambda;
-}
-
-/// (Q − Diag(Λ)) V.
-MatrixXd CertificateProduct(const RotationForm& form, const Blocks& lambda, const MatrixXd& v) {
-  MatrixXd out = form.Apply(v);
-  for (size_t i = 0; i < lambda.size(); ++i) out.middleRows<3>(3 * i) -= lambda[i] * v.middleRows<3>(3 * i);
-  return out;
-}
-
-double Inner(const MatrixXd& a, const MatrixXd& b) { return a.cwiseProduct(b).sum(); }
-
-/// The current point of the lifted problem with everything derived from it.
-struct Point {
-  MatrixXd x, qx;
-  Blocks lambda;
-  MatrixXd gradient;  // Riemannian: 2 (QX − ΛX)
-  double cost = 0.0;  // tr(XᵀQX) + c
-
-  Point(const RotationForm& form, MatrixXd at) : x(std::move(at)), qx(form.Apply(x)) {
-    lambda = Multipliers(x, qx);
-    gradient = 2.0 * qx;
-    for (size_t i = 0; i < lambda.size(); ++i) gradient.middleRows<3>(3 * i) -= 2.0 * lambda[i] * x.middleRows<3>(3 * i);
-    cost = form.Cost(x, qx);
-  }
-};
 
 class TrustRegion {
  public:
@@ -121,9 +68,7 @@ class TrustRegion {
   }
 
  private:
-  MatrixXd Hessian(const Point& p, const MatrixXd& v) const {
-    return 2.0 * Project(p.x, CertificateProduct(form_, p.lambda, v));
-  }
+  MatrixXd Hessian(const Point& p, const MatrixXd& v) const { return p.Hessian(form_, v); }
 
   MatrixXd Precondition(const Point& p, const MatrixXd& v) const {
     return Project(p.x, preconditioner_.solve(v));
@@ -178,7 +123,7 @@ class TrustRegion {
 class CertificateOperator {
  public:
   using Scalar = double;
-  CertificateOperator(const RotationForm& form, const Blocks& lambda, double shift)
+  CertificateOperator(const RotationForm& form, const MultiplierBlocks& lambda, double shift)
       : form_(form), lambda_(lambda), shift_(shift) {}
   Eigen::Index rows() const { return 3 * form_.NodeCount(); }
   Eigen::Index cols() const { return rows(); }
@@ -190,7 +135,7 @@ class CertificateOperator {
 
  private:
   const RotationForm& form_;
-  const Blocks& lambda_;
+  const MultiplierBlocks& lambda_;
   double shift_;
 };
 
@@ -202,7 +147,7 @@ struct Eigenpair {
   double residual = 0.0;  // ‖S v − λ v‖ for the unit vector v: an eigenvalue lies that close
 };
 
-Eigenpair DominantEigenpair(const RotationForm& form, const Blocks& lambda, double shift) {
+Eigenpair DominantEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, double shift) {
   CertificateOperator op(form, lambda, shift);
   const int n = static_cast<int>(op.rows());
   Spectra::SymEigsSolver<CertificateOperator> solver(op, 1, std::min(n, 60));
@@ -219,7 +164,7 @@ Eigenpair DominantEigenpair(const RotationForm& form, const Blocks& lambda, doub
 }
 
 /// λ_min(S) by a dense eigendecomposition, for small graphs.
-Eigenpair DenseMinimumEigenpair(const RotationForm& form, const Blocks& lambda, double* largest) {
+Eigenpair DenseMinimumEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, double* largest) {
   const int n = 3 * form.NodeCount();
   const MatrixXd s = CertificateProduct(form, lambda, MatrixXd::Identity(n, n));
   const Eigen::SelfAdjointEigenSolver<MatrixXd> es(0.5 * (s + s.transpose()));
@@ -233,7 +178,7 @@ Eigenpair DenseMinimumEigenpair(const RotationForm& form, const Blocks& lambda, 
 
 /// λ_min(S) and its eigenvector. Large graphs: Lanczos for the dominant eigenvalue λ_d first;
 /// if it is positive, the dominant eigenvalue of S − λ_d I is λ_min − λ_d.
-Eigenpair MinimumEigenpair(const RotationForm& form, const Blocks& lambda, double* largest) {
+Eigenpair MinimumEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, double* largest) {
   Eigenpair lowest;
   if (form.NodeCount() <= kDenseNodes) {
     lowest = DenseMinimumEigenpair(form, lambda, largest);

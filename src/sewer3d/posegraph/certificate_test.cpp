@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "sewer3d/posegraph/lifted_cost.hpp"
 #include "sewer3d/posegraph/rotation_form.hpp"
 #include "sewer3d/posegraph/solver.hpp"
 #include "sewer3d/posegraph/test_graphs.hpp"
@@ -121,6 +122,33 @@ TEST(RotationForm, RefusesGraphsWhoseCostIsNotQuadraticInTheRotations) {
   const PoseGraphReport lm = OptimisePoseGraph(huber, options);
   EXPECT_FALSE(lm.certificate_applicable);
   EXPECT_EQ(lm.certificate_reason, "robust loss");
+}
+
+TEST(LiftedCost, GradientAndHessianMatchFiniteDifferencesAlongTheManifold) {
+  std::mt19937 rng(16);
+  const std::vector<Rigid3d> truth = RandomTruth(rng, 12);
+  const PoseGraph graph = RingGraph(truth, rng, 0.1, 5.0, StronglyAnisotropic);
+  for (auto information : {RotationInformation::kExact, RotationInformation::kDominated}) {
+    const auto form = RotationForm::Build(graph, nullptr, information);
+    ASSERT_TRUE(form);
+    for (int r : {3, 5}) {
+      std::srand(17);
+      const Eigen::MatrixXd x = lifted::Retract(Eigen::MatrixXd::Zero(36, r), Eigen::MatrixXd::Random(36, r));
+      for (int i = 0; i < 36; i += 3) {
+        EXPECT_LT((x.middleRows<3>(i) * x.middleRows<3>(i).transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+      }
+      const lifted::Point point(*form, x);
+      const Eigen::MatrixXd v = lifted::Project(x, Eigen::MatrixXd::Random(36, r));
+      EXPECT_LT((lifted::Project(x, v) - v).norm(), 1e-12 * v.norm());  // a projection
+      // Central differences along the (second-order) retraction: f' = ⟨grad, v⟩, f'' = ⟨v, Hess v⟩.
+      const double t = 1e-4;
+      const double plus = form->Cost(lifted::Retract(x, t * v)), minus = form->Cost(lifted::Retract(x, -t * v));
+      const double slope = lifted::Inner(point.gradient, v);
+      const double curvature = lifted::Inner(v, point.Hessian(*form, v));
+      EXPECT_NEAR((plus - minus) / (2 * t), slope, 1e-6 * std::abs(slope)) << r;
+      EXPECT_NEAR((plus + minus - 2 * point.cost) / (t * t), curvature, 1e-4 * std::abs(curvature)) << r;
+    }
+  }
 }
 
 TEST(Certificate, NoiseFreeRingIsRecoveredFromAFarStartAndCertifiedAtZero) {
