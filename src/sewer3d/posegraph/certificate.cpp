@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/posegraph/lifted_cost.hpp"
@@ -25,6 +26,9 @@ using lifted::Retract;
 
 /// Spectra's relative convergence tolerance.
 constexpr double kLanczosTolerance = 1e-12;
+
+/// Eigensolver runs per certificate check before it gives up.
+constexpr int kEigenAttempts = 3;
 
 /// Graphs up to this many nodes get a dense eigendecomposition of S (3n × 3n).
 constexpr int kDenseNodes = 300;
@@ -147,11 +151,20 @@ struct Eigenpair {
   double residual = 0.0;  // ‖S v − λ v‖ for the unit vector v: an eigenvalue lies that close
 };
 
-Eigenpair DominantEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, double shift) {
+/// Attempt 0 starts Lanczos from Spectra's default vector, later attempts from random ones.
+Eigenpair DominantEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, double shift, int attempt) {
   CertificateOperator op(form, lambda, shift);
   const int n = static_cast<int>(op.rows());
   Spectra::SymEigsSolver<CertificateOperator> solver(op, 1, std::min(n, 60));
-  solver.init();
+  if (attempt == 0) {
+    solver.init();
+  } else {
+    std::mt19937 rng(attempt);
+    std::normal_distribution<double> normal;
+    Eigen::VectorXd start(n);
+    for (double& value : start) value = normal(rng);
+    solver.init(start.data());
+  }
   Eigenpair pair;
   solver.compute(Spectra::SortRule::LargestMagn, 5000, kLanczosTolerance);
   pair.restarts = static_cast<int>(solver.num_iterations());
@@ -176,21 +189,33 @@ Eigenpair DenseMinimumEigenpair(const RotationForm& form, const MultiplierBlocks
   return pair;
 }
 
-/// λ_min(S) and its eigenvector. Large graphs: Lanczos for the dominant eigenvalue λ_d first;
-/// if it is positive, the dominant eigenvalue of S − λ_d I is λ_min − λ_d.
-Eigenpair MinimumEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, double* largest) {
-  Eigenpair lowest;
+/// |λ|_max(S), the scale of the certificate's tolerances.
+double LargestEigenvalueMagnitude(const RotationForm& form, const MultiplierBlocks& lambda) {
   if (form.NodeCount() <= kDenseNodes) {
-    lowest = DenseMinimumEigenpair(form, lambda, largest);
-  } else {
-    const Eigenpair dominant = DominantEigenpair(form, lambda, 0.0);
-    *largest = std::abs(dominant.value);
-    lowest = dominant;
-    if (dominant.converged && dominant.value >= 0.0) {
-      lowest = DominantEigenpair(form, lambda, -dominant.value);
-      lowest.restarts += dominant.restarts;
-    }
+    double largest = 0.0;
+    DenseMinimumEigenpair(form, lambda, &largest);
+    return largest;
   }
+  const Eigenpair dominant = DominantEigenpair(form, lambda, 0.0, 0);
+  if (dominant.converged) return std::abs(dominant.value);
+  // Lanczos did not converge: power iteration gives a lower estimate, enough for tolerances.
+  Eigen::VectorXd v = Eigen::VectorXd::Ones(3 * form.NodeCount()).normalized();
+  double estimate = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    const Eigen::VectorXd w = CertificateProduct(form, lambda, v);
+    estimate = w.norm();
+    if (!(estimate > 0.0)) break;
+    v = w / estimate;
+  }
+  return estimate;
+}
+
+/// λ_min(S) and its eigenvector: dense for small graphs; else Lanczos for the dominant
+/// eigenvalue of S − |λ|_max I, which is λ_min − |λ|_max.
+Eigenpair MinimumEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, int attempt, double largest) {
+  double unused = 0.0;
+  Eigenpair lowest = form.NodeCount() <= kDenseNodes ? DenseMinimumEigenpair(form, lambda, &unused)
+                                                     : DominantEigenpair(form, lambda, -largest, attempt);
   if (lowest.converged) {
     const Eigen::VectorXd v = lowest.vector.normalized();
     lowest.residual = (CertificateProduct(form, lambda, v) - lowest.value * v).norm();
@@ -259,26 +284,52 @@ namespace {
 
 /// One staircase on `relaxed` from rotations `x` (3n × 3); fills the relaxation fields of
 /// `report` and returns the rounded rotations.
+/// The smallest η in from·4^k ≤ to with Q − Diag(Λ) + ηI ≻ 0 (sparse Cholesky): then
+/// λ_min(S) > −η, whatever the eigensolver found.
+std::optional<double> VerifiedShift(const RotationForm& form, const MultiplierBlocks& lambda, double from, double to) {
+  if (!(from > 0.0)) return std::nullopt;
+  for (double eta = from; eta <= to; eta *= 4.0) {
+    if (form.IsPositiveDefinite(lambda, eta)) return eta;
+  }
+  return std::nullopt;
+}
+
 MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x, const CertificateOptions& options,
                    CertificateReport& report) {
   Point point(relaxed, x);
   TrustRegion trust_region(relaxed, options);
+  const double dimension = static_cast<double>(x.rows());
   report.lower_bound = -std::numeric_limits<double>::infinity();
   for (report.rank = 3;; ++report.rank) {
     report.iterations += trust_region.Minimise(point);
     report.relaxation_cost = point.cost;
-    double largest = 0.0;
-    const Eigenpair lowest = MinimumEigenpair(relaxed, point.lambda, &largest);
-    report.eigen_iterations += lowest.restarts;
-    if (!lowest.converged) {
-      report.reason = "the certificate's eigenvalue did not converge";
-      break;
+    // S ⪰ 0 is decided by a sparse factorisation of S + ηI for growing η; only when that
+    // fails is the eigenvector of λ_min needed, to climb along. Lanczos can miss the lowest
+    // eigenvalue; the factorisation cannot: restart from other vectors until both agree.
+    const double largest = LargestEigenvalueMagnitude(relaxed, point.lambda);
+    const double tolerance = options.relative_eigenvalue_tolerance * largest;
+    std::optional<double> eta = VerifiedShift(relaxed, point.lambda, 1e-14 * largest, tolerance);
+    Eigenpair lowest;
+    lowest.converged = true;
+    for (int attempt = 0; attempt < kEigenAttempts && !eta; ++attempt) {
+      lowest = MinimumEigenpair(relaxed, point.lambda, attempt, largest);
+      report.eigen_iterations += lowest.restarts;
+      if (lowest.converged && lowest.value < -tolerance) break;  // descend along it
     }
     report.min_eigenvalue = lowest.value;
-    // Weak duality with Λ' = Λ + min(λ_min, 0) I, less the eigenpair's residual.
-    report.lower_bound = point.cost + 3.0 * x.rows() * std::min(lowest.value - lowest.residual, 0.0);
-    report.relaxation_solved = lowest.value >= -options.relative_eigenvalue_tolerance * largest;
-    if (report.relaxation_solved || report.rank >= options.max_rank) break;
+    if (eta) {
+      report.relaxation_solved = true;
+      report.lower_bound = point.cost - dimension * *eta;  // weak duality with Λ − ηI
+      break;
+    }
+    if (!lowest.converged || lowest.value >= -tolerance || report.rank >= options.max_rank) {
+      report.reason = lowest.converged ? "the relaxation was not solved" : "the certificate's eigenvalue did not converge";
+      // A valid but loose bound: weak duality with the shift the factorisation accepts.
+      if (const auto loose = VerifiedShift(relaxed, point.lambda, tolerance, 4.0 * largest)) {
+        report.lower_bound = point.cost - dimension * *loose;
+      }
+      break;
+    }
     std::optional<MatrixXd> escaped = Escape(relaxed, point, lowest.vector);
     if (!escaped) break;
     point = Point(relaxed, std::move(*escaped));
@@ -310,7 +361,8 @@ CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOpti
   report.rounded_cost = form->Cost(rotations);
   // Where strongly anisotropic rotation information leaves the exact relaxation loose, the
   // relaxation with dominated information (a lower cost everywhere) may bound better.
-  const bool loose = !(report.rounded_cost - report.lower_bound <= kTightGap * std::abs(report.rounded_cost));
+  const double gap = report.rounded_cost - report.lower_bound;
+  const bool loose = !(gap <= kTightGap * std::max(std::abs(report.rounded_cost), 1e-6 * form->Constant()));
   if (loose && report.dominated_edges > 0) {
     const std::optional<RotationForm> dominated = RotationForm::Build(graph, nullptr, RotationInformation::kDominated);
     CertificateReport second = report;

@@ -151,6 +151,23 @@ TEST(LiftedCost, GradientAndHessianMatchFiniteDifferencesAlongTheManifold) {
   }
 }
 
+TEST(RotationForm, FactorisationDecidesPositiveDefinitenessOfTheCertificate) {
+  std::mt19937 rng(18);
+  const std::vector<Rigid3d> truth = RandomTruth(rng, 10);
+  const PoseGraph graph = RingGraph(truth, rng, 0.1, 5.0, MildlyAnisotropic);
+  const auto form = RotationForm::Build(graph, nullptr);
+  ASSERT_TRUE(form);
+  std::srand(19);
+  const Eigen::MatrixXd x = lifted::Retract(Eigen::MatrixXd::Zero(30, 4), Eigen::MatrixXd::Random(30, 4));
+  const lifted::Point point(*form, x);
+  const Eigen::MatrixXd s = lifted::CertificateProduct(*form, point.lambda, Eigen::MatrixXd::Identity(30, 30));
+  const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (s + s.transpose())).eigenvalues();
+  const double lowest = eigenvalues(0), margin = 1e-6 * eigenvalues.cwiseAbs().maxCoeff();
+  ASSERT_LT(lowest, -1.0);  // an arbitrary point: S is indefinite
+  EXPECT_TRUE(form->IsPositiveDefinite(point.lambda, -lowest + margin));
+  EXPECT_FALSE(form->IsPositiveDefinite(point.lambda, -lowest - margin));
+}
+
 TEST(Certificate, NoiseFreeRingIsRecoveredFromAFarStartAndCertifiedAtZero) {
   for (auto information : {MildlyAnisotropic, StronglyAnisotropic}) {
     std::mt19937 rng(13);

@@ -129,6 +129,30 @@ double RotationForm::Cost(const Eigen::MatrixXd& x, const Eigen::MatrixXd& qx) c
 
 double RotationForm::Cost(const Eigen::MatrixXd& x) const { return Cost(x, Apply(x)); }
 
+bool RotationForm::IsPositiveDefinite(const std::vector<Eigen::Matrix3d>& blocks, double shift) const {
+  const int n = NodeCount(), m = n - 1;  // m grounded positions, then 3n rotation coordinates
+  Triplets t;
+  t.reserve(laplacian_.nonZeros() + 2 * coupling_.nonZeros() + direct_.nonZeros() + 12 * n);
+  auto append = [&t](const Eigen::SparseMatrix<double>& matrix, int row0, int col0, bool transpose) {
+    for (int k = 0; k < matrix.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(matrix, k); it; ++it) {
+        const int r = static_cast<int>(it.row()), c = static_cast<int>(it.col());
+        if (transpose) t.emplace_back(row0 + c, col0 + r, it.value());
+        else t.emplace_back(row0 + r, col0 + c, it.value());
+      }
+    }
+  };
+  append(laplacian_, 0, 0, false);
+  append(coupling_, 0, m, false);
+  append(coupling_, m, 0, true);
+  append(direct_, m, m, false);
+  for (int i = 0; i < n; ++i) AddBlock(t, m + 3 * i, m + 3 * i, shift * Eigen::Matrix3d::Identity() - blocks[i]);
+  Eigen::SparseMatrix<double> k(m + 3 * n, m + 3 * n);
+  k.setFromTriplets(t.begin(), t.end());
+  const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(k);
+  return llt.info() == Eigen::Success;
+}
+
 Eigen::MatrixXd RotationForm::Positions(const Eigen::MatrixXd& x) const {
   Eigen::MatrixXd p = Eigen::MatrixXd::Zero(NodeCount(), x.cols());
   if (laplacian_factor_) p.bottomRows(NodeCount() - 1) = -laplacian_factor_->solve(coupling_ * x);

@@ -49,6 +49,9 @@ class RotationForm {
   static std::optional<RotationForm> Build(const PoseGraph& graph, std::string* why,
                                            RotationInformation rotation_information = RotationInformation::kExact);
 
+  /// c = Σ ½ tr Ω_r: the cost's scale (every rotation residual at 90° costs about this).
+  double Constant() const { return constant_; }
+
   /// Edges whose Ω_r is not its own DominatedRotationInformation (lowered in kDominated).
   int DominatedEdges() const { return dominated_edges_; }
 
@@ -65,6 +68,12 @@ class RotationForm {
   /// The positions minimising the cost for the rotations X (n × r, one row per node), with
   /// node 0 of Ids() at the origin.
   Eigen::MatrixXd Positions(const Eigen::MatrixXd& x) const;
+  /// Whether Q − Diag(blocks) + shift·I is positive definite (blocks: one symmetric 3 × 3 per
+  /// node), decided by a sparse Cholesky factorisation of the matrix before the positions are
+  /// eliminated, [[L, B], [Bᵀ, C − Diag(blocks) + shift·I]]: with L ≻ 0 it is positive definite
+  /// exactly when its Schur complement is.
+  bool IsPositiveDefinite(const std::vector<Eigen::Matrix3d>& blocks, double shift) const;
+
   /// A sparse positive-definite matrix close to Q (the rotation part made diagonally
   /// dominant plus the translation terms before elimination), for preconditioning.
   const Eigen::SparseMatrix<double>& Approximation() const { return approximation_; }
