@@ -316,22 +316,27 @@ MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x, const Certifi
       report.eigen_iterations += lowest.restarts;
       if (lowest.converged && lowest.value < -tolerance) break;  // descend along it
     }
-    report.min_eigenvalue = lowest.value;
     if (eta) {
       report.relaxation_solved = true;
+      report.min_eigenvalue = -*eta;                       // verified: λ_min(S) > −η
       report.lower_bound = point.cost - dimension * *eta;  // weak duality with Λ − ηI
       break;
     }
-    if (!lowest.converged || lowest.value >= -tolerance || report.rank >= options.max_rank) {
-      report.reason = lowest.converged ? "the relaxation was not solved" : "the certificate's eigenvalue did not converge";
-      // A valid but loose bound: weak duality with the shift the factorisation accepts.
+    report.min_eigenvalue = lowest.value;
+    std::optional<MatrixXd> escaped;
+    const bool negative = lowest.converged && lowest.value < -tolerance;
+    if (negative && report.rank < options.max_rank) escaped = Escape(relaxed, point, lowest.vector);
+    if (!escaped) {
+      report.reason = !lowest.converged ? "the certificate's eigenvalue did not converge"
+                      : !negative       ? "the eigensolver found no eigenvalue below the factorisation's"
+                      : report.rank >= options.max_rank ? "the staircase reached its maximum rank"
+                                                        : "no descent along the certificate's eigenvector";
+      // A valid but looser bound: weak duality with the shift the factorisation accepts.
       if (const auto loose = VerifiedShift(relaxed, point.lambda, tolerance, 4.0 * largest)) {
         report.lower_bound = point.cost - dimension * *loose;
       }
       break;
     }
-    std::optional<MatrixXd> escaped = Escape(relaxed, point, lowest.vector);
-    if (!escaped) break;
     point = Point(relaxed, std::move(*escaped));
   }
   return Round(point.x);
@@ -366,6 +371,8 @@ CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOpti
   if (loose && report.dominated_edges > 0) {
     const std::optional<RotationForm> dominated = RotationForm::Build(graph, nullptr, RotationInformation::kDominated);
     CertificateReport second = report;
+    second.reason.clear();
+    second.relaxation_solved = false;
     const MatrixXd candidate = Staircase(*dominated, x, options, second);
     second.rounded_cost = form->Cost(candidate);
     const double exact_rounded_cost = report.rounded_cost;
