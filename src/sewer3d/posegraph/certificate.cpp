@@ -148,7 +148,6 @@ struct Eigenpair {
   Eigen::VectorXd vector;
   bool converged = false;
   int restarts = 0;
-  double residual = 0.0;  // ‖S v − λ v‖ for the unit vector v: an eigenvalue lies that close
 };
 
 /// Attempt 0 starts Lanczos from Spectra's default vector, later attempts from random ones.
@@ -214,13 +213,8 @@ double LargestEigenvalueMagnitude(const RotationForm& form, const MultiplierBloc
 /// eigenvalue of S − |λ|_max I, which is λ_min − |λ|_max.
 Eigenpair MinimumEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, int attempt, double largest) {
   double unused = 0.0;
-  Eigenpair lowest = form.NodeCount() <= kDenseNodes ? DenseMinimumEigenpair(form, lambda, &unused)
-                                                     : DominantEigenpair(form, lambda, -largest, attempt);
-  if (lowest.converged) {
-    const Eigen::VectorXd v = lowest.vector.normalized();
-    lowest.residual = (CertificateProduct(form, lambda, v) - lowest.value * v).norm();
-  }
-  return lowest;
+  return form.NodeCount() <= kDenseNodes ? DenseMinimumEigenpair(form, lambda, &unused)
+                                         : DominantEigenpair(form, lambda, -largest, attempt);
 }
 
 /// Rounds X (3n × r) to rotations: the top-3 right singular subspace, the sign that gives

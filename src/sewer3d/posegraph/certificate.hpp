@@ -6,10 +6,12 @@
 /// The rotations are lifted to X (3n × r, block i a 3 × r matrix with orthonormal rows, r ≥ 3)
 /// and tr(XᵀQX) is minimised by a Riemannian trust region with truncated conjugate gradients.
 /// At a critical point the Lagrange multipliers Λ_i = sym((QX)_i X_iᵀ) give the certificate
-/// matrix S = Q − Diag(Λ): if S ⪰ 0, X Xᵀ solves the semidefinite relaxation and tr(XᵀQX) + c
-/// is a lower bound on every pose graph's cost (weak duality holds for any X, with the bound
-/// lowered by 3n·|λ_min(S)| when λ_min < 0). Otherwise the eigenvector of λ_min is a descent
-/// direction at rank r + 1, and the staircase climbs. The solution of the relaxation is rounded
+/// matrix S = Q − Diag(Λ). Weak duality, for any X: if S + ηI ⪰ 0, no poses cost less than
+/// tr(XᵀQX) + c − 3nη. Positive definiteness of S + ηI is decided by a sparse Cholesky
+/// factorisation (RotationForm::IsPositiveDefinite), not by an eigensolver that could miss the
+/// lowest eigenvalue. If it holds for η within the tolerance, X Xᵀ solves the semidefinite
+/// relaxation; otherwise the eigenvector of λ_min (Lanczos) is a descent direction at rank
+/// r + 1, and the staircase climbs. The solution of the relaxation is rounded
 /// to SO(3)ⁿ (top-3 singular subspace, blockwise projection) and its positions solved for.
 ///
 /// Edges whose rotation information is strongly anisotropic (DominatedRotationInformation)
@@ -31,7 +33,7 @@ struct CertificateOptions {
   int max_cg_iterations = 2000;
   /// Stop a rank when the Riemannian gradient norm is below this fraction of ‖Q X‖.
   double relative_gradient_tolerance = 1e-8;
-  /// S counts as positive semidefinite when λ_min(S) ≥ −tolerance · |λ_max(S)|.
+  /// The relaxation counts as solved when S + ηI ≻ 0 for some η ≤ tolerance · |λ|_max(S).
   double relative_eigenvalue_tolerance = 1e-7;
   void Check() const;
 };
@@ -41,9 +43,10 @@ struct CertificateReport {
   std::string reason;             ///< why not applicable, or why the check failed
   double start_cost = 0.0;        ///< ½ Σ rᵀΩr at the given rotations and their best positions
   double relaxation_cost = 0.0;   ///< tr(XᵀQX) + c at the last critical point
-  double min_eigenvalue = 0.0;    ///< λ_min(S) there
-  /// relaxation_cost + 3n·min(λ_min − ‖S v − λ_min v‖, 0): no poses of the graph cost less;
-  /// −∞ when the eigenvalue did not converge.
+  /// λ_min(S) there: −η, the verified shift, when solved; else the eigensolver's estimate.
+  double min_eigenvalue = 0.0;
+  /// relaxation_cost − 3n·η with S + ηI ≻ 0 verified: no poses of the graph cost less;
+  /// −∞ when no such η up to 4 |λ|_max was found.
   double lower_bound = 0.0;
   double rounded_cost = 0.0;      ///< cost of the rounded rotations with their best positions
   bool relaxation_solved = false; ///< S ⪰ 0 within the tolerance at the final rank
