@@ -250,28 +250,40 @@ CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOpti
     report.reason = "more than one node is fixed";
     return report;
   }
-  const std::optional<RotationForm> form = RotationForm::Build(graph, &report.reason);
-  if (!form) return report;
+  // The exact form where the cost is quadratic in the rotations; the dominated one (a lower
+  // cost, so a valid bound) where it is loose or the translation information is anisotropic.
+  const std::optional<RotationForm> exact = RotationForm::Build(graph, nullptr);
+  std::optional<RotationForm> dominated;
+  if (!exact || exact->DominatedEdges() > 0) {
+    dominated = RotationForm::Build(graph, &report.reason, RotationInformation::kDominated);
+    if (!dominated) return report;  // robust loss, disconnected, no edges
+    report.reason.clear();
+  }
+  const RotationForm& any = exact ? *exact : *dominated;
   report.applicable = true;
-  report.dominated_edges = form->DominatedEdges();
-  const int n = form->NodeCount();
+  report.dominated_edges = any.DominatedEdges();
+  const int n = any.NodeCount();
   MatrixXd x(3 * n, 3);
-  for (int i = 0; i < n; ++i) x.middleRows<3>(3 * i) = graph.node(form->Ids()[i]).RotationMatrix().transpose();
-  report.start_cost = form->Cost(x);
+  for (int i = 0; i < n; ++i) x.middleRows<3>(3 * i) = graph.node(any.Ids()[i]).RotationMatrix().transpose();
+  // The graph's cost at rotations with the form's best positions for them.
+  auto cost = [&](const MatrixXd& r) { return exact ? exact->Cost(r) : GraphCost(RoundedGraph(graph, any, r)); };
+  report.start_cost = cost(x);
+  report.lower_bound = -std::numeric_limits<double>::infinity();
+  report.rounded_cost = std::numeric_limits<double>::infinity();
 
-  MatrixXd rotations = Staircase(*form, x, options, report);
-  report.rounded_cost = form->Cost(rotations);
-  // Where strongly anisotropic rotation information leaves the exact relaxation loose, the
-  // relaxation with dominated information (a lower cost everywhere) may bound better.
+  MatrixXd rotations = x;
+  if (exact) {
+    rotations = Staircase(*exact, x, options, report);
+    report.rounded_cost = exact->Cost(rotations);
+  }
   const double gap = report.rounded_cost - report.lower_bound;
-  const bool loose = !(gap <= kTightGap * std::max(std::abs(report.rounded_cost), 1e-6 * form->Constant()));
-  if (loose && report.dominated_edges > 0) {
-    const std::optional<RotationForm> dominated = RotationForm::Build(graph, nullptr, RotationInformation::kDominated);
+  const bool loose = !exact || !(gap <= kTightGap * std::max(std::abs(report.rounded_cost), 1e-6 * any.Constant()));
+  if (dominated && loose) {
     CertificateReport second = report;
     second.reason.clear();
     second.relaxation_solved = false;
     const MatrixXd candidate = Staircase(*dominated, x, options, second);
-    second.rounded_cost = form->Cost(candidate);
+    second.rounded_cost = cost(candidate);
     const double exact_rounded_cost = report.rounded_cost;
     if (second.lower_bound > report.lower_bound) {
       report = second;
@@ -282,7 +294,7 @@ CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOpti
     report.rounded_cost = std::min(exact_rounded_cost, second.rounded_cost);
     if (second.rounded_cost < exact_rounded_cost) rotations = candidate;
   }
-  if (rounded) *rounded = RoundedGraph(graph, *form, rotations);
+  if (rounded) *rounded = RoundedGraph(graph, any, rotations);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }

@@ -15,6 +15,7 @@ namespace sewer3d {
 namespace {
 
 using test_graphs::Perturb;
+using test_graphs::RandomInformation;
 using test_graphs::RandomPose;
 using test_graphs::RingGraph;
 using test_graphs::RotationErrorDeg;
@@ -109,6 +110,13 @@ TEST(RotationForm, RefusesGraphsWhoseCostIsNotQuadraticInTheRotations) {
   PoseGraph empty;
   empty.SetNode(0, truth[0]);
   refused(empty, "no edges");
+  // The dominated form takes any information; the certificate then bounds with it.
+  for (const PoseGraph* graph : {&anisotropic, &coupled}) {
+    EXPECT_TRUE(RotationForm::Build(*graph, &why, RotationInformation::kDominated)) << why;
+    const CertificateReport report = CertifyPoseGraph(*graph, CertificateOptions());
+    EXPECT_TRUE(report.applicable) << report.reason;
+    EXPECT_TRUE(report.dominated_relaxation);
+  }
 
   PoseGraph two_fixed = good;
   two_fixed.fixed_nodes() = {0, 4};
@@ -122,6 +130,24 @@ TEST(RotationForm, RefusesGraphsWhoseCostIsNotQuadraticInTheRotations) {
   const PoseGraphReport lm = OptimisePoseGraph(huber, options);
   EXPECT_FALSE(lm.certificate_applicable);
   EXPECT_EQ(lm.certificate_reason, "robust loss");
+}
+
+TEST(RotationForm, DominatedInformationIsBelowTheInformationAndQualifies) {
+  std::mt19937 rng(20);
+  for (int trial = 0; trial < 200; ++trial) {
+    Matrix6d omega = RandomInformation(rng);
+    if (trial % 2 == 0) omega.topRightCorner<3, 3>().setZero(), omega.bottomLeftCorner<3, 3>().setZero();
+    const Matrix6d lowered = DominatedInformation(omega);
+    const Eigen::Matrix<double, 6, 1> gap = Eigen::SelfAdjointEigenSolver<Matrix6d>(omega - lowered).eigenvalues();
+    EXPECT_GT(gap(0), -1e-9 * omega.norm()) << trial;  // Ω − Ω' ⪰ 0: a lower cost everywhere
+    EXPECT_EQ((lowered.topRightCorner<3, 3>().norm()), 0.0);
+    const double tau = lowered(0, 0);
+    EXPECT_GT(tau, 0.0);
+    EXPECT_LT((lowered.topLeftCorner<3, 3>() - tau * Eigen::Matrix3d::Identity()).norm(), 1e-12 * tau);
+    const Eigen::Vector3d rotation = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(lowered.bottomRightCorner<3, 3>()).eigenvalues();
+    EXPECT_GT(rotation(0), 0.0);
+    EXPECT_LE(rotation(2), rotation(0) + rotation(1) + 1e-12 * omega.norm());
+  }
 }
 
 TEST(LiftedCost, GradientAndHessianMatchFiniteDifferencesAlongTheManifold) {
@@ -169,7 +195,7 @@ TEST(RotationForm, FactorisationDecidesPositiveDefinitenessOfTheCertificate) {
 }
 
 TEST(Certificate, NoiseFreeRingIsRecoveredFromAFarStartAndCertifiedAtZero) {
-  for (auto information : {MildlyAnisotropic, StronglyAnisotropic}) {
+  for (auto information : {MildlyAnisotropic, StronglyAnisotropic, RandomInformation}) {
     std::mt19937 rng(13);
     const std::vector<Rigid3d> truth = RandomTruth(rng, 20);
     PoseGraph graph = RingGraph(truth, rng, 0.0, 0.0, information);
@@ -180,16 +206,19 @@ TEST(Certificate, NoiseFreeRingIsRecoveredFromAFarStartAndCertifiedAtZero) {
     ASSERT_TRUE(report.applicable) << report.reason;
     EXPECT_TRUE(report.relaxation_solved);
     // Strongly anisotropic rotation information needs the dominated relaxation: the exact
-    // one's lifted cost goes negative (about −2.7e3 here).
-    EXPECT_EQ(report.dominated_relaxation, information == StronglyAnisotropic);
+    // one's lifted cost goes negative (about −2.7e3 here); full 6 × 6 information has no
+    // exact form at all.
+    EXPECT_EQ(report.dominated_relaxation, information != MildlyAnisotropic);
     EXPECT_NEAR(report.lower_bound, 0.0, 1e-6);
     EXPECT_LT(report.rounded_cost, 1e-9);
     EXPECT_LT(GraphCost(rounded), 1e-9);
-    // Node 0 (the gauge) kept its true pose, so every pose is the truth (to the staircase's
-    // 1e-8 relative gradient tolerance; poses spread over ~100 mm).
+    // Node 0 (the gauge) kept its true pose, so every pose is the truth, to the staircase's
+    // 1e-8 relative gradient tolerance (poses spread over ~100 mm; the weakest directions, with
+    // the lowered translation information of full 6 × 6 edges, end ~1e-4 mm off; `--certify`
+    // refines with LM after rounding).
     for (int id = 0; id < 20; ++id) {
-      EXPECT_LT(RotationErrorDeg(rounded.node(id), truth[id]), 1e-5) << id;
-      EXPECT_LT((rounded.node(id).translation - truth[id].translation).norm(), 1e-5) << id;
+      EXPECT_LT(RotationErrorDeg(rounded.node(id), truth[id]), 1e-4) << id;
+      EXPECT_LT((rounded.node(id).translation - truth[id].translation).norm(), 1e-3) << id;
     }
   }
 }
@@ -250,9 +279,25 @@ TEST(Certificate, StronglyAnisotropicGraphsGetAValidLooserBound) {
   for (double cost : minima) EXPECT_GE(cost, report.lower_bound * (1.0 - 1e-9));
   EXPECT_LE(report.final_cost, best * (1.0 + 1e-6));
   // Lowering the information of the dominated edges costs tightness, not validity: here the
-  // bound is 27 % of the best minimum; the exact relaxation's is negative.
+  // bound is about a quarter of the best minimum; the exact relaxation's is negative.
   EXPECT_TRUE(report.dominated_relaxation);
   EXPECT_GT(report.lower_bound, 0.2 * best);
+}
+
+TEST(Certificate, FullSixBySixInformationGetsAValidBound) {
+  std::mt19937 rng(21);
+  const std::vector<Rigid3d> truth = RandomTruth(rng, 30);
+  // Random information a aᵀ + I: anisotropic translation, coupling, anisotropic rotation.
+  const PoseGraph measured = RingGraph(truth, rng, 0.1, 5.0, RandomInformation);
+  const std::vector<double> minima = MultiStartMinima(measured, truth, rng);
+  const double best = *std::min_element(minima.begin(), minima.end());
+  const PoseGraphReport report = Certified(measured);
+  ASSERT_TRUE(report.certificate_applicable) << report.certificate_reason;
+  EXPECT_TRUE(report.dominated_relaxation);
+  EXPECT_EQ(report.dominated_edges, static_cast<int>(measured.edges().size()));
+  for (double cost : minima) EXPECT_GE(cost, report.lower_bound * (1.0 - 1e-9));
+  EXPECT_LE(report.final_cost, best * (1.0 + 1e-6));
+  EXPECT_GT(report.lower_bound, 0.0);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "sewer3d/posegraph/rotation_form.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <sstream>
@@ -16,20 +17,18 @@ void AddBlock(Triplets& t, int row, int col, const Eigen::Matrix3d& m) {
   }
 }
 
-/// Why the edge's cost is not quadratic in the rotations, or empty.
-std::string Disqualification(const PoseEdge& e) {
-  std::ostringstream why;
-  const Eigen::Matrix3d omega_t = e.information.topLeftCorner<3, 3>();
+/// Why the edge's cost is not exactly quadratic in the rotations, or empty.
+std::string Disqualification(const Matrix6d& information) {
+  const Eigen::Matrix3d omega_t = information.topLeftCorner<3, 3>();
   const double tau = omega_t.trace() / 3.0;
-  const double scale = std::max(tau, e.information.bottomRightCorner<3, 3>().cwiseAbs().maxCoeff());
-  if (e.huber_delta > 0.0) {
-    why << "edge " << e.from << " -> " << e.to << " has a robust loss";
-  } else if ((omega_t - tau * Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 * tau) {
-    why << "edge " << e.from << " -> " << e.to << " has anisotropic translation information";
-  } else if (e.information.topRightCorner<3, 3>().cwiseAbs().maxCoeff() > 1e-6 * scale) {
-    why << "edge " << e.from << " -> " << e.to << " couples translation and rotation information";
+  const double scale = std::max(tau, information.bottomRightCorner<3, 3>().cwiseAbs().maxCoeff());
+  if ((omega_t - tau * Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 * tau) {
+    return "has anisotropic translation information";
   }
-  return why.str();
+  if (information.topRightCorner<3, 3>().cwiseAbs().maxCoeff() > 1e-6 * scale) {
+    return "couples translation and rotation information";
+  }
+  return {};
 }
 
 }  // namespace
@@ -40,6 +39,37 @@ Eigen::Matrix3d DominatedRotationInformation(const Eigen::Matrix3d& information)
   if (lambda(2) <= lambda(0) + lambda(1)) return information;
   lambda(2) = lambda(0) + lambda(1);
   return es.eigenvectors() * lambda.asDiagonal() * es.eigenvectors().transpose();
+}
+
+Matrix6d DominatedInformation(const Matrix6d& information) {
+  const Matrix6d omega = 0.5 * (information + information.transpose());
+  Matrix6d out = Matrix6d::Zero();
+  Eigen::Matrix3d omega_r = omega.bottomRightCorner<3, 3>();
+  if (Disqualification(omega).empty()) {
+    out.topLeftCorner<3, 3>() = omega.topLeftCorner<3, 3>().trace() / 3.0 * Eigen::Matrix3d::Identity();
+  } else {
+    // diag(τI, Ω_r − Cᵀ(Ω_t − τI)⁻¹C) ⪯ Ω for τ < λ_min(Ω_t) (Schur complement). τ = λ_min
+    // without coupling C; with it, halved from λ_min until the rotation block stays positive
+    // definite (it is at τ = 0, since Ω ≻ 0).
+    const Eigen::Matrix3d omega_t = omega.topLeftCorner<3, 3>();
+    const Eigen::Matrix3d coupling = omega.topRightCorner<3, 3>();
+    double tau = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(omega_t, Eigen::EigenvaluesOnly).eigenvalues()(0);
+    if (coupling.cwiseAbs().maxCoeff() > 0.0) {
+      for (int halving = 0; halving < 60; ++halving) {
+        tau *= 0.5;
+        const Eigen::Matrix3d schur =
+            omega_r - coupling.transpose() * (omega_t - tau * Eigen::Matrix3d::Identity()).inverse() * coupling;
+        if (Eigen::LLT<Eigen::Matrix3d>(schur).info() == Eigen::Success) {
+          omega_r = schur;
+          break;
+        }
+        if (halving == 59) tau = 0.0, omega_r = omega_r - coupling.transpose() * omega_t.inverse() * coupling;
+      }
+    }
+    out.topLeftCorner<3, 3>() = tau * Eigen::Matrix3d::Identity();
+  }
+  out.bottomRightCorner<3, 3>() = DominatedRotationInformation(omega_r);
+  return out;
 }
 
 std::optional<RotationForm> RotationForm::Build(const PoseGraph& graph, std::string* why,
@@ -58,22 +88,27 @@ std::optional<RotationForm> RotationForm::Build(const PoseGraph& graph, std::str
   const int n = form.NodeCount();
   Triplets direct, coupling, laplacian, dominance;
   for (const PoseEdge& e : graph.edges()) {
-    if (const std::string reason = Disqualification(e); !reason.empty()) return fail(reason);
+    const std::string edge = "edge " + std::to_string(e.from) + " -> " + std::to_string(e.to) + " ";
+    if (e.huber_delta > 0.0) return fail(edge + "has a robust loss");
+    const std::string reason = Disqualification(e.information);
+    if (!reason.empty() && rotation_information == RotationInformation::kExact) return fail(edge + reason);
     const int a = index.at(e.from), b = index.at(e.to);
-    Eigen::Matrix3d omega_r = e.information.bottomRightCorner<3, 3>();
-    if (const Eigen::Matrix3d dominated = DominatedRotationInformation(omega_r); dominated != omega_r) {
-      ++form.dominated_edges_;
-      if (rotation_information == RotationInformation::kDominated) omega_r = dominated;
-    }
+    const Matrix6d dominated = DominatedInformation(e.information);
+    const bool lowered = !reason.empty() || dominated.bottomRightCorner<3, 3>() != e.information.bottomRightCorner<3, 3>();
+    form.dominated_edges_ += lowered;
+    const Matrix6d& information = rotation_information == RotationInformation::kDominated ? dominated : e.information;
+    const Eigen::Matrix3d omega_r = information.bottomRightCorner<3, 3>();
     const Eigen::Matrix3d m =
         0.5 * (omega_r + omega_r.transpose()) - 0.5 * omega_r.trace() * Eigen::Matrix3d::Identity();
     const Eigen::Matrix3d rotation_ab = e.a_from_b.RotationMatrix();
     // tr(M E) = tr(R_a (½ M R̂) R_bᵀ) + tr(R_b (½ R̂ᵀ M) R_aᵀ): blocks (a, b) and (b, a).
     AddBlock(direct, 3 * a, 3 * b, 0.5 * m * rotation_ab);
     AddBlock(direct, 3 * b, 3 * a, 0.5 * rotation_ab.transpose() * m);
+    AddBlock(dominance, 3 * a, 3 * b, 0.5 * m * rotation_ab);
+    AddBlock(dominance, 3 * b, 3 * a, 0.5 * rotation_ab.transpose() * m);
     form.constant_ += 0.5 * omega_r.trace();
     // ½ τ ‖p_b − p_a − R_a p̂‖², with R_a p̂ = X_aᵀ p̂: the C, B and Laplacian blocks.
-    const double half_tau = 0.5 * e.information.topLeftCorner<3, 3>().trace() / 3.0;
+    const double half_tau = 0.5 * information.topLeftCorner<3, 3>().trace() / 3.0;
     const Eigen::Vector3d t = e.a_from_b.translation;
     AddBlock(direct, 3 * a, 3 * a, half_tau * t * t.transpose());
     for (int k = 0; k < 3; ++k) {
@@ -109,9 +144,8 @@ std::optional<RotationForm> RotationForm::Build(const PoseGraph& graph, std::str
     }
     form.laplacian_factor_ = std::move(factor);
   }
-  Eigen::SparseMatrix<double> dominant(3 * n, 3 * n);
-  dominant.setFromTriplets(dominance.begin(), dominance.end());
-  form.approximation_ = form.direct_ + dominant;
+  form.approximation_.resize(3 * n, 3 * n);
+  form.approximation_.setFromTriplets(dominance.begin(), dominance.end());
   const double regularisation = 1e-6 * form.approximation_.diagonal().maxCoeff();
   for (int i = 0; i < 3 * n; ++i) form.approximation_.coeffRef(i, i) += regularisation;
   return form;
