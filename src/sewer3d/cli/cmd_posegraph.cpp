@@ -35,7 +35,7 @@ void PrintCertificate(const PoseGraphReport& r) {
   }
   fmt::print("certificate lower bound {:.7g} (relaxation rank {}{}{}, {:.3f} s){}\n", r.lower_bound,
              r.relaxation_rank, r.relaxation_solved ? "" : ", not solved: bound is loose",
-             r.dominated_relaxation ? fmt::format(", rotation information lowered on {} edges", r.dominated_edges) : "",
+             r.dominated_relaxation ? fmt::format(", information lowered on {} edges", r.dominated_edges) : "",
              r.certificate_seconds, r.certificate_improved ? "; its solution was lower and is taken" : "");
   fmt::print("            final cost is within {:.2g} of the global optimum{}\n", std::max(0.0, r.RelativeGap()),
              r.RelativeGap() <= 1e-4 ? ": certified" : "");

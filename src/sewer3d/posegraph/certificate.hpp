@@ -15,9 +15,11 @@
 /// to SO(3)ⁿ (top-3 singular subspace, blockwise projection) and its positions solved for.
 ///
 /// Edges whose rotation information is strongly anisotropic (DominatedRotationInformation)
-/// make the lifted cost indefinite and the relaxation loose; when the rounded solution is then
-/// far from the bound, a second staircase relaxes the graph with those informations lowered,
-/// whose cost is below the graph's everywhere, and the better bound and solution are kept.
+/// make the lifted cost indefinite and the relaxation loose, and anisotropic translation
+/// information makes the cost non-quadratic; when the rounded solution is far from the bound,
+/// or there is no exact form, a staircase relaxes the graph with its informations lowered
+/// (DominatedInformation), whose cost is below the graph's everywhere, and the better bound and
+/// solution are kept.
 
 #include <string>
 
@@ -51,7 +53,7 @@ struct CertificateReport {
   double rounded_cost = 0.0;      ///< cost of the rounded rotations with their best positions
   bool relaxation_solved = false; ///< S ⪰ 0 within the tolerance at the final rank
   int rank = 3;                   ///< rank of the last critical point
-  int dominated_edges = 0;        ///< edges whose rotation information is strongly anisotropic
+  int dominated_edges = 0;        ///< edges whose information DominatedInformation lowers
   bool dominated_relaxation = false;  ///< the bound comes from the dominated-information relaxation
   int iterations = 0;             ///< trust-region iterations over all ranks
   int eigen_iterations = 0;       ///< Lanczos restarts over all certificate checks
@@ -60,8 +62,8 @@ struct CertificateReport {
 
 /// Runs the staircase from the graph's own rotations. When `rounded` is given it receives the
 /// graph with the rounded rotations and their best positions, in the gauge of the graph's first
-/// node (first fixed node if any). Not applicable (report.reason) where the cost is not
-/// quadratic in the rotations (see RotationForm::Build) or more than one node is fixed.
+/// node (first fixed node if any). Not applicable (report.reason) with robust losses, a graph
+/// not connected, or more than one node fixed.
 CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOptions& options,
                                    PoseGraph* rounded = nullptr);
 

@@ -27,8 +27,7 @@ struct PoseGraphOptions {
   double parameter_tolerance = 1e-10;
   /// After LM, run the Riemannian staircase (certificate.hpp) from the result: it gives a lower
   /// bound on the global optimum, and where its rounded solution refines to a lower cost, that
-  /// solution is taken. Applies where the cost is quadratic in the rotations (no robust loss,
-  /// isotropic translation information).
+  /// solution is taken. Not with robust losses.
   bool certify = false;
   void Check() const;
 };
@@ -51,7 +50,7 @@ struct PoseGraphReport {
   double lower_bound = 0.0;         ///< no poses of this graph cost less
   int relaxation_rank = 0;          ///< rank at which the staircase stopped
   bool relaxation_solved = false;   ///< the semidefinite relaxation was solved (S ⪰ 0)
-  int dominated_edges = 0;          ///< strongly anisotropic rotation information (certificate.hpp)
+  int dominated_edges = 0;          ///< edges with lowered information (certificate.hpp)
   bool dominated_relaxation = false;///< the bound comes from the dominated-information relaxation
   bool certificate_improved = false;///< the staircase's rounded solution beat LM's and was taken
   double certificate_seconds = 0.0;
