@@ -14,11 +14,7 @@
 namespace sewer3d {
 namespace {
 
-using test_graphs::Perturb;
-using test_graphs::RandomInformation;
-using test_graphs::RandomPose;
-using test_graphs::RingGraph;
-using test_graphs::RotationErrorDeg;
+using namespace test_graphs;  // NOLINT: the synthetic graphs of this module's tests
 
 TEST(EdgeCost, JacobiansMatchFiniteDifferences) {
   std::mt19937 rng(1);
