@@ -254,10 +254,9 @@ CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOpti
   // cost, so a valid bound) where it is loose or the translation information is anisotropic.
   const std::optional<RotationForm> exact = RotationForm::Build(graph, nullptr);
   std::optional<RotationForm> dominated;
-  if (!exact || exact->DominatedEdges() > 0) {
+  if (!exact) {
     dominated = RotationForm::Build(graph, &report.reason, RotationInformation::kDominated);
     if (!dominated) return report;  // robust loss, disconnected, no edges
-    report.reason.clear();
   }
   const RotationForm& any = exact ? *exact : *dominated;
   report.applicable = true;
@@ -278,6 +277,9 @@ CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOpti
   }
   const double gap = report.rounded_cost - report.lower_bound;
   const bool loose = !exact || !(gap <= kTightGap * std::max(std::abs(report.rounded_cost), 1e-6 * any.Constant()));
+  if (loose && !dominated && any.DominatedEdges() > 0) {
+    dominated = RotationForm::Build(graph, nullptr, RotationInformation::kDominated);
+  }
   if (dominated && loose) {
     CertificateReport second = report;
     second.reason.clear();
