@@ -1,14 +1,13 @@
 #include "sewer3d/posegraph/certificate.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <random>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/posegraph/block_algebra.hpp"
 #include "sewer3d/posegraph/certificate_eigen.hpp"
 #include "sewer3d/posegraph/lifted_cost.hpp"
 #include "sewer3d/posegraph/rotation_form.hpp"
@@ -130,11 +129,7 @@ MatrixXd Round(const MatrixXd& x) {
   for (Eigen::Index i = 0; i < x.rows(); i += 3) positive += rotations.middleRows<3>(i).determinant() > 0.0;
   if (2 * positive < x.rows() / 3) rotations.col(2) *= -1.0;
   for (Eigen::Index i = 0; i < x.rows(); i += 3) {
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(Eigen::Matrix3d(rotations.middleRows<3>(i)),
-                                                Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-    d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
-    rotations.middleRows<3>(i) = svd.matrixU() * d * svd.matrixV().transpose();
+    rotations.middleRows<3>(i) = ProjectToRotation(rotations.middleRows<3>(i));
   }
   return rotations;
 }

@@ -3,19 +3,13 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include <sstream>
+#include <string>
 #include <unordered_map>
+
+#include "sewer3d/posegraph/block_algebra.hpp"
 
 namespace sewer3d {
 namespace {
-
-using Triplets = std::vector<Eigen::Triplet<double>>;
-
-void AddBlock(Triplets& t, int row, int col, const Eigen::Matrix3d& m) {
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) t.emplace_back(row + r, col + c, m(r, c));
-  }
-}
 
 /// Why the edge's cost is not exactly quadratic in the rotations, or empty.
 std::string Disqualification(const Matrix6d& information) {

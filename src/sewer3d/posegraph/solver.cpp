@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/posegraph/block_algebra.hpp"
 #include "sewer3d/posegraph/certificate.hpp"
 #include "sewer3d/posegraph/edge_cost.hpp"
 
@@ -42,14 +43,6 @@ Indexing MakeIndexing(const PoseGraph& graph) {
   return ix;
 }
 
-using Triplets = std::vector<Eigen::Triplet<double>>;
-
-void AddBlock(Triplets& t, int row_block, int col_block, const Eigen::Matrix3d& m) {
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) t.emplace_back(3 * row_block + r, 3 * col_block + c, m(r, c));
-  }
-}
-
 /// Assembles and solves H x = B for a problem with residuals e = x_b − M x_a − c, weight W,
 /// anchored nodes known. `known(i)` gives the fixed value (3 x k) of an anchored node.
 template <class EdgeTerms, class Known>
@@ -66,16 +59,16 @@ std::optional<Eigen::MatrixXd> SolveLinear(const PoseGraph& graph, const Indexin
     const int fa = ix.free_index[a], fb = ix.free_index[b];
     // Normal equations of e = x_b − M x_a − c with weight W.
     if (fa >= 0) {
-      AddBlock(triplets, fa, fa, m.transpose() * w * m);
+      AddBlock(triplets, 3 * fa, 3 * fa, m.transpose() * w * m);
       rhs.middleRows<3>(3 * fa) -= m.transpose() * w * c;
     }
     if (fb >= 0) {
-      AddBlock(triplets, fb, fb, w);
+      AddBlock(triplets, 3 * fb, 3 * fb, w);
       rhs.middleRows<3>(3 * fb) += w * c;
     }
     if (fa >= 0 && fb >= 0) {
-      AddBlock(triplets, fa, fb, -m.transpose() * w);
-      AddBlock(triplets, fb, fa, -w * m);
+      AddBlock(triplets, 3 * fa, 3 * fb, -m.transpose() * w);
+      AddBlock(triplets, 3 * fb, 3 * fa, -w * m);
     } else if (fa >= 0) {
       rhs.middleRows<3>(3 * fa) += m.transpose() * w * known(b);
     } else if (fb >= 0) {
@@ -91,13 +84,6 @@ std::optional<Eigen::MatrixXd> SolveLinear(const PoseGraph& graph, const Indexin
   // A disconnected graph leaves a singular H; LDLT may still "succeed" with zero pivots.
   if ((h * x - rhs).norm() > 1e-6 * std::max(1.0, rhs.norm())) return std::nullopt;
   return x;
-}
-
-Eigen::Matrix3d ProjectToRotation(const Eigen::Matrix3d& m) {
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  return svd.matrixU() * d * svd.matrixV().transpose();
 }
 
 }  // namespace
