@@ -176,16 +176,6 @@ namespace {
 
 /// One staircase on `relaxed` from rotations `x` (3n × 3); fills the relaxation fields of
 /// `report` and returns the rounded rotations.
-/// The smallest η in from·4^k ≤ to with Q − Diag(Λ) + ηI ≻ 0 (sparse Cholesky): then
-/// λ_min(S) > −η, whatever the eigensolver found.
-std::optional<double> VerifiedShift(const RotationForm& form, const MultiplierBlocks& lambda, double from, double to) {
-  if (!(from > 0.0)) return std::nullopt;
-  for (double eta = from; eta <= to; eta *= 4.0) {
-    if (form.IsPositiveDefinite(lambda, eta)) return eta;
-  }
-  return std::nullopt;
-}
-
 MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x, const CertificateOptions& options,
                    CertificateReport& report) {
   Point point(relaxed, x);
@@ -200,7 +190,7 @@ MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x, const Certifi
     // eigenvalue; the factorisation cannot: restart from other vectors until both agree.
     const double largest = LargestEigenvalueMagnitude(relaxed, point.lambda);
     const double tolerance = options.relative_eigenvalue_tolerance * largest;
-    std::optional<double> eta = VerifiedShift(relaxed, point.lambda, 1e-14 * largest, tolerance);
+    std::optional<double> eta = relaxed.SmallestPositiveDefiniteShift(point.lambda, 1e-14 * largest, tolerance);
     Eigenpair lowest;
     lowest.converged = true;
     for (int attempt = 0; attempt < kEigenAttempts && !eta; ++attempt) {
@@ -224,7 +214,7 @@ MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x, const Certifi
                       : report.rank >= options.max_rank ? "the staircase reached its maximum rank"
                                                         : "no descent along the certificate's eigenvector";
       // A valid but looser bound: weak duality with the shift the factorisation accepts.
-      if (const auto loose = VerifiedShift(relaxed, point.lambda, tolerance, 4.0 * largest)) {
+      if (const auto loose = relaxed.SmallestPositiveDefiniteShift(point.lambda, tolerance, 4.0 * largest)) {
         report.lower_bound = point.cost - dimension * *loose;
       }
       break;

@@ -157,10 +157,12 @@ double RotationForm::Cost(const Eigen::MatrixXd& x, const Eigen::MatrixXd& qx) c
 
 double RotationForm::Cost(const Eigen::MatrixXd& x) const { return Cost(x, Apply(x)); }
 
-bool RotationForm::IsPositiveDefinite(const std::vector<Eigen::Matrix3d>& blocks, double shift) const {
+std::optional<double> RotationForm::SmallestPositiveDefiniteShift(const std::vector<Eigen::Matrix3d>& blocks,
+                                                                 double from, double to) const {
+  if (!(from > 0.0)) return std::nullopt;
   const int n = NodeCount(), m = n - 1;  // m grounded positions, then 3n rotation coordinates
   Triplets t;
-  t.reserve(laplacian_.nonZeros() + 2 * coupling_.nonZeros() + direct_.nonZeros() + 12 * n);
+  t.reserve(laplacian_.nonZeros() + 2 * coupling_.nonZeros() + direct_.nonZeros() + 9 * n);
   auto append = [&t](const Eigen::SparseMatrix<double>& matrix, int row0, int col0, bool transpose) {
     for (int k = 0; k < matrix.outerSize(); ++k) {
       for (Eigen::SparseMatrix<double>::InnerIterator it(matrix, k); it; ++it) {
@@ -174,11 +176,23 @@ bool RotationForm::IsPositiveDefinite(const std::vector<Eigen::Matrix3d>& blocks
   append(coupling_, 0, m, false);
   append(coupling_, m, 0, true);
   append(direct_, m, m, false);
-  for (int i = 0; i < n; ++i) AddBlock(t, m + 3 * i, m + 3 * i, shift * Eigen::Matrix3d::Identity() - blocks[i]);
-  Eigen::SparseMatrix<double> k(m + 3 * n, m + 3 * n);
-  k.setFromTriplets(t.begin(), t.end());
-  const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(k);
-  return llt.info() == Eigen::Success;
+  for (int i = 0; i < n; ++i) AddBlock(t, m + 3 * i, m + 3 * i, -blocks[i]);  // diagonal present
+  Eigen::SparseMatrix<double> unshifted(m + 3 * n, m + 3 * n);
+  unshifted.setFromTriplets(t.begin(), t.end());
+  // One symbolic analysis; each η only refactors the numbers.
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
+  llt.analyzePattern(unshifted);
+  for (double eta = from; eta <= to; eta *= 4.0) {
+    Eigen::SparseMatrix<double> shifted = unshifted;
+    for (int i = m; i < m + 3 * n; ++i) shifted.coeffRef(i, i) += eta;
+    llt.factorize(shifted);
+    if (llt.info() == Eigen::Success) return eta;
+  }
+  return std::nullopt;
+}
+
+bool RotationForm::IsPositiveDefinite(const std::vector<Eigen::Matrix3d>& blocks, double shift) const {
+  return SmallestPositiveDefiniteShift(blocks, shift, shift).has_value();
 }
 
 Eigen::MatrixXd RotationForm::Positions(const Eigen::MatrixXd& x) const {

@@ -81,6 +81,11 @@ class RotationForm {
   /// exactly when its Schur complement is.
   bool IsPositiveDefinite(const std::vector<Eigen::Matrix3d>& blocks, double shift) const;
 
+  /// The smallest η in from·4^k ≤ to for which Q − Diag(blocks) + ηI is positive definite, by
+  /// the same factorisation (one symbolic analysis for all η); nullopt if none or from ≤ 0.
+  std::optional<double> SmallestPositiveDefiniteShift(const std::vector<Eigen::Matrix3d>& blocks,
+                                                      double from, double to) const;
+
   /// A sparse positive-definite matrix for preconditioning: the rotation terms of Q made
   /// diagonally dominant (½‖M‖ I per edge end), plus a 1e-6 relative regularisation. The
   /// translation terms are left out: before position elimination they overstate Q by far in
