@@ -44,7 +44,7 @@ class TrustRegion {
     for (; iteration < options_.max_iterations; ++iteration) {
       const double gradient_norm = point.gradient.norm();
       if (gradient_norm <= options_.relative_gradient_tolerance * point.qx.norm()) break;
-      if (radius < 0.0) radius = Eigen::numext::mini(1.0, gradient_norm);
+      if (radius < 0.0) radius = std::min(1.0, gradient_norm);
       bool on_boundary = false;
       MatrixXd hessian_step;
       const MatrixXd step = TruncatedCg(point, radius, hessian_step, on_boundary);
