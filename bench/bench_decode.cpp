@@ -3,7 +3,6 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
-
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc.hpp>
 
@@ -25,7 +24,8 @@ const cv::Mat1b& PatternImage() {
     scene.diameter_mm = 300.0;
     RenderOptions options;
     options.supersampling = 1;
-    const RenderedFrame frame = RenderFrame(MakeDefaultModule({}), DefaultPatternArray(), scene, options);
+    const RenderedFrame frame =
+        RenderFrame(MakeDefaultModule({}), DefaultPatternArray(), scene, options);
     cv::Mat1b out;
     frame.pattern.convertTo(out, CV_8U);
     return out;
@@ -57,7 +57,8 @@ void BM_SpotCentres(benchmark::State& state) {
   binariser.Apply(PatternImage(), mask);
   std::size_t spots = 0;
   SpotWorkspace workspace;
-  for (auto _ : state) spots = DetectSpots(mask, binariser.excess(), SpotOptions{}, &workspace).size();
+  for (auto _ : state)
+    spots = DetectSpots(mask, binariser.excess(), SpotOptions{}, &workspace).size();
   state.counters["spots"] = static_cast<double>(spots);
 }
 BENCHMARK(BM_SpotCentres)->Unit(benchmark::kMillisecond);
@@ -84,7 +85,8 @@ void BM_DecodeAndTriangulate(benchmark::State& state) {
     last = decoder.Decode(image);
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<CodedObservation> observations;
-    for (const SpotCode& c : last.codes) observations.push_back({last.spots[c.spot].centre_px, c.row, c.col});
+    for (const SpotCode& c : last.codes)
+      observations.push_back({last.spots[c.spot].centre_px, c.row, c.col});
     auto triangulated = triangulator.Triangulate(observations, nullptr);
     const auto t1 = std::chrono::steady_clock::now();
     RejectDepthOutliers(triangulated, observations);

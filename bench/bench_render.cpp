@@ -26,10 +26,16 @@ void BM_RenderCylinder(benchmark::State& state) {
     const RenderedFrame frame = RenderFrame(module, DefaultPatternArray(), scene, options);
     samples += frame.samples;
   }
-  state.counters["samples_per_s"] = benchmark::Counter(double(samples), benchmark::Counter::kIsRate);
+  state.counters["samples_per_s"] =
+      benchmark::Counter(double(samples), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_RenderCylinder)->Args({648, 3})->Args({2592, 1})->Args({2592, 3})
-    ->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_RenderCylinder)
+    ->Args({648, 3})
+    ->Args({2592, 1})
+    ->Args({2592, 3})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace sewer3d
@@ -46,8 +52,10 @@ void BM_PipeWorldIntersect(benchmark::State& state) {
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> rays;
   for (int i = 0; i < 4096; ++i) {
     const Rigid3d pose = trajectory.WorldFromCarrier(trajectory.DurationS() * (i % 64) / 64.0);
-    const double a = 2.0 * 3.14159265358979 * HashUniform(5, i, 1), b = 1.2 * (HashUniform(5, i, 2) - 0.5);
-    rays.emplace_back(pose.translation, pose.rotation * Eigen::Vector3d(std::sin(a), -std::cos(a), std::tan(b)));
+    const double a = 2.0 * 3.14159265358979 * HashUniform(5, i, 1),
+                 b = 1.2 * (HashUniform(5, i, 2) - 0.5);
+    rays.emplace_back(pose.translation,
+                      pose.rotation * Eigen::Vector3d(std::sin(a), -std::cos(a), std::tan(b)));
   }
   std::int64_t hits = 0;
   for (auto _ : state) {

@@ -4,8 +4,8 @@
 #include <ceres/rotation.h>
 
 #include <cmath>
-#include <tuple>
 #include <opencv2/calib3d.hpp>
+#include <tuple>
 
 #include "sewer3d/calib/reprojection.hpp"
 #include "sewer3d/core/check.hpp"

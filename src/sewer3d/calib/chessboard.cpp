@@ -26,8 +26,10 @@ std::optional<std::vector<Eigen::Vector2d>> DetectChessboard(const cv::Mat& grey
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       const cv::Point2f& p = corners[r * cols + c];
-      if (c + 1 < cols) spacing = std::min(spacing, static_cast<double>(cv::norm(corners[r * cols + c + 1] - p)));
-      if (r + 1 < rows) spacing = std::min(spacing, static_cast<double>(cv::norm(corners[(r + 1) * cols + c] - p)));
+      if (c + 1 < cols)
+        spacing = std::min(spacing, static_cast<double>(cv::norm(corners[r * cols + c + 1] - p)));
+      if (r + 1 < rows)
+        spacing = std::min(spacing, static_cast<double>(cv::norm(corners[(r + 1) * cols + c] - p)));
     }
   }
   const int half = std::clamp(static_cast<int>(std::lround(spacing / 6.0)), 5, 12);

@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <opencv2/calib3d.hpp>
+#include <tuple>
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/reprojection.hpp"
@@ -79,9 +79,10 @@ int RetransferCorners(std::vector<ModuleCalibrationView>& views,
   undistorted.projector = projector;
   int updated = 0;
   for (size_t v = 0; v < views.size(); ++v) {
-    const auto again =
-        CornersInProjector(views[v].camera_corners, spots[v].camera_px, spots[v].projector_px, undistorted);
-    if (!std::all_of(again.begin(), again.end(), [](const auto& c) { return c.has_value(); })) continue;
+    const auto again = CornersInProjector(views[v].camera_corners, spots[v].camera_px,
+                                          spots[v].projector_px, undistorted);
+    if (!std::all_of(again.begin(), again.end(), [](const auto& c) { return c.has_value(); }))
+      continue;
     for (size_t i = 0; i < again.size(); ++i) views[v].projector_corners[i] = *again[i];
     ++updated;
   }

@@ -79,7 +79,7 @@ TEST(CornerTransfer, FollowsTheLocalHomography) {
   ASSERT_TRUE(out[0].has_value());
   const Eigen::Vector3d q = h * Eigen::Vector3d(200.5, 199.25, 1.0);
   EXPECT_LT((*out[0] - q.head<2>() / q.z()).norm(), 1e-5);  // findHomography refines to ~1e-6 px
-  EXPECT_FALSE(out[1].has_value());  // no spots near it
+  EXPECT_FALSE(out[1].has_value());                         // no spots near it
 }
 
 TEST(CornerTransfer, UndistortedFitIsExactOnALensDistortedPlane) {
@@ -109,7 +109,8 @@ TEST(CornerTransfer, UndistortedFitIsExactOnALensDistortedPlane) {
   std::vector<Eigen::Vector2d> expected;
   for (const auto& c : corners) {
     const Eigen::Vector3d ray = *camera.Ray(c);
-    expected.push_back(*projector.Project(truth.projector_from_camera * (ray * (distance / normal.dot(ray)))));
+    expected.push_back(
+        *projector.Project(truth.projector_from_camera * (ray * (distance / normal.dot(ray)))));
   }
   const auto in_pixels = CornersInProjector(corners, camera_px, projector_px);
   CornerTransferOptions undistorted;
@@ -126,8 +127,10 @@ TEST(CornerTransfer, UndistortedFitIsExactOnALensDistortedPlane) {
   EXPECT_GT(worst_pixels, 0.05);  // 0.18 px measured
   std::printf("corner transfer, pixel homography: worst error %.4f px\n", worst_pixels);
   // The second pass over a view replaces its pixel-fit corners by the exact ones.
-  std::vector<ModuleCalibrationView> views{{corners, {*in_pixels[0], *in_pixels[1], *in_pixels[2]}}};
-  ASSERT_EQ(RetransferCorners(views, {{camera_px, projector_px}}, truth.camera, truth.projector), 1);
+  std::vector<ModuleCalibrationView> views{
+      {corners, {*in_pixels[0], *in_pixels[1], *in_pixels[2]}}};
+  ASSERT_EQ(RetransferCorners(views, {{camera_px, projector_px}}, truth.camera, truth.projector),
+            1);
   for (size_t i = 0; i < corners.size(); ++i) {
     EXPECT_LT((views[0].projector_corners[i] - expected[i]).norm(), 1e-4) << "corner " << i;
   }

@@ -68,12 +68,14 @@ inline std::array<double, 6> AngleAxisOf(const Rigid3d& pose) {
 inline Rigid3d PoseFromAngleAxis(const double* p) {
   const Eigen::Vector3d r(p[0], p[1], p[2]);
   const double angle = r.norm();
-  const Eigen::Quaterniond q(angle > 0 ? Eigen::AngleAxisd(angle, r / angle) : Eigen::AngleAxisd::Identity());
+  const Eigen::Quaterniond q(angle > 0 ? Eigen::AngleAxisd(angle, r / angle)
+                                       : Eigen::AngleAxisd::Identity());
   return {q, Eigen::Vector3d(p[3], p[4], p[5])};
 }
 
 // Intrinsics from the parameter blocks (fx, fy, cx, cy) and (k1, k2, k3).
-inline CameraIntrinsics IntrinsicsFrom(const double* focal_centre, const double* k, int width, int height) {
+inline CameraIntrinsics IntrinsicsFrom(const double* focal_centre, const double* k, int width,
+                                       int height) {
   CameraIntrinsics c;
   c.width = width;
   c.height = height;
@@ -93,7 +95,8 @@ inline std::pair<int, bool> SolveCalibration(ceres::Problem& problem, int max_it
   options.parameter_tolerance = 1e-12;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
-  return {static_cast<int>(summary.iterations.size()) - 1, summary.termination_type == ceres::CONVERGENCE};
+  return {static_cast<int>(summary.iterations.size()) - 1,
+          summary.termination_type == ceres::CONVERGENCE};
 }
 
 }  // namespace sewer3d

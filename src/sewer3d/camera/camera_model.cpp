@@ -75,7 +75,10 @@ std::optional<Eigen::Vector2d> CameraModel::Undistort(const Eigen::Vector2d& dis
   double r = std::clamp(rd, lo, hi);
   for (int it = 0; it < 100; ++it) {
     const double f = r * RadialFactor(r * r) - rd;
-    if (f > 0.0) hi = r; else lo = r;
+    if (f > 0.0)
+      hi = r;
+    else
+      lo = r;
     if (std::abs(f) <= 1e-16 * rd) break;
     const double slope = RadialSlope(intrinsics_.k, r);
     double next = slope > 0.0 ? r - f / slope : 0.5 * (lo + hi);
@@ -115,9 +118,9 @@ std::optional<Eigen::Vector3d> CameraModel::Ray(const Eigen::Vector2d& pixel) co
 
 bool CameraModel::WholeImageInvertible() const {
   const double w = intrinsics_.width, h = intrinsics_.height;
-  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(-0.5, -0.5), Eigen::Vector2d(w - 0.5, -0.5),
-                                       Eigen::Vector2d(-0.5, h - 0.5),
-                                       Eigen::Vector2d(w - 0.5, h - 0.5)}) {
+  for (const Eigen::Vector2d& corner :
+       {Eigen::Vector2d(-0.5, -0.5), Eigen::Vector2d(w - 0.5, -0.5), Eigen::Vector2d(-0.5, h - 0.5),
+        Eigen::Vector2d(w - 0.5, h - 0.5)}) {
     if (!(PixelToDistorted(corner).norm() < fold_radius_distorted_)) return false;
   }
   return true;

@@ -12,7 +12,6 @@
 /// Project and Unproject refuse points outside that branch instead of returning garbage.
 
 #include <Eigen/Core>
-
 #include <array>
 #include <limits>
 #include <optional>
@@ -21,10 +20,10 @@ namespace sewer3d {
 
 /// Image size and intrinsic parameters (pixels) of a camera or projector.
 struct CameraIntrinsics {
-  int width = 0;   ///< image width, px
-  int height = 0;  ///< image height, px
-  double fx = 0.0, fy = 0.0;  ///< focal lengths, px
-  double cx = 0.0, cy = 0.0;  ///< principal point, px (pixel centres at integers)
+  int width = 0;                           ///< image width, px
+  int height = 0;                          ///< image height, px
+  double fx = 0.0, fy = 0.0;               ///< focal lengths, px
+  double cx = 0.0, cy = 0.0;               ///< principal point, px (pixel centres at integers)
   std::array<double, 3> k{0.0, 0.0, 0.0};  ///< radial k1, k2, k3
 
   /// Throws std::invalid_argument unless sizes and focal lengths are positive and finite.

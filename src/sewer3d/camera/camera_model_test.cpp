@@ -43,7 +43,8 @@ cv::Mat DistCoeffs(const CameraIntrinsics& c) {
 }
 
 TEST(CameraModel, ProjectAgreesWithOpenCV) {
-  for (const auto& k : {std::array<double, 3>{-0.3, 0.1, -0.01}, std::array<double, 3>{0.05, -0.02, 0.004}}) {
+  for (const auto& k :
+       {std::array<double, 3>{-0.3, 0.1, -0.01}, std::array<double, 3>{0.05, -0.02, 0.004}}) {
     const CameraModel camera(WideCamera(k));
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> xy(-0.8, 0.8), z(50.0, 300.0);
@@ -53,8 +54,9 @@ TEST(CameraModel, ProjectAgreesWithOpenCV) {
       points.emplace_back(xy(rng) * depth, xy(rng) * depth * 0.8, depth);
     }
     std::vector<cv::Point2d> reference;
-    cv::projectPoints(points, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), CameraMatrix(camera.intrinsics()),
-                      DistCoeffs(camera.intrinsics()), reference);
+    cv::projectPoints(points, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0),
+                      CameraMatrix(camera.intrinsics()), DistCoeffs(camera.intrinsics()),
+                      reference);
     for (size_t i = 0; i < points.size(); ++i) {
       const auto pixel = camera.Project({points[i].x, points[i].y, points[i].z});
       ASSERT_TRUE(pixel.has_value());
@@ -84,9 +86,10 @@ TEST(CameraModel, UnprojectAgreesWithOpenCVWhereItConverges) {
   std::vector<cv::Point2d> pixels;
   for (const auto& p : grid) pixels.emplace_back(p.x(), p.y());
   std::vector<cv::Point2d> reference;
-  cv::undistortPoints(pixels, reference, CameraMatrix(camera.intrinsics()), DistCoeffs(camera.intrinsics()),
-                      cv::noArray(), cv::noArray(),
-                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 500, 1e-15));
+  cv::undistortPoints(
+      pixels, reference, CameraMatrix(camera.intrinsics()), DistCoeffs(camera.intrinsics()),
+      cv::noArray(), cv::noArray(),
+      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 500, 1e-15));
   int compared = 0;
   for (size_t i = 0; i < grid.size(); ++i) {
     // OpenCV's fixed-point iteration does not always converge near the corners; compare only

@@ -24,9 +24,9 @@ inline constexpr double kWorkingDistanceMaxMm = 225.0;
 struct DefaultModuleOptions {
   int camera_width = 2592;
   int camera_height = 1944;
-  double horizontal_fov_deg = 76.0;   ///< full horizontal field, distortion included
-  double stereo_angle_deg = 29.0;     ///< angle between the field centres where they meet
-  double meeting_distance_mm = 150.0; ///< middle of the working range
+  double horizontal_fov_deg = 76.0;            ///< full horizontal field, distortion included
+  double stereo_angle_deg = 29.0;              ///< angle between the field centres where they meet
+  double meeting_distance_mm = 150.0;          ///< middle of the working range
   std::array<double, 3> k{-0.08, 0.015, 0.0};  ///< same lens on camera and projector
   double pitch_px = 8.0;
   double spot_diameter_px = 4.0;
@@ -39,10 +39,10 @@ struct DefaultModuleOptions {
 struct DefaultModuleGeometry {
   double focal_px = 0.0;
   double baseline_mm = 0.0;
-  double field_tilt_deg = 0.0;     ///< each field's centre is tilted this much toward the other
+  double field_tilt_deg = 0.0;         ///< each field's centre is tilted this much toward the other
   double lens_vertical_fov_deg = 0.0;  ///< vertical field of the lens on an unshifted sensor
-  double field_top_deg = 0.0;     ///< angle of the top image edge from the optical axis (< 0)
-  double field_bottom_deg = 0.0;  ///< angle of the bottom image edge from the optical axis
+  double field_top_deg = 0.0;          ///< angle of the top image edge from the optical axis (< 0)
+  double field_bottom_deg = 0.0;       ///< angle of the bottom image edge from the optical axis
 };
 
 ModuleDescription MakeDefaultModule(const DefaultModuleOptions& options);

@@ -67,8 +67,8 @@ TEST(DefaultModule, EpipolarLinesAreProjectorRowsWithoutDistortion) {
   // which calibrated geometry accounts for.
   DefaultModuleOptions options;
   options.k = {0.0, 0.0, 0.0};
-  const DisparityRange ideal =
-      ComputeDisparityRange(MakeDefaultModule(options), kWorkingDistanceMinMm, kWorkingDistanceMaxMm, 8);
+  const DisparityRange ideal = ComputeDisparityRange(
+      MakeDefaultModule(options), kWorkingDistanceMinMm, kWorkingDistanceMaxMm, 8);
   EXPECT_LT(ideal.max_dv_px, 1e-9);
   const double f = MakeDefaultModule(options).camera.fx;
   const double b = 2.0 * 150.0 * std::tan(14.5 * kDeg);

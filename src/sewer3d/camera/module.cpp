@@ -10,9 +10,9 @@ namespace sewer3d {
 void PatternLayout::Check() const {
   SEWER3D_CHECK(!matrix_path.empty(), "pattern matrix path is empty");
   SEWER3D_CHECK(std::isfinite(pitch_px) && pitch_px > 0.0, "pitch_px " << pitch_px);
-  SEWER3D_CHECK(std::isfinite(spot_diameter_px) && spot_diameter_px > 0.0 &&
-                    spot_diameter_px <= pitch_px,
-                "spot_diameter_px " << spot_diameter_px << " with pitch " << pitch_px);
+  SEWER3D_CHECK(
+      std::isfinite(spot_diameter_px) && spot_diameter_px > 0.0 && spot_diameter_px <= pitch_px,
+      "spot_diameter_px " << spot_diameter_px << " with pitch " << pitch_px);
   SEWER3D_CHECK(offset_px.allFinite(), "offset_px");
 }
 

@@ -5,7 +5,6 @@
 /// geometry only; reading and writing module.json lives in io/.
 
 #include <Eigen/Core>
-
 #include <string>
 
 #include "sewer3d/camera/camera_model.hpp"

@@ -2,25 +2,25 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
-#include <algorithm>
 #include <set>
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/chessboard.hpp"
 #include "sewer3d/calib/module_calibration.hpp"
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/cli/command.hpp"
 #include "sewer3d/decode/decoder.hpp"
+#include "sewer3d/io/calibration_io.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pattern/constraints.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/triangulate/correspondences.hpp"
-#include "sewer3d/cli/command.hpp"
-#include "sewer3d/io/calibration_io.hpp"
-#include "sewer3d/io/file_error.hpp"
-#include "sewer3d/io/image_io.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -113,14 +113,18 @@ int RunModule(const ModuleArgs& a) {
   const auto board = BoardCorners(board_size->first, board_size->second, a.square_mm);
   std::vector<fs::path> poses;
   for (const auto& entry : fs::directory_iterator(a.captures)) {
-    if (entry.is_directory() && fs::exists(entry.path() / "texture.png") && fs::exists(entry.path() / "pattern.png")) {
+    if (entry.is_directory() && fs::exists(entry.path() / "texture.png") &&
+        fs::exists(entry.path() / "pattern.png")) {
       poses.push_back(entry.path());
     }
   }
   std::sort(poses.begin(), poses.end());
   if (poses.size() < 3) {
-    throw FileError(a.captures, fmt::format("{} pose folders with texture.png and pattern.png; calibration needs at "
-                                            "least 3 (layout: docs/calibration.md)", poses.size()));
+    throw FileError(
+        a.captures,
+        fmt::format("{} pose folders with texture.png and pattern.png; calibration needs at "
+                    "least 3 (layout: docs/calibration.md)",
+                    poses.size()));
   }
   // The nominal (design) module: pattern, projector size, and a geometry close enough to
   // predict the lattice and pick the pattern tile.
@@ -139,9 +143,9 @@ int RunModule(const ModuleArgs& a) {
     pattern = DefaultPatternArray();
   }
   if (first.cols != nominal.camera.width || first.rows != nominal.camera.height) {
-    throw FileError(poses[0] / "texture.png", fmt::format("image is {}x{}, the nominal module's camera {}x{}",
-                                                          first.cols, first.rows, nominal.camera.width,
-                                                          nominal.camera.height));
+    throw FileError(poses[0] / "texture.png",
+                    fmt::format("image is {}x{}, the nominal module's camera {}x{}", first.cols,
+                                first.rows, nominal.camera.width, nominal.camera.height));
   }
   Decoder decoder(nominal, pattern, InferConstraints(pattern), DecoderOptions{});
   const Triangulator triangulator(nominal, pattern.rows, pattern.cols, TriangulationOptions{});
@@ -161,17 +165,19 @@ int RunModule(const ModuleArgs& a) {
     }
     const DecodeResult decoded = decoder.Decode(pattern_image);
     std::vector<CodedObservation> observations;
-    for (const SpotCode& c : decoded.codes) observations.push_back({decoded.spots[c.spot].centre_px, c.row, c.col});
+    for (const SpotCode& c : decoded.codes)
+      observations.push_back({decoded.spots[c.spot].centre_px, c.row, c.col});
     SpotCorrespondences ps;
     for (const TriangulatedPoint& p : triangulator.Triangulate(observations, nullptr)) {
       ps.camera_px.push_back(observations[p.observation].camera_px);
       ps.projector_px.push_back(nominal.pattern.ElementCentre(p.row, p.col));
     }
     const auto transferred = CornersInProjector(*corners, ps.camera_px, ps.projector_px);
-    const auto missing = std::count_if(transferred.begin(), transferred.end(), [](const auto& c) { return !c; });
+    const auto missing =
+        std::count_if(transferred.begin(), transferred.end(), [](const auto& c) { return !c; });
     if (missing > 0) {
-      fmt::print("{}: {} of {} corners without enough decoded spots around them, skipped\n", pose.string(), missing,
-                 corners->size());
+      fmt::print("{}: {} of {} corners without enough decoded spots around them, skipped\n",
+                 pose.string(), missing, corners->size());
       continue;
     }
     ModuleCalibrationView view;
@@ -184,16 +190,19 @@ int RunModule(const ModuleArgs& a) {
   }
   fmt::print(stderr, "\n");
   if (views.size() < 3) {
-    fmt::print(stderr, "sewer3d: error: {} of {} poses usable; module calibration needs at least 3\n", views.size(),
-               poses.size());
+    fmt::print(stderr,
+               "sewer3d: error: {} of {} poses usable; module calibration needs at least 3\n",
+               views.size(), poses.size());
     return 1;
   }
   // Second pass: corners carried again with the first calibration's lens models.
-  const ModuleCalibrationResult first_pass = CalibrateModule(views, board, nominal.camera.width, nominal.camera.height,
-                                                             nominal.projector.width, nominal.projector.height);
+  const ModuleCalibrationResult first_pass =
+      CalibrateModule(views, board, nominal.camera.width, nominal.camera.height,
+                      nominal.projector.width, nominal.projector.height);
   RetransferCorners(views, spots, first_pass.camera, first_pass.projector);
-  const ModuleCalibrationResult r = CalibrateModule(views, board, nominal.camera.width, nominal.camera.height,
-                                                    nominal.projector.width, nominal.projector.height);
+  const ModuleCalibrationResult r =
+      CalibrateModule(views, board, nominal.camera.width, nominal.camera.height,
+                      nominal.projector.width, nominal.projector.height);
   ModuleDescription module = nominal;
   module.camera = r.camera;
   module.projector = r.projector;
@@ -202,19 +211,28 @@ int RunModule(const ModuleArgs& a) {
   module.source_json.clear();
   SaveModule(a.out, module);
   WritePatternMatrix(fs::path(a.out).parent_path() / "pattern.png", pattern);
-  fmt::print("calibrated module from {} of {} poses: camera RMS {:.4f} px, projector RMS {:.4f} px{}\n", views.size(),
-             poses.size(), r.camera_rms_px, r.projector_rms_px, r.converged ? "" : " (not converged)");
-  fmt::print("camera     fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  k ({:.5f}, {:.5f}, {:.5f})\n",
-             r.camera.fx, r.sigma[0], r.camera.fy, r.sigma[1], r.camera.cx, r.sigma[2], r.camera.cy, r.sigma[3],
-             r.camera.k[0], r.camera.k[1], r.camera.k[2]);
-  fmt::print("projector  fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  k ({:.5f}, {:.5f}, {:.5f})\n",
-             r.projector.fx, r.sigma[4], r.projector.fy, r.sigma[5], r.projector.cx, r.sigma[6], r.projector.cy,
-             r.sigma[7], r.projector.k[0], r.projector.k[1], r.projector.k[2]);
+  fmt::print(
+      "calibrated module from {} of {} poses: camera RMS {:.4f} px, projector RMS {:.4f} px{}\n",
+      views.size(), poses.size(), r.camera_rms_px, r.projector_rms_px,
+      r.converged ? "" : " (not converged)");
+  fmt::print(
+      "camera     fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  "
+      "k ({:.5f}, {:.5f}, {:.5f})\n",
+      r.camera.fx, r.sigma[0], r.camera.fy, r.sigma[1], r.camera.cx, r.sigma[2], r.camera.cy,
+      r.sigma[3], r.camera.k[0], r.camera.k[1], r.camera.k[2]);
+  fmt::print(
+      "projector  fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  "
+      "k ({:.5f}, {:.5f}, {:.5f})\n",
+      r.projector.fx, r.sigma[4], r.projector.fy, r.sigma[5], r.projector.cx, r.sigma[6],
+      r.projector.cy, r.sigma[7], r.projector.k[0], r.projector.k[1], r.projector.k[2]);
   const Eigen::Vector3d c = r.projector_from_camera.Inverse().translation;
-  fmt::print("extrinsics baseline {:.3f} ± {:.3f} mm, projector centre ({:.3f}, {:.3f}, {:.3f}) mm, rotation ± {:.4f} deg\n",
-             c.norm(), r.sigma[8], c.x(), c.y(), c.z(), r.sigma[9]);
+  fmt::print(
+      "extrinsics baseline {:.3f} ± {:.3f} mm, projector centre ({:.3f}, {:.3f}, {:.3f}) mm, "
+      "rotation ± {:.4f} deg\n",
+      c.norm(), r.sigma[8], c.x(), c.y(), c.z(), r.sigma[9]);
   for (size_t v = 0; v < views.size(); ++v) {
-    fmt::print("  {}  camera {:.4f} px  projector {:.4f} px\n", used[v], r.view_camera_rms_px[v], r.view_projector_rms_px[v]);
+    fmt::print("  {}  camera {:.4f} px  projector {:.4f} px\n", used[v], r.view_camera_rms_px[v],
+               r.view_projector_rms_px[v]);
   }
   fmt::print("wrote {} and pattern.png beside it\n", a.out);
   return 0;
@@ -245,10 +263,14 @@ Command AddCalibrateCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   camera->add_option("--out", args->out, "Result JSON (camera.json)")->required();
-  camera->add_flag("--no-pictures", args->no_pictures, "Do not write the per-image corner pictures");
+  camera->add_flag("--no-pictures", args->no_pictures,
+                   "Do not write the per-image corner pictures");
   auto module_args = std::make_shared<ModuleArgs>();
-  CLI::App* module = sub->add_subcommand("module", "Camera, projector and their extrinsics from checkerboard captures");
-  module->add_option("--captures", module_args->captures, "Folder of pose folders (pose_NN/texture.png, pattern.png)")
+  CLI::App* module = sub->add_subcommand(
+      "module", "Camera, projector and their extrinsics from checkerboard captures");
+  module
+      ->add_option("--captures", module_args->captures,
+                   "Folder of pose folders (pose_NN/texture.png, pattern.png)")
       ->required()
       ->check(CLI::ExistingDirectory);
   module->add_option("--board", module_args->board, "Inner corners COLSxROWS")
@@ -256,13 +278,21 @@ Command AddCalibrateCommand(CLI::App& app) {
       ->check(CLI::Validator(
           [](std::string& s) {
             const auto size = ParseSize(s);
-            return size && size->first >= 2 && size->second >= 2 ? std::string() : "expected COLSxROWS, got " + s;
+            return size && size->first >= 2 && size->second >= 2 ? std::string()
+                                                                 : "expected COLSxROWS, got " + s;
           },
           "COLSxROWS"));
-  module->add_option("--square-mm", module_args->square_mm, "Square size")->capture_default_str()->check(CLI::PositiveNumber);
-  module->add_option("--out", module_args->out, "Calibrated module.json (pattern.png is written beside it)")->required();
-  module->add_option("--nominal", module_args->nominal,
-                     "Design module (pattern, projector size, rough geometry); default: the default module")
+  module->add_option("--square-mm", module_args->square_mm, "Square size")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  module
+      ->add_option("--out", module_args->out,
+                   "Calibrated module.json (pattern.png is written beside it)")
+      ->required();
+  module
+      ->add_option(
+          "--nominal", module_args->nominal,
+          "Design module (pattern, projector size, rough geometry); default: the default module")
       ->check(CLI::ExistingFile);
   return {sub, [args, camera, module_args, module] {
             if (module->parsed()) return RunModule(*module_args);

@@ -20,38 +20,52 @@ Command AddEvaluateCommand(CLI::App& app) {
     double inner_fraction = 0.5;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* sub = app.add_subcommand("evaluate", "Fit a plane or cylinder to a cloud; RMS and maximum error");
-  sub->add_option("surface", args->surface, "plane or cylinder")->required()->check(CLI::IsMember({"plane", "cylinder"}));
+  CLI::App* sub =
+      app.add_subcommand("evaluate", "Fit a plane or cylinder to a cloud; RMS and maximum error");
+  sub->add_option("surface", args->surface, "plane or cylinder")
+      ->required()
+      ->check(CLI::IsMember({"plane", "cylinder"}));
   sub->add_option("--cloud", args->cloud, "Point cloud (PLY, camera frame, mm)")->required();
-  sub->add_option("--inner-fraction", args->inner_fraction, "Central fraction of the view used for the fit")
-      ->capture_default_str()->check(CLI::Range(0.05, 1.0));
-  sub->add_option("--truth", args->truth, "scene.json of the simulated capture: errors against the true surface");
+  sub->add_option("--inner-fraction", args->inner_fraction,
+                  "Central fraction of the view used for the fit")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 1.0));
+  sub->add_option("--truth", args->truth,
+                  "scene.json of the simulated capture: errors against the true surface");
   return {sub, [args] {
             const auto all = ReadPlyPoints(args->cloud);
             const auto points = InnerPoints(all, args->inner_fraction);
-            if (points.size() < 10) throw FileError(args->cloud, fmt::format("only {} points in the inner part", points.size()));
+            if (points.size() < 10)
+              throw FileError(args->cloud,
+                              fmt::format("only {} points in the inner part", points.size()));
             std::vector<double> depths;
             for (const auto& p : points) depths.push_back(p.norm());
             std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
-            fmt::print("{}: {} points, {} in the inner {:.0f} %\n", args->cloud, all.size(), points.size(),
-                       100 * args->inner_fraction);
+            fmt::print("{}: {} points, {} in the inner {:.0f} %\n", args->cloud, all.size(),
+                       points.size(), 100 * args->inner_fraction);
             if (args->surface == "plane") {
               const auto fit = FitPlane(points);
               if (!fit) throw FileError(args->cloud, "points do not span a plane");
-              fmt::print("plane      median distance to the camera {:.3f} mm, plane at {:.3f} mm on the optical axis\n",
-                         depths[depths.size() / 2], -fit->offset / fit->normal.z());
+              fmt::print(
+                  "plane      median distance to the camera {:.3f} mm, plane at {:.3f} mm on the "
+                  "optical axis\n",
+                  depths[depths.size() / 2], -fit->offset / fit->normal.z());
               fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
             } else {
               const auto fit = FitCylinder(points, Eigen::Vector3d::UnitY());
-              if (!fit || !fit->converged) throw FileError(args->cloud, "cylinder fit did not converge");
-              fmt::print("cylinder   diameter {:.3f} mm, axis ({:.4f}, {:.4f}, {:.4f}) through ({:.2f}, {:.2f}, {:.2f}) mm\n",
-                         2 * fit->radius_mm, fit->axis_direction.x(), fit->axis_direction.y(), fit->axis_direction.z(),
-                         fit->axis_point.x(), fit->axis_point.y(), fit->axis_point.z());
+              if (!fit || !fit->converged)
+                throw FileError(args->cloud, "cylinder fit did not converge");
+              fmt::print(
+                  "cylinder   diameter {:.3f} mm, axis ({:.4f}, {:.4f}, {:.4f}) through ({:.2f}, "
+                  "{:.2f}, {:.2f}) mm\n",
+                  2 * fit->radius_mm, fit->axis_direction.x(), fit->axis_direction.y(),
+                  fit->axis_direction.z(), fit->axis_point.x(), fit->axis_point.y(),
+                  fit->axis_point.z());
               fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
               if (!args->truth.empty()) {
                 const Scene scene = ReadScene(args->truth);
-                fmt::print("truth      diameter {:.3f} mm: error {:+.3f} mm ({:+.3f} %)\n", scene.diameter_mm,
-                           2 * fit->radius_mm - scene.diameter_mm,
+                fmt::print("truth      diameter {:.3f} mm: error {:+.3f} mm ({:+.3f} %)\n",
+                           scene.diameter_mm, 2 * fit->radius_mm - scene.diameter_mm,
                            100 * (2 * fit->radius_mm - scene.diameter_mm) / scene.diameter_mm);
               }
             }
@@ -65,8 +79,10 @@ Command AddEvaluateCommand(CLI::App& app) {
                 worst = std::max(worst, d);
                 beyond_1mm += d > 1.0;
               }
-              fmt::print("truth      all {} points to the true surface: RMS {:.4f} mm, max {:.4f} mm, {} farther than 1 mm\n",
-                         all.size(), std::sqrt(sum2 / all.size()), worst, beyond_1mm);
+              fmt::print(
+                  "truth      all {} points to the true surface: RMS {:.4f} mm, max {:.4f} mm, {} "
+                  "farther than 1 mm\n",
+                  all.size(), std::sqrt(sum2 / all.size()), worst, beyond_1mm);
             }
             return 0;
           }};

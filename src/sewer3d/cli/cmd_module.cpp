@@ -69,12 +69,13 @@ Command AddModuleCommand(CLI::App& app) {
             const DefaultModuleGeometry g = DescribeDefaultModule(args->options);
             fmt::print("wrote {}/module.json, {}, pattern.json, pattern_preview.png\n",
                        dir.string(), module.pattern.matrix_path);
-            fmt::print("default module: stereo angle {:g} deg where the fields meet at {:g} mm, "
-                       "fields tilted {:g} deg each; lens field {:g} x {:.1f} deg, camera sees "
-                       "{:.1f} to {:.1f} deg along the carrier axis\n",
-                       args->options.stereo_angle_deg, args->options.meeting_distance_mm,
-                       g.field_tilt_deg, args->options.horizontal_fov_deg,
-                       g.lens_vertical_fov_deg, g.field_top_deg, g.field_bottom_deg);
+            fmt::print(
+                "default module: stereo angle {:g} deg where the fields meet at {:g} mm, "
+                "fields tilted {:g} deg each; lens field {:g} x {:.1f} deg, camera sees "
+                "{:.1f} to {:.1f} deg along the carrier axis\n",
+                args->options.stereo_angle_deg, args->options.meeting_distance_mm, g.field_tilt_deg,
+                args->options.horizontal_fov_deg, g.lens_vertical_fov_deg, g.field_top_deg,
+                g.field_bottom_deg);
             PrintModuleSummary(module, pattern);
             return 0;
           }};

@@ -69,12 +69,13 @@ Command AddPatternCommand(CLI::App& app) {
             }
             options.Check();
             const char* kind = options.constraints.torus ? "torus" : "plain";
-            fmt::print("searching a {}x{} {} array: window {}, min Hamming {}, min weight {}, {}, "
-                       "seed {}\n",
-                       options.rows, options.cols, kind, options.constraints.window,
-                       options.constraints.min_hamming, options.constraints.min_weight,
-                       options.constraints.isolated ? "isolated spots" : "adjacent spots allowed",
-                       options.seed);
+            fmt::print(
+                "searching a {}x{} {} array: window {}, min Hamming {}, min weight {}, {}, "
+                "seed {}\n",
+                options.rows, options.cols, kind, options.constraints.window,
+                options.constraints.min_hamming, options.constraints.min_weight,
+                options.constraints.isolated ? "isolated spots" : "adjacent spots allowed",
+                options.seed);
             std::fflush(stdout);
             const SubmapSearchResult result = SearchPerfectSubmap(options);
             if (options.progress) std::fprintf(stderr, "\n");

@@ -20,25 +20,29 @@ std::optional<double> ParseRobust(const std::string& text) {
   const std::string number = text.substr(kPrefix.size());
   char* end = nullptr;
   const double delta = std::strtod(number.c_str(), &end);
-  if (number.empty() || *end != '\0' || !(delta > 0.0) || !std::isfinite(delta)) return std::nullopt;
+  if (number.empty() || *end != '\0' || !(delta > 0.0) || !std::isfinite(delta))
+    return std::nullopt;
   return delta;
 }
 
 void PrintCertificate(const PoseGraphReport& r) {
   if (!r.certificate_applicable) {
-    fmt::print("certificate not applicable: {}\n", r.certificate_reason.empty() ? "LM failed" : r.certificate_reason);
+    fmt::print("certificate not applicable: {}\n",
+               r.certificate_reason.empty() ? "LM failed" : r.certificate_reason);
     return;
   }
   if (!std::isfinite(r.lower_bound)) {
     fmt::print("certificate failed: {}\n", r.certificate_reason);
     return;
   }
-  fmt::print("certificate lower bound {:.7g} (relaxation rank {}{}{}, {:.3f} s){}\n", r.lower_bound,
-             r.relaxation_rank, r.relaxation_solved ? "" : ", not solved: bound is loose",
-             r.dominated_relaxation ? fmt::format(", information lowered on {} edges", r.dominated_edges) : "",
-             r.certificate_seconds, r.certificate_improved ? "; its solution was lower and is taken" : "");
-  fmt::print("            final cost is within {:.2g} of the global optimum{}\n", std::max(0.0, r.RelativeGap()),
-             r.RelativeGap() <= 1e-4 ? ": certified" : "");
+  fmt::print(
+      "certificate lower bound {:.7g} (relaxation rank {}{}{}, {:.3f} s){}\n", r.lower_bound,
+      r.relaxation_rank, r.relaxation_solved ? "" : ", not solved: bound is loose",
+      r.dominated_relaxation ? fmt::format(", information lowered on {} edges", r.dominated_edges)
+                             : "",
+      r.certificate_seconds, r.certificate_improved ? "; its solution was lower and is taken" : "");
+  fmt::print("            final cost is within {:.2g} of the global optimum{}\n",
+             std::max(0.0, r.RelativeGap()), r.RelativeGap() <= 1e-4 ? ": certified" : "");
 }
 
 }  // namespace
@@ -50,17 +54,23 @@ Command AddPoseGraphCommand(CLI::App& app) {
   };
   auto args = std::make_shared<Args>();
   args->options.num_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  CLI::App* sub = app.add_subcommand("posegraph", "Optimise a g2o pose graph (Ceres LM, chordal init)");
-  sub->add_option("--in", args->in, "Input graph (g2o VERTEX_SE3:QUAT / EDGE_SE3:QUAT)")->required();
+  CLI::App* sub =
+      app.add_subcommand("posegraph", "Optimise a g2o pose graph (Ceres LM, chordal init)");
+  sub->add_option("--in", args->in, "Input graph (g2o VERTEX_SE3:QUAT / EDGE_SE3:QUAT)")
+      ->required();
   sub->add_option("--out", args->out, "Optimised graph to write (g2o)")->required();
   sub->add_option("--init", args->init, "Start: the file's poses (odometry), chordal, or auto")
       ->capture_default_str()
       ->check(CLI::IsMember({"odometry", "chordal", "auto"}));
-  sub->add_option("--robust", args->robust, "Robust loss on every edge, e.g. huber:1.0 (sigma units)")
+  sub->add_option("--robust", args->robust,
+                  "Robust loss on every edge, e.g. huber:1.0 (sigma units)")
       ->check(CLI::Validator(
-          [](std::string& s) { return ParseRobust(s) ? std::string() : "expected huber:DELTA > 0, got " + s; },
+          [](std::string& s) {
+            return ParseRobust(s) ? std::string() : "expected huber:DELTA > 0, got " + s;
+          },
           "huber:DELTA"));
-  sub->add_option("--max-iterations", args->options.max_iterations, "Levenberg-Marquardt iterations")
+  sub->add_option("--max-iterations", args->options.max_iterations,
+                  "Levenberg-Marquardt iterations")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   sub->add_option("--threads", args->options.num_threads, "Threads for Ceres")
@@ -71,7 +81,7 @@ Command AddPoseGraphCommand(CLI::App& app) {
                 "takes its solution where it is lower");
   return {sub, [args] {
             PoseGraphOptions options = args->options;
-            options.init = args->init == "odometry" ? PoseGraphInit::kGiven
+            options.init = args->init == "odometry"  ? PoseGraphInit::kGiven
                            : args->init == "chordal" ? PoseGraphInit::kChordal
                                                      : PoseGraphInit::kAuto;
             if (!args->robust.empty()) options.huber_delta = *ParseRobust(args->robust);
@@ -90,7 +100,8 @@ Command AddPoseGraphCommand(CLI::App& app) {
             WriteG2o(args->out, graph);
             fmt::print("wrote {}\n", args->out);
             if (!r.usable) {
-              fmt::print(stderr, "sewer3d: error: {}: optimisation did not give a usable solution ({})\n",
+              fmt::print(stderr,
+                         "sewer3d: error: {}: optimisation did not give a usable solution ({})\n",
                          args->in, r.termination);
               return 1;
             }

@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <sstream>
 
+#include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/io/module_io.hpp"
-#include "sewer3d/io/scene_io.hpp"
-#include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/io/scenario_io.hpp"
+#include "sewer3d/io/scene_io.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/pipeline/simulate_run.hpp"
 #include "sewer3d/sim/renderer.hpp"
@@ -56,8 +56,10 @@ struct RunArgs {
 };
 
 void AddRunCommand(CLI::App& sim, RunArgs& a) {
-  CLI::App* run = sim.add_subcommand("run", "Simulate a whole inspection run: six modules, robot motion, odometry, truth");
-  auto* scenario = run->add_option("--scenario", a.scenario, "Scenario JSON file (docs/formats.md)")->check(CLI::ExistingFile);
+  CLI::App* run = sim.add_subcommand(
+      "run", "Simulate a whole inspection run: six modules, robot motion, odometry, truth");
+  auto* scenario = run->add_option("--scenario", a.scenario, "Scenario JSON file (docs/formats.md)")
+                       ->check(CLI::ExistingFile);
   auto* preset = run->add_option("--preset", a.preset, "Built-in scenario: tiny, demo or long")
                      ->check(CLI::IsMember({"tiny", "demo", "long"}));
   scenario->excludes(preset);
@@ -65,7 +67,8 @@ void AddRunCommand(CLI::App& sim, RunArgs& a) {
   run->add_option("--seed", a.seed, "Seed (overrides the scenario's)");
   run->add_option("--module", a.module, "Module file for every module (overrides the scenario's)")
       ->check(CLI::ExistingFile);
-  run->add_option("--supersampling", a.supersampling, "S x S samples per pixel (overrides the scenario's)")
+  run->add_option("--supersampling", a.supersampling,
+                  "S x S samples per pixel (overrides the scenario's)")
       ->check(CLI::Range(1, 16));
   run->add_flag("--quiet", a.quiet, "No progress bar");
 }
@@ -98,22 +101,28 @@ int RunRun(const RunArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   auto progress = [&](int done, int total) {
     if (a.quiet) return;
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const int width = 30, filled = width * done / total;
     std::fprintf(stderr, "\rsimulate %s: [%s%s] %d/%d images  %.0f s  ETA %.0f s ", s.name.c_str(),
-                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), done, total, seconds,
-                 seconds / done * (total - done));
+                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), done,
+                 total, seconds, seconds / done * (total - done));
     if (done == total) std::fprintf(stderr, "\n");
   };
   const SimulatedRun r = SimulateRun(s, module, pattern, a.out, progress);
   fmt::print("run '{}': {} acquisitions x {} modules x 3 images = {} images of {}x{} px\n", s.name,
-             r.plan.acquisitions, s.rig.modules, r.images, module.camera.width, module.camera.height);
-  fmt::print("robot: {:.0f} mm at {:.0f} mm/s in {:.2f} s; acquisition every {:.3f} s ({:.0f} mm footprint, {:.0f} % overlap)\n",
-             s.motion.travel_mm, s.motion.speed_mm_s, r.duration_s, r.plan.period_s, r.plan.footprint_mm,
-             100.0 * s.capture.overlap);
+             r.plan.acquisitions, s.rig.modules, r.images, module.camera.width,
+             module.camera.height);
+  fmt::print(
+      "robot: {:.0f} mm at {:.0f} mm/s in {:.2f} s; acquisition every {:.3f} s ({:.0f} mm "
+      "footprint, {:.0f} % overlap)\n",
+      s.motion.travel_mm, s.motion.speed_mm_s, r.duration_s, r.plan.period_s, r.plan.footprint_mm,
+      100.0 * s.capture.overlap);
   std::string overlap;
-  for (const NeighbourOverlap& o : r.overlap) overlap += fmt::format(" m{}-m{} {:.1f} deg", o.module, o.next, o.overlap_deg);
-  fmt::print("neighbour overlap (3-D, DN{:.0f}, centred):{}\n", s.capture.nominal_diameter_mm, overlap);
+  for (const NeighbourOverlap& o : r.overlap)
+    overlap += fmt::format(" m{}-m{} {:.1f} deg", o.module, o.next, o.overlap_deg);
+  fmt::print("neighbour overlap (3-D, DN{:.0f}, centred):{}\n", s.capture.nominal_diameter_mm,
+             overlap);
   fmt::print("wrote {} ({:.1f} MB) in {:.1f} s\n", a.out, r.bytes / 1e6, r.wall_seconds);
   return 0;
 }
@@ -134,7 +143,8 @@ Command AddSimulateCommand(CLI::App& app) {
   auto calibration_args = std::make_shared<CalibrationArgs>();
   CLI::App* sim = app.add_subcommand("simulate", "Render simulated captures");
   sim->require_subcommand(1);
-  CLI::App* frame = sim->add_subcommand("frame", "Render one module's pattern and texture images of a scene");
+  CLI::App* frame =
+      sim->add_subcommand("frame", "Render one module's pattern and texture images of a scene");
   frame->add_option("--module", args->module, "module.json")->required()->check(CLI::ExistingFile);
   frame->add_option("--scene", args->scene, "plane, cylinder, pipe-wall, or a scene JSON file")
       ->capture_default_str();
@@ -144,69 +154,84 @@ Command AddSimulateCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"concrete", "vitrified_clay", "plastic"}));
   frame->add_option("--distance-mm", args->distance, "plane: distance along the optical axis")
-      ->capture_default_str()->check(CLI::Range(10.0, 5000.0));
+      ->capture_default_str()
+      ->check(CLI::Range(10.0, 5000.0));
   frame->add_option("--tilt-deg", args->tilt, "plane: tilt about the camera x axis")
-      ->capture_default_str()->check(CLI::Range(-80.0, 80.0));
+      ->capture_default_str()
+      ->check(CLI::Range(-80.0, 80.0));
   frame->add_option("--diameter-mm", args->diameter, "cylinder / pipe-wall: inner diameter")
-      ->capture_default_str()->check(CLI::Range(20.0, 5000.0));
-  frame->add_option("--decentre-mm", args->decentre, "cylinder / pipe-wall: axis offset (x z) from the camera")
+      ->capture_default_str()
+      ->check(CLI::Range(20.0, 5000.0));
+  frame
+      ->add_option("--decentre-mm", args->decentre,
+                   "cylinder / pipe-wall: axis offset (x z) from the camera")
       ->expected(2);
-  frame->add_option("--axis", args->axis, "cylinder / pipe-wall: axis direction (x y z, camera frame)")
+  frame
+      ->add_option("--axis", args->axis,
+                   "cylinder / pipe-wall: axis direction (x y z, camera frame)")
       ->expected(3);
   frame->add_option("--supersampling", args->render.supersampling, "S x S samples per pixel")
-      ->capture_default_str()->check(CLI::Range(1, 16));
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16));
   frame->add_option("--bits", args->render.sensor.bits, "ADC bits (8..12)")
-      ->capture_default_str()->check(CLI::Range(8, 12));
-  frame->add_option("--speed-mm-s", args->render.speed_mm_s, "Rig speed along the carrier axis (motion blur)")
-      ->capture_default_str()->check(CLI::Range(0.0, 10000.0));
+      ->capture_default_str()
+      ->check(CLI::Range(8, 12));
+  frame
+      ->add_option("--speed-mm-s", args->render.speed_mm_s,
+                   "Rig speed along the carrier axis (motion blur)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10000.0));
   frame->add_option("--exposure-ms", args->render.exposure_ms, "Exposure time")
-      ->capture_default_str()->check(CLI::Range(0.0, 1000.0));
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1000.0));
   frame->add_flag("--ideal", args->ideal, "No noise, defocus, ambient light or vignetting");
   AddRunCommand(*sim, *run_args);
   AddCalibrationCommand(*sim, *calibration_args);
-  return {sim, [args, run_args, calibration_args, frame] {
-            if (calibration_args->app->parsed()) return RunCalibration(*calibration_args);
-            if (!frame->parsed()) return RunRun(*run_args);
-            const LoadedModule loaded = LoadModule(args->module);
-            Scene scene;
-            if (args->scene == "plane" || args->scene == "cylinder" || args->scene == "pipe-wall") {
-              scene.type = args->scene == "plane"      ? Scene::Type::kPlane
-                           : args->scene == "cylinder" ? Scene::Type::kCylinder
-                                                       : Scene::Type::kPipeWall;
-              scene.material = args->material == "plastic"          ? Material::kPlastic
-                               : args->material == "vitrified_clay" ? Material::kVitrifiedClay
-                                                                    : Material::kConcrete;
-              scene.distance_mm = args->distance;
-              scene.tilt_deg = args->tilt;
-              scene.diameter_mm = args->diameter;
-              scene.axis_point_mm = {args->decentre[0], 0.0, args->decentre[1]};
-              scene.axis = {args->axis[0], args->axis[1], args->axis[2]};
-              if (scene.type == Scene::Type::kPipeWall) scene.features = PipeWallPreset();
-              scene.Check();
-            } else {
-              scene = ReadScene(args->scene);
-            }
-            RenderOptions options = args->render;
-            if (args->ideal) {
-              const RenderOptions ideal = RenderOptions::Ideal();
-              options.camera_f_number = ideal.camera_f_number;
-              options.projector_f_number = ideal.projector_f_number;
-              options.ambient_level = ideal.ambient_level;
-              options.vignetting = ideal.vignetting;
-              options.sensor.noise = false;
-            }
-            const auto start = std::chrono::steady_clock::now();
-            const RenderedFrame rendered = RenderFrame(loaded.module, loaded.pattern, scene, options);
-            const double seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            WriteRenderedFrame(args->out, rendered, scene, options, args->module);
-            fmt::print("rendered {}x{} px, {} samples in {:.2f} s ({:.1f} M samples/s)\n",
-                       loaded.module.camera.width, loaded.module.camera.height, rendered.samples,
-                       seconds, rendered.samples / seconds * 1e-6);
-            fmt::print("wrote {}/pattern.png, texture.png, truth_depth.tiff, depth_preview.png, scene.json\n",
-                       args->out);
-            return 0;
-          }};
+  return {
+      sim, [args, run_args, calibration_args, frame] {
+        if (calibration_args->app->parsed()) return RunCalibration(*calibration_args);
+        if (!frame->parsed()) return RunRun(*run_args);
+        const LoadedModule loaded = LoadModule(args->module);
+        Scene scene;
+        if (args->scene == "plane" || args->scene == "cylinder" || args->scene == "pipe-wall") {
+          scene.type = args->scene == "plane"      ? Scene::Type::kPlane
+                       : args->scene == "cylinder" ? Scene::Type::kCylinder
+                                                   : Scene::Type::kPipeWall;
+          scene.material = args->material == "plastic"          ? Material::kPlastic
+                           : args->material == "vitrified_clay" ? Material::kVitrifiedClay
+                                                                : Material::kConcrete;
+          scene.distance_mm = args->distance;
+          scene.tilt_deg = args->tilt;
+          scene.diameter_mm = args->diameter;
+          scene.axis_point_mm = {args->decentre[0], 0.0, args->decentre[1]};
+          scene.axis = {args->axis[0], args->axis[1], args->axis[2]};
+          if (scene.type == Scene::Type::kPipeWall) scene.features = PipeWallPreset();
+          scene.Check();
+        } else {
+          scene = ReadScene(args->scene);
+        }
+        RenderOptions options = args->render;
+        if (args->ideal) {
+          const RenderOptions ideal = RenderOptions::Ideal();
+          options.camera_f_number = ideal.camera_f_number;
+          options.projector_f_number = ideal.projector_f_number;
+          options.ambient_level = ideal.ambient_level;
+          options.vignetting = ideal.vignetting;
+          options.sensor.noise = false;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        const RenderedFrame rendered = RenderFrame(loaded.module, loaded.pattern, scene, options);
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        WriteRenderedFrame(args->out, rendered, scene, options, args->module);
+        fmt::print("rendered {}x{} px, {} samples in {:.2f} s ({:.1f} M samples/s)\n",
+                   loaded.module.camera.width, loaded.module.camera.height, rendered.samples,
+                   seconds, rendered.samples / seconds * 1e-6);
+        fmt::print(
+            "wrote {}/pattern.png, texture.png, truth_depth.tiff, depth_preview.png, scene.json\n",
+            args->out);
+        return 0;
+      }};
 }
 
 }  // namespace sewer3d::cli

@@ -32,7 +32,8 @@ void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& a) {
   sub->add_option("--square-mm", a.square_mm, "Square size")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  sub->add_option("--supersampling", a.supersampling, "S x S samples per pixel of the pattern images")
+  sub->add_option("--supersampling", a.supersampling,
+                  "S x S samples per pixel of the pattern images")
       ->capture_default_str()
       ->check(CLI::Range(1, 16));
   sub->add_option("--texture-supersampling", a.texture_supersampling,

@@ -23,14 +23,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Show help for every subcommand");
   const std::vector<sewer3d::cli::Command> commands = {
-      sewer3d::cli::AddModuleCommand(app),
-      sewer3d::cli::AddPatternCommand(app),
-      sewer3d::cli::AddDescribeCommand(app),
-      sewer3d::cli::AddPoseGraphCommand(app),
-      sewer3d::cli::AddSimulateCommand(app),
-      sewer3d::cli::AddReconstructCommand(app),
-      sewer3d::cli::AddEvaluateCommand(app),
-      sewer3d::cli::AddCalibrateCommand(app),
+      sewer3d::cli::AddModuleCommand(app),   sewer3d::cli::AddPatternCommand(app),
+      sewer3d::cli::AddDescribeCommand(app), sewer3d::cli::AddPoseGraphCommand(app),
+      sewer3d::cli::AddSimulateCommand(app), sewer3d::cli::AddReconstructCommand(app),
+      sewer3d::cli::AddEvaluateCommand(app), sewer3d::cli::AddCalibrateCommand(app),
   };
   try {
     app.parse(argc, argv);

@@ -17,8 +17,8 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 double FieldOfView(const CameraModel& model, bool horizontal) {
   const auto& c = model.intrinsics();
   const auto a = horizontal ? model.Unproject({-0.5, c.cy}) : model.Unproject({c.cx, -0.5});
-  const auto b = horizontal ? model.Unproject({c.width - 0.5, c.cy})
-                            : model.Unproject({c.cx, c.height - 0.5});
+  const auto b =
+      horizontal ? model.Unproject({c.width - 0.5, c.cy}) : model.Unproject({c.cx, c.height - 0.5});
   if (!a || !b) return std::nan("");
   return horizontal ? (std::atan(b->x()) - std::atan(a->x())) * kRadToDeg
                     : (std::atan(b->y()) - std::atan(a->y())) * kRadToDeg;
@@ -28,15 +28,17 @@ double FieldOfView(const CameraModel& model, bool horizontal) {
 
 bool PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pattern) {
   const CameraModel camera(m.camera), projector(m.projector);
-  fmt::print("camera     {}x{} px, f {:.1f}/{:.1f} px, principal point ({:.1f}, {:.1f}), k [{:g}, {:g}, {:g}]\n",
-             m.camera.width, m.camera.height, m.camera.fx, m.camera.fy, m.camera.cx, m.camera.cy,
-             m.camera.k[0], m.camera.k[1], m.camera.k[2]);
+  fmt::print(
+      "camera     {}x{} px, f {:.1f}/{:.1f} px, principal point ({:.1f}, {:.1f}), k [{:g}, {:g}, "
+      "{:g}]\n",
+      m.camera.width, m.camera.height, m.camera.fx, m.camera.fy, m.camera.cx, m.camera.cy,
+      m.camera.k[0], m.camera.k[1], m.camera.k[2]);
   fmt::print("           field of view {:.1f} x {:.1f} deg{}\n", FieldOfView(camera, true),
              FieldOfView(camera, false),
              camera.WholeImageInvertible() ? "" : " (distortion folds over inside the image!)");
   fmt::print("projector  {}x{} px, f {:.1f}/{:.1f} px, principal point ({:.1f}, {:.1f})\n",
-             m.projector.width, m.projector.height, m.projector.fx, m.projector.fy,
-             m.projector.cx, m.projector.cy);
+             m.projector.width, m.projector.height, m.projector.fx, m.projector.fy, m.projector.cx,
+             m.projector.cy);
   const Eigen::Vector3d projector_centre = m.projector_from_camera.Inverse().translation;
   fmt::print("baseline   {:.2f} mm, projector centre in camera frame ({:.2f}, {:.2f}, {:.2f}) mm\n",
              projector_centre.norm(), projector_centre.x(), projector_centre.y(),
@@ -44,10 +46,11 @@ bool PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pattern) 
 
   const DisparityRange range =
       ComputeDisparityRange(m, kWorkingDistanceMinMm, kWorkingDistanceMaxMm);
-  fmt::print("disparity  walls {:.0f}-{:.0f} mm from the camera: {:.0f} px along projector u "
-             "({:.1f} columns of {:g} px), {:.1f} px along v ({:.2f} rows)\n",
-             kWorkingDistanceMinMm, kWorkingDistanceMaxMm, range.max_du_px, range.max_cols,
-             m.pattern.pitch_px, range.max_dv_px, range.max_rows);
+  fmt::print(
+      "disparity  walls {:.0f}-{:.0f} mm from the camera: {:.0f} px along projector u "
+      "({:.1f} columns of {:g} px), {:.1f} px along v ({:.2f} rows)\n",
+      kWorkingDistanceMinMm, kWorkingDistanceMaxMm, range.max_du_px, range.max_cols,
+      m.pattern.pitch_px, range.max_dv_px, range.max_rows);
 
   PatternConstraints constraints;
   PatternReport report = VerifyPattern(pattern, constraints);

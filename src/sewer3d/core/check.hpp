@@ -22,12 +22,12 @@ namespace sewer3d::internal {
 
 /// Throws std::invalid_argument when `condition` is false. The optional message is
 /// streamed: SEWER3D_CHECK(n > 0, "n = " << n).
-#define SEWER3D_CHECK(condition, ...)                                                  \
-  do {                                                                                 \
-    if (!(condition)) {                                                                \
-      std::ostringstream sewer3d_check_message_;                                       \
-      sewer3d_check_message_ << "" __VA_OPT__(<<) __VA_ARGS__;                         \
-      ::sewer3d::internal::ThrowCheckFailure(#condition, __FILE__, __LINE__,           \
-                                             sewer3d_check_message_.str());            \
-    }                                                                                  \
+#define SEWER3D_CHECK(condition, ...)                                        \
+  do {                                                                       \
+    if (!(condition)) {                                                      \
+      std::ostringstream sewer3d_check_message_;                             \
+      sewer3d_check_message_ << "" __VA_OPT__(<<) __VA_ARGS__;               \
+      ::sewer3d::internal::ThrowCheckFailure(#condition, __FILE__, __LINE__, \
+                                             sewer3d_check_message_.str());  \
+    }                                                                        \
   } while (false)

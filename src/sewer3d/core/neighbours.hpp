@@ -3,7 +3,6 @@
 /// All pairs of 2-D points closer than a radius, as per-point neighbour lists.
 
 #include <Eigen/Core>
-
 #include <utility>
 #include <vector>
 
@@ -36,7 +35,8 @@ NeighbourLists RadiusNeighbours(int count, double radius, Position&& position) {
   std::vector<int> cell_of(count), cell_start(static_cast<size_t>(gx) * gy + 1, 0), order(count);
   for (int i = 0; i < count; ++i) {
     const Eigen::Vector2d p = position(i);
-    cell_of[i] = static_cast<int>((p.y() - lo.y()) / radius) * gx + static_cast<int>((p.x() - lo.x()) / radius);
+    cell_of[i] = static_cast<int>((p.y() - lo.y()) / radius) * gx +
+                 static_cast<int>((p.x() - lo.x()) / radius);
     ++cell_start[cell_of[i] + 1];
   }
   for (size_t c = 1; c < cell_start.size(); ++c) cell_start[c] += cell_start[c - 1];

@@ -48,13 +48,14 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
   };
   std::vector<GroupGrid> grids(lattice.groups);
   {
-    std::vector<Eigen::Vector4i> box(lattice.groups, Eigen::Vector4i(INT_MAX, INT_MAX, INT_MIN, INT_MIN));
+    std::vector<Eigen::Vector4i> box(lattice.groups,
+                                     Eigen::Vector4i(INT_MAX, INT_MAX, INT_MIN, INT_MIN));
     for (size_t i = 0; i < spots.size(); ++i) {
       if (lattice.group[i] < 0) continue;
       Eigen::Vector4i& b = box[lattice.group[i]];
       const Eigen::Vector2i& node = lattice.node[i];
-      b = Eigen::Vector4i(std::min(b[0], node.x()), std::min(b[1], node.y()), std::max(b[2], node.x()),
-                          std::max(b[3], node.y()));
+      b = Eigen::Vector4i(std::min(b[0], node.x()), std::min(b[1], node.y()),
+                          std::max(b[2], node.x()), std::max(b[3], node.y()));
     }
     for (int g = 0; g < lattice.groups; ++g) {
       if (box[g][0] > box[g][2]) continue;
@@ -76,7 +77,8 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
   }
   auto inside_image = [&](const Eigen::Vector2d& q) {
     return q.x() >= options.border_px && q.y() >= options.border_px &&
-           q.x() <= image_size.width - 1 - options.border_px && q.y() <= image_size.height - 1 - options.border_px;
+           q.x() <= image_size.width - 1 - options.border_px &&
+           q.y() <= image_size.height - 1 - options.border_px;
   };
   // The window with top-left node (top, left) of spot s's group, read once; its nodes' image
   // positions are extrapolated with s's local steps (affine, so its corners decide).
@@ -87,8 +89,8 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
     grid.state[index] = 0;
     const Eigen::Vector2d& p = spots[s].centre_px;
     const LatticeSteps& steps = lattice.steps[s];
-    const Eigen::Vector2d origin =
-        p + steps.row_step * (top - lattice.node[s].x()) + steps.column_step * (left - lattice.node[s].y());
+    const Eigen::Vector2d origin = p + steps.row_step * (top - lattice.node[s].x()) +
+                                   steps.column_step * (left - lattice.node[s].y());
     const Eigen::Vector2d down = steps.row_step * (n - 1), right = steps.column_step * (n - 1);
     if (!inside_image(origin) || !inside_image(origin + down) || !inside_image(origin + right) ||
         !inside_image(origin + down + right)) {
@@ -118,16 +120,20 @@ std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const Latt
     int total = 0;
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
-        const WindowResult* w = read_window(static_cast<int>(s), lattice.node[s].x() - i, lattice.node[s].y() - j);
+        const WindowResult* w =
+            read_window(static_cast<int>(s), lattice.node[s].x() - i, lattice.node[s].y() - j);
         if (!w) continue;
         // The spot itself was the corrected bit: the codeword says no spot at its node. A spot
         // whose lattice label slipped by one element always lands on such a node (spots are
         // isolated), so it must not inherit its neighbours' offset.
         if (w->corrected & (std::uint64_t{1} << (i * n + j))) continue;
         const std::pair<int, int> offset{w->row_offset, w->col_offset};
-        auto it = std::find_if(votes.begin(), votes.end(), [&](const auto& v) { return v.first == offset; });
-        if (it == votes.end()) votes.push_back({offset, 1});
-        else ++it->second;
+        auto it = std::find_if(votes.begin(), votes.end(),
+                               [&](const auto& v) { return v.first == offset; });
+        if (it == votes.end())
+          votes.push_back({offset, 1});
+        else
+          ++it->second;
         ++total;
       }
     }

@@ -18,22 +18,22 @@ struct SpotCode {
   int spot = 0;
   int row = 0;
   int col = 0;
-  int votes = 0;       ///< windows agreeing
-  int dissent = 0;     ///< windows voting for another position
+  int votes = 0;    ///< windows agreeing
+  int dissent = 0;  ///< windows voting for another position
 };
 
 struct CodewordStats {
-  int windows_read = 0;       ///< windows with all 36 nodes inside the image
-  int windows_decoded = 0;    ///< found in the codebook (exactly or with one bit corrected)
+  int windows_read = 0;     ///< windows with all 36 nodes inside the image
+  int windows_decoded = 0;  ///< found in the codebook (exactly or with one bit corrected)
   int bits_corrected = 0;
   int spots_decoded = 0;
-  int spots_ambiguous = 0;    ///< votes too few or split
+  int spots_ambiguous = 0;  ///< votes too few or split
 };
 
 struct CodewordOptions {
-  int min_votes = 2;          ///< windows that must agree on a spot's position
-  double min_agreement = 0.6; ///< share of the spot's votes the winner must hold
-  int border_px = 3;          ///< nodes closer than this to the image border are unobservable
+  int min_votes = 2;           ///< windows that must agree on a spot's position
+  double min_agreement = 0.6;  ///< share of the spot's votes the winner must hold
+  int border_px = 3;           ///< nodes closer than this to the image border are unobservable
 };
 
 std::vector<SpotCode> DecodeCodewords(const std::vector<Spot>& spots, const LatticeLabels& lattice,

@@ -44,7 +44,8 @@ TEST(Codewords, EverySpotOfACleanPatchGetsItsArrayPosition) {
   const Codebook codebook(array, InferConstraints(array));
   const Patch p = MakePatch(array, 18, 40, 30);
   CodewordStats stats;
-  const auto codes = DecodeCodewords(p.spots, p.lattice, codebook, array.rows, array.cols, kImage, {}, &stats);
+  const auto codes =
+      DecodeCodewords(p.spots, p.lattice, codebook, array.rows, array.cols, kImage, {}, &stats);
   EXPECT_EQ(stats.bits_corrected, 0);
   int interior = 0;
   for (const SpotCode& c : codes) {
@@ -70,7 +71,8 @@ TEST(Codewords, ASlippedLabelIsNotDecoded) {
   ASSERT_GE(slipped, 0);
   p.lattice.node[slipped].y() += 1;
   CodewordStats stats;
-  const auto codes = DecodeCodewords(p.spots, p.lattice, codebook, array.rows, array.cols, kImage, {}, &stats);
+  const auto codes =
+      DecodeCodewords(p.spots, p.lattice, codebook, array.rows, array.cols, kImage, {}, &stats);
   EXPECT_GT(stats.bits_corrected, 0);  // neighbours' windows saw the slip and corrected it
   int right = 0;
   for (const SpotCode& c : codes) {

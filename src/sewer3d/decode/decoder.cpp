@@ -8,13 +8,18 @@ namespace sewer3d {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double Since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 }  // namespace
 
 Decoder::Decoder(const ModuleDescription& module, const BinaryArray& pattern,
                  const PatternConstraints& constraints, const DecoderOptions& options)
-    : module_(module), pattern_(pattern), codebook_(pattern, constraints), options_(options),
+    : module_(module),
+      pattern_(pattern),
+      codebook_(pattern, constraints),
+      options_(options),
       binariser_(options.niblack) {
   module_.Check();
   const CameraModel camera(module.camera), projector(module.projector);
@@ -37,7 +42,8 @@ Decoder::Decoder(const ModuleDescription& module, const BinaryArray& pattern,
       LatticeSteps steps{{0.0, pitch}, {-pitch, 0.0}};  // fallback: the default module's layout
       const auto xy = camera.Unproject({double(gx * grid_step_), double(gy * grid_step_)});
       if (xy) {
-        const auto uv = projector.Project(module.projector_from_camera * (Eigen::Vector3d(xy->x(), xy->y(), 1.0) * z));
+        const auto uv = projector.Project(module.projector_from_camera *
+                                          (Eigen::Vector3d(xy->x(), xy->y(), 1.0) * z));
         if (uv) {
           const auto p = camera_of(*uv), pc = camera_of(*uv + Eigen::Vector2d(pitch, 0)),
                      pr = camera_of(*uv + Eigen::Vector2d(0, pitch));
@@ -50,8 +56,10 @@ Decoder::Decoder(const ModuleDescription& module, const BinaryArray& pattern,
 }
 
 LatticeSteps Decoder::PredictSteps(const Eigen::Vector2d& pixel) const {
-  const int gx = std::clamp(static_cast<int>(std::lround(pixel.x() / grid_step_)), 0, grid_cols_ - 1);
-  const int gy = std::clamp(static_cast<int>(std::lround(pixel.y() / grid_step_)), 0, grid_rows_ - 1);
+  const int gx =
+      std::clamp(static_cast<int>(std::lround(pixel.x() / grid_step_)), 0, grid_cols_ - 1);
+  const int gy =
+      std::clamp(static_cast<int>(std::lround(pixel.y() / grid_step_)), 0, grid_rows_ - 1);
   return predicted_[static_cast<size_t>(gy) * grid_cols_ + gx];
 }
 
@@ -71,8 +79,8 @@ DecodeResult Decoder::Decode(const cv::Mat& image) {
                                 [this](const Eigen::Vector2d& p) { return PredictSteps(p); });
   result.seconds_lattice = Since(t);
   t = Clock::now();
-  result.codes = DecodeCodewords(result.spots, result.lattice, codebook_, pattern_.rows, pattern_.cols,
-                                 image.size(), options_.codewords, &result.stats);
+  result.codes = DecodeCodewords(result.spots, result.lattice, codebook_, pattern_.rows,
+                                 pattern_.cols, image.size(), options_.codewords, &result.stats);
   result.seconds_codewords = Since(t);
   return result;
 }

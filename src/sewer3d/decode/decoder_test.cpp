@@ -24,7 +24,8 @@ Outcome DecodeRender(const ModuleDescription& module, const Scene& scene, std::u
   Decoder decoder(module, pattern, PatternConstraints{}, DecoderOptions{});
   const DecodeResult decoded = decoder.Decode(frame.pattern);
   std::vector<CodedObservation> observations;
-  for (const SpotCode& c : decoded.codes) observations.push_back({decoded.spots[c.spot].centre_px, c.row, c.col});
+  for (const SpotCode& c : decoded.codes)
+    observations.push_back({decoded.spots[c.spot].centre_px, c.row, c.col});
   auto points = TriangulateObservations(module, pattern.rows, pattern.cols, observations,
                                         TriangulationOptions{}, nullptr);
   RejectDepthOutliers(points, observations);

@@ -1,9 +1,9 @@
 #include "sewer3d/decode/lattice.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <queue>
-#include <algorithm>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/neighbours.hpp"
@@ -18,8 +18,9 @@ inline Eigen::Vector2d Nearest(const Eigen::Vector2d& x) {
 
 // Refines the steps of one spot from its neighbours: assign integer offsets with the current
 // steps, then least squares for both steps; twice.
-LatticeSteps Refine(const std::vector<Spot>& spots, int spot, std::pair<const int*, const int*> neighbours,
-                    LatticeSteps steps, double max_residual) {
+LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
+                    std::pair<const int*, const int*> neighbours, LatticeSteps steps,
+                    double max_residual) {
   const Eigen::Vector2d& p = spots[spot].centre_px;
   for (int iteration = 0; iteration < 2; ++iteration) {
     Eigen::Matrix2d basis;
@@ -66,8 +67,9 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   labels.group.assign(n, -1);
   labels.node.assign(n, Eigen::Vector2i::Zero());
   labels.steps.resize(n);
-  const NeighbourLists neighbours = RadiusNeighbours(
-      n, options.max_neighbour_px, [&](int i) -> const Eigen::Vector2d& { return spots[i].centre_px; });
+  const NeighbourLists neighbours =
+      RadiusNeighbours(n, options.max_neighbour_px,
+                       [&](int i) -> const Eigen::Vector2d& { return spots[i].centre_px; });
   // Steps change smoothly over the surface: a spot reached from a labelled neighbour starts
   // its refinement from that neighbour's steps, which follow oblique walls far better than
   // the module's fronto-parallel prediction.

@@ -8,7 +8,6 @@
 /// lens distortion, perspective and depth changes bend the lattice without breaking it.
 
 #include <Eigen/Core>
-
 #include <vector>
 
 #include "sewer3d/decode/spots.hpp"
@@ -19,8 +18,8 @@ struct LatticeOptions {
   /// Neighbours considered for the local lattice: isolated spots can leave gaps of three
   /// elements, and perspective stretches an 8 px pitch to ~9 px, so 4 steps.
   double max_neighbour_px = 36.0;
-  double max_residual = 0.25;      ///< |d − (i b + j a)| limit, in lattice steps
-  int max_edge_steps = 3;          ///< longest edge used for labelling, in lattice steps
+  double max_residual = 0.25;  ///< |d − (i b + j a)| limit, in lattice steps
+  int max_edge_steps = 3;      ///< longest edge used for labelling, in lattice steps
   void Check() const;
 };
 
@@ -31,11 +30,11 @@ struct LatticeSteps {
 };
 
 struct LatticeLabels {
-  std::vector<int> group;            ///< per spot: connected group id, −1 if unlabelled
-  std::vector<Eigen::Vector2i> node; ///< per spot: (row, col) lattice coordinates in its group
-  std::vector<LatticeSteps> steps;   ///< per spot: refined local steps
+  std::vector<int> group;             ///< per spot: connected group id, −1 if unlabelled
+  std::vector<Eigen::Vector2i> node;  ///< per spot: (row, col) lattice coordinates in its group
+  std::vector<LatticeSteps> steps;    ///< per spot: refined local steps
   int groups = 0;
-  int conflicts = 0;                 ///< good edges whose offset contradicts the labels
+  int conflicts = 0;  ///< good edges whose offset contradicts the labels
 };
 
 /// Labels spots by breadth-first propagation over neighbour edges that fit the local lattice.

@@ -73,7 +73,8 @@ void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Ma
     threshold_rows = count_rows;
     for (int u = 0; u < cols; ++u) {
       const double nc = min_contrast * count_rows * count_cols[u];
-      threshold_n[u] = std::is_integral_v<Acc> ? static_cast<Acc>(std::floor(nc)) : static_cast<Acc>(nc);
+      threshold_n[u] =
+          std::is_integral_v<Acc> ? static_cast<Acc>(std::floor(nc)) : static_cast<Acc>(nc);
       threshold_f[u] = static_cast<float>(threshold_n[u]);
       count_cols_f[u] = static_cast<float>(count_cols[u]);
     }
@@ -109,7 +110,8 @@ void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Ma
       const float x = static_cast<float>(row[u]), sum = static_cast<float>(window_sum[u]);
       const float n = static_cast<float>(count_rows) * count_cols_f[u];
       out[u] = n * x - sum > threshold_f[u] ? 255 : 0;  // n (x − m) > n c
-      const float excess = (x - sum * inverse_rows * inverse_count_cols[u]) * NiblackBinariser::kExcessScale;
+      const float excess =
+          (x - sum * inverse_rows * inverse_count_cols[u]) * NiblackBinariser::kExcessScale;
       // Round, then clear negative values with the sign mask: no branch on the sign of
       // I − m, which is noise and would be mispredicted half the time.
       int rounded = static_cast<int>(excess + 0.5f);
@@ -120,10 +122,12 @@ void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Ma
     // doubles.
     for (int u = 0; u < cols; ++u) {
       if (!out[u]) continue;
-      const double sum = static_cast<double>(window_sum[u]), n = static_cast<double>(count_rows) * count_cols[u];
+      const double sum = static_cast<double>(window_sum[u]),
+                   n = static_cast<double>(count_rows) * count_cols[u];
       const double excess_n = n * row[u] - sum;
       const double variance_n2 = n * static_cast<double>(window_sum2[u]) - sum * sum;
-      const bool spot = k < 0 ? excess_n > k * std::sqrt(std::max(0.0, variance_n2)) : excess_n * excess_n > k2 * variance_n2;
+      const bool spot = k < 0 ? excess_n > k * std::sqrt(std::max(0.0, variance_n2))
+                              : excess_n * excess_n > k2 * variance_n2;
       if (!spot) out[u] = 0;
     }
   }
@@ -138,14 +142,14 @@ void NiblackBinariser::Apply(const cv::Mat& image, cv::Mat1b& mask) {
   excess_.create(image.rows, image.cols);
   const int r = options_.window / 2;
   if (image.depth() == CV_8U && options_.window <= 151) {  // 151² · 255² < 2³¹
-    Binarise<std::uint8_t, std::int32_t>(image, r, options_.k, options_.min_contrast, mask, excess_, int_sum_,
-                                         int_sum2_);
+    Binarise<std::uint8_t, std::int32_t>(image, r, options_.k, options_.min_contrast, mask, excess_,
+                                         int_sum_, int_sum2_);
   } else if (image.depth() == CV_8U) {
-    Binarise<std::uint8_t, double>(image, r, options_.k, options_.min_contrast, mask, excess_, column_sum_,
-                                   column_sum2_);
+    Binarise<std::uint8_t, double>(image, r, options_.k, options_.min_contrast, mask, excess_,
+                                   column_sum_, column_sum2_);
   } else {
-    Binarise<std::uint16_t, double>(image, r, options_.k, options_.min_contrast, mask, excess_, column_sum_,
-                                    column_sum2_);
+    Binarise<std::uint16_t, double>(image, r, options_.k, options_.min_contrast, mask, excess_,
+                                    column_sum_, column_sum2_);
   }
 }
 

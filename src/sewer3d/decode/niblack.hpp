@@ -12,8 +12,8 @@
 namespace sewer3d {
 
 struct NiblackOptions {
-  int window = 21;           ///< odd window side, px (about 2.5 spot pitches)
-  double k = 0.3;            ///< weight of the local standard deviation
+  int window = 21;  ///< odd window side, px (about 2.5 spot pitches)
+  double k = 0.3;   ///< weight of the local standard deviation
   /// Foreground also needs I − m ≥ min_contrast (image units), which keeps flat dark
   /// background (where s is only noise) from turning into speckle.
   double min_contrast = 4.0;
@@ -39,7 +39,8 @@ class NiblackBinariser {
   NiblackOptions options_;
   cv::Mat1w excess_;
   std::vector<double> column_sum_, column_sum2_;
-  std::vector<std::int32_t> int_sum_, int_sum2_;  ///< 8-bit images: exact in 32 bits for windows <= 151
+  std::vector<std::int32_t> int_sum_,
+      int_sum2_;  ///< 8-bit images: exact in 32 bits for windows <= 151
 };
 
 }  // namespace sewer3d

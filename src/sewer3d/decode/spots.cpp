@@ -68,8 +68,8 @@ void JoinRuns(SpotWorkspace& ws, int rows) {
 
 // Weighted centroid over the box; pixels of the mask that are not this component's runs
 // (a neighbouring spot) are skipped. `own` lists the component's runs in row order.
-bool Centroid(const cv::Mat1b& mask, const cv::Mat1w& excess, const SpotWorkspace& ws, const int* own,
-              int own_count, int u0, int v0, int u1, int v1, Spot& spot) {
+bool Centroid(const cv::Mat1b& mask, const cv::Mat1w& excess, const SpotWorkspace& ws,
+              const int* own, int own_count, int u0, int v0, int u1, int v1, Spot& spot) {
   double sum = 0.0, su = 0.0, sv = 0.0;
   int peak = 0, k = 0;
   for (int v = v0; v <= v1; ++v) {
@@ -102,8 +102,8 @@ bool Centroid(const cv::Mat1b& mask, const cv::Mat1w& excess, const SpotWorkspac
 
 }  // namespace
 
-std::vector<Spot> DetectSpots(const cv::Mat1b& mask, const cv::Mat1w& excess, const SpotOptions& options,
-                              SpotWorkspace* workspace) {
+std::vector<Spot> DetectSpots(const cv::Mat1b& mask, const cv::Mat1w& excess,
+                              const SpotOptions& options, SpotWorkspace* workspace) {
   options.Check();
   SEWER3D_CHECK(mask.size() == excess.size(), "sizes differ");
   SpotWorkspace local;

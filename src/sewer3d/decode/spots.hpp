@@ -4,7 +4,6 @@
 /// by size, each centred by its contrast-weighted centroid.
 
 #include <Eigen/Core>
-
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -32,9 +31,9 @@ struct SpotWorkspace {
     int parent;     ///< union-find link
   };
   std::vector<Run> runs;
-  std::vector<int> row_start;   ///< first run of each row (rows + 1 entries)
-  std::vector<int> members;     ///< run indices grouped by component
-  std::vector<int> component;   ///< per run: its component's index
+  std::vector<int> row_start;  ///< first run of each row (rows + 1 entries)
+  std::vector<int> members;    ///< run indices grouped by component
+  std::vector<int> component;  ///< per run: its component's index
 };
 
 /// Finds spots from a foreground `mask` and the contrast image `excess` (NiblackBinariser::
@@ -42,7 +41,7 @@ struct SpotWorkspace {
 /// runs joined by union-find (no label image). The centre is the centroid weighted by the
 /// excess over the component's bounding box grown by one pixel, without the pixels of other
 /// components.
-std::vector<Spot> DetectSpots(const cv::Mat1b& mask, const cv::Mat1w& excess, const SpotOptions& options,
-                              SpotWorkspace* workspace = nullptr);
+std::vector<Spot> DetectSpots(const cv::Mat1b& mask, const cv::Mat1w& excess,
+                              const SpotOptions& options, SpotWorkspace* workspace = nullptr);
 
 }  // namespace sewer3d

@@ -71,10 +71,12 @@ TEST(Spots, FindsRenderedSpotsWithSubpixelPrecision) {
 
   // Expected centres: projector ray through each element centre -> plane -> camera.
   // Spurious detections are judged against every spot the projector lights, cut ones too.
-  const std::vector<Eigen::Vector2d> expected_anywhere = ProjectedSpotCentres(module, pattern, plane, false);
+  const std::vector<Eigen::Vector2d> expected_anywhere =
+      ProjectedSpotCentres(module, pattern, plane, false);
   std::vector<Eigen::Vector2d> expected;
   for (const auto& px : ProjectedSpotCentres(module, pattern, plane)) {
-    if (px.x() > 4 && px.y() > 4 && px.x() < module.camera.width - 5 && px.y() < module.camera.height - 5) {
+    if (px.x() > 4 && px.y() > 4 && px.x() < module.camera.width - 5 &&
+        px.y() < module.camera.height - 5) {
       expected.push_back(px);
     }
   }
@@ -99,7 +101,9 @@ TEST(Spots, FindsRenderedSpotsWithSubpixelPrecision) {
   int spurious = 0;
   for (const auto& sp : spots) {
     const Eigen::Vector2d& c = sp.centre_px;
-    if (c.x() < 5 || c.y() < 5 || c.x() > module.camera.width - 6 || c.y() > module.camera.height - 6) continue;
+    if (c.x() < 5 || c.y() < 5 || c.x() > module.camera.width - 6 ||
+        c.y() > module.camera.height - 6)
+      continue;
     double best = 1e9;
     for (const auto& e : expected_anywhere) best = std::min(best, (c - e).norm());
     spurious += best > 1.5;

@@ -103,11 +103,13 @@ PoseGraph ReadG2o(const std::filesystem::path& path) {
       PoseEdge edge;
       edge.from = in.Id(1);
       edge.to = in.Id(2);
-      if (edge.from == edge.to) in.Fail("edge from vertex " + std::to_string(edge.from) + " to itself");
+      if (edge.from == edge.to)
+        in.Fail("edge from vertex " + std::to_string(edge.from) + " to itself");
       edge.a_from_b = in.Pose(3);
       size_t k = 10;
       for (int r = 0; r < 6; ++r) {
-        for (int c = r; c < 6; ++c) edge.information(r, c) = edge.information(c, r) = in.Number(k++);
+        for (int c = r; c < 6; ++c)
+          edge.information(r, c) = edge.information(c, r) = in.Number(k++);
       }
       if (!IsSymmetricPositiveDefinite(edge.information)) {
         in.Fail("information matrix is not positive definite");

@@ -19,10 +19,10 @@ const char* kInfo = " 100 0 0 0 0 0 100 0 0 0 0 100 0 0 0 25 0 0 25 0 25";
 class G2oTest : public ::testing::Test {
  protected:
   fs::path Write(const std::string& text) {
-    const fs::path path = fs::temp_directory_path() /
-                          ("sewer3d_g2o_" + std::to_string(::getpid()) + "_" +
-                           ::testing::UnitTest::GetInstance()->current_test_info()->name() +
-                           ".g2o");
+    const fs::path path =
+        fs::temp_directory_path() /
+        ("sewer3d_g2o_" + std::to_string(::getpid()) + "_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".g2o");
     std::ofstream(path) << text;
     paths_.push_back(path);
     return path;
@@ -47,7 +47,8 @@ class G2oTest : public ::testing::Test {
 
 TEST_F(G2oTest, RoundTripIsExact) {
   const std::string text = std::string(kVertex0) + kVertex1 +
-                           "EDGE_SE3:QUAT 0 1 1.5 0.2 -0.1 0.1 0 0 0.99498744" + kInfo + "\nFIX 0\n";
+                           "EDGE_SE3:QUAT 0 1 1.5 0.2 -0.1 0.1 0 0 0.99498744" + kInfo +
+                           "\nFIX 0\n";
   const PoseGraph graph = ReadG2o(Write(text));
   ASSERT_EQ(graph.nodes().size(), 2u);
   ASSERT_EQ(graph.edges().size(), 1u);
@@ -65,7 +66,8 @@ TEST_F(G2oTest, RoundTripIsExact) {
 
 TEST_F(G2oTest, MalformedFilesNameTheLine) {
   const std::string v = std::string(kVertex0) + kVertex1;
-  ExpectError(v + "EDGE_SE3:QUAT 0 1 1 0 0 0 0 0 1 100 0\n", "line 3: EDGE_SE3:QUAT needs 30 values");
+  ExpectError(v + "EDGE_SE3:QUAT 0 1 1 0 0 0 0 0 1 100 0\n",
+              "line 3: EDGE_SE3:QUAT needs 30 values");
   ExpectError(v + "VERTEX_SE3:QUAT 2 1 2 3 0 0 0\n", "line 3: VERTEX_SE3:QUAT needs 8 values");
   ExpectError(v + "VERTEX_SE3:QUAT 2 1 nan 3 0 0 0 1\n", "line 3: value 3 is nan");
   ExpectError(v + "VERTEX_SE3:QUAT 2 1 abc 3 0 0 0 1\n", "line 3: 'abc' is not a number");
@@ -76,7 +78,8 @@ TEST_F(G2oTest, MalformedFilesNameTheLine) {
               "line 3: information matrix is not positive definite");
   ExpectError(v + "EDGE_SE3:QUAT 0 7 1 0 0 0 0 0 1" + kInfo + "\n",
               "line 3: edge names vertex 7, which the file does not define");
-  ExpectError(v + "EDGE_SE3:QUAT 1 1 1 0 0 0 0 0 1" + kInfo + "\n", "line 3: edge from vertex 1 to itself");
+  ExpectError(v + "EDGE_SE3:QUAT 1 1 1 0 0 0 0 0 1" + kInfo + "\n",
+              "line 3: edge from vertex 1 to itself");
   ExpectError(v + "VERTEX_SE2 3 0 0 0\n", "line 3: unsupported element 'VERTEX_SE2'");
   ExpectError(v + "VERTEX_SE3:QUAT -4 1 2 3 0 0 0 1\n", "line 3: '-4' is not a vertex id");
   ExpectError("# only a comment\n", "no VERTEX_SE3:QUAT");

@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <fstream>
 #include <iterator>
-#include <vector>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "sewer3d/io/file_error.hpp"
 
@@ -65,7 +64,8 @@ cv::Mat ReadGreyImage(const std::filesystem::path& path) {
   return image;
 }
 
-std::pair<double, double> WriteDepthPreview(const std::filesystem::path& path, const cv::Mat1f& depth_mm) {
+std::pair<double, double> WriteDepthPreview(const std::filesystem::path& path,
+                                            const cv::Mat1f& depth_mm) {
   double lo = 1e300, hi = -1e300;
   for (float z : depth_mm) {
     if (std::isfinite(z)) lo = std::min<double>(lo, z), hi = std::max<double>(hi, z);
@@ -74,7 +74,8 @@ std::pair<double, double> WriteDepthPreview(const std::filesystem::path& path, c
   for (int v = 0; v < scaled.rows; ++v) {
     for (int u = 0; u < scaled.cols; ++u) {
       const float z = depth_mm(v, u);
-      if (std::isfinite(z) && hi > lo) scaled(v, u) = cv::saturate_cast<std::uint8_t>(1 + 254.0 * (hi - z) / (hi - lo));
+      if (std::isfinite(z) && hi > lo)
+        scaled(v, u) = cv::saturate_cast<std::uint8_t>(1 + 254.0 * (hi - z) / (hi - lo));
     }
   }
   cv::Mat colour;

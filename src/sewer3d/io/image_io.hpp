@@ -3,8 +3,8 @@
 /// Reading and writing images and pattern matrices. Errors are FileError.
 
 #include <filesystem>
-#include <utility>
 #include <opencv2/core/mat.hpp>
+#include <utility>
 
 #include "sewer3d/pattern/binary_array.hpp"
 
@@ -22,7 +22,8 @@ cv::Mat ReadGreyImage(const std::filesystem::path& path);
 
 /// Writes a colour-mapped picture of a depth map (near red, far blue, NaN black); returns the
 /// depth range it mapped (min, max; min > max when no depth is finite).
-std::pair<double, double> WriteDepthPreview(const std::filesystem::path& path, const cv::Mat1f& depth_mm);
+std::pair<double, double> WriteDepthPreview(const std::filesystem::path& path,
+                                            const cv::Mat1f& depth_mm);
 
 /// Reads a pattern matrix PNG (one pixel per element, non-zero = spot, DESIGN.md contract).
 /// Colour images count a pixel as a spot when any channel is non-zero.

@@ -107,7 +107,8 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
                        RenderOptions& o);
 
 /// A camera's intrinsics in the module file's form, over the fields `j` already holds.
-nlohmann::json IntrinsicsJson(const CameraIntrinsics& c, nlohmann::json j = nlohmann::json::object());
+nlohmann::json IntrinsicsJson(const CameraIntrinsics& c,
+                              nlohmann::json j = nlohmann::json::object());
 
 const char* MaterialName(Material m);
 /// Throws via `in` when the name is not a material.

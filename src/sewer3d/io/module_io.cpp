@@ -127,7 +127,6 @@ nlohmann::json IntrinsicsJson(const CameraIntrinsics& c, nlohmann::json j) {
   return j;
 }
 
-
 ModuleDescription ParseModule(const std::string& text, const std::filesystem::path& path) {
   json root;
   try {
@@ -135,7 +134,8 @@ ModuleDescription ParseModule(const std::string& text, const std::filesystem::pa
   } catch (const json::parse_error& e) {
     std::string what = e.what();
     const auto colon = what.find(": ");  // drop nlohmann's "[json.exception...] " prefix
-    throw FileError(path, "invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
+    throw FileError(
+        path, "invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
   }
   if (!root.is_object()) throw FileError(path, "must hold a JSON object");
   const FieldReader in(path);
@@ -173,7 +173,8 @@ ModuleDescription ParseModule(const std::string& text, const std::filesystem::pa
 LoadedModule LoadModule(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !file) throw FileError(path, "cannot open file");
+  if (!std::filesystem::is_regular_file(path, ec) || !file)
+    throw FileError(path, "cannot open file");
   std::ostringstream text;
   text << file.rdbuf();
   LoadedModule loaded;
@@ -183,7 +184,8 @@ LoadedModule LoadModule(const std::filesystem::path& path) {
   try {
     loaded.pattern = ReadPatternMatrix(matrix);
   } catch (const FileError& e) {
-    throw FileError(path, "field 'pattern.matrix' names an unusable file: " + std::string(e.what()));
+    throw FileError(path,
+                    "field 'pattern.matrix' names an unusable file: " + std::string(e.what()));
   }
   loaded.pattern_file = matrix;
   return loaded;
@@ -203,7 +205,8 @@ std::string ModuleToJson(const ModuleDescription& m) {
   doc["projector"] = IntrinsicsJson(m.projector, ObjectOr(doc, "projector"));
   json extrinsics = ObjectOr(doc, "projector_from_camera");
   const Eigen::Matrix3d r = m.projector_from_camera.RotationMatrix();
-  extrinsics["rotation"] = {r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)};
+  extrinsics["rotation"] = {r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1),
+                            r(1, 2), r(2, 0), r(2, 1), r(2, 2)};
   const Eigen::Vector3d& t = m.projector_from_camera.translation;
   extrinsics["translation_mm"] = {t.x(), t.y(), t.z()};
   doc["projector_from_camera"] = extrinsics;

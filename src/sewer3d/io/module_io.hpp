@@ -12,8 +12,8 @@ namespace sewer3d {
 
 struct LoadedModule {
   ModuleDescription module;
-  BinaryArray pattern;                   ///< the matrix PNG the module names
-  std::filesystem::path pattern_file;    ///< its path, resolved against the module file
+  BinaryArray pattern;                 ///< the matrix PNG the module names
+  std::filesystem::path pattern_file;  ///< its path, resolved against the module file
 };
 
 /// Reads and validates a module file and its pattern matrix.

@@ -1,7 +1,6 @@
 #include "sewer3d/io/module_io.hpp"
 
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <fstream>
@@ -66,14 +65,17 @@ TEST_F(ModuleIoTest, RoundTripKeepsValuesAndUnknownFields) {
   const ModuleDescription original = MakeDefaultModule({});
   EXPECT_DOUBLE_EQ(loaded.module.camera.fx, original.camera.fx);
   EXPECT_DOUBLE_EQ(loaded.module.projector.cx, original.projector.cx);
-  EXPECT_LT((loaded.module.projector_from_camera.translation -
-             original.projector_from_camera.translation).norm(), 1e-12);
+  EXPECT_LT(
+      (loaded.module.projector_from_camera.translation - original.projector_from_camera.translation)
+          .norm(),
+      1e-12);
 
   SaveModule(dir_ / "rewritten.json", loaded.module);
   const LoadedModule again = LoadModule(dir_ / "rewritten.json");
   EXPECT_DOUBLE_EQ(again.module.camera.k[0], original.camera.k[0]);
   EXPECT_LT(again.module.projector_from_camera.rotation.angularDistance(
-                original.projector_from_camera.rotation), 1e-12);
+                original.projector_from_camera.rotation),
+            1e-12);
   std::ifstream in(dir_ / "rewritten.json");
   const json rewritten = json::parse(in);
   EXPECT_EQ(rewritten["serial"], "SL-0042");

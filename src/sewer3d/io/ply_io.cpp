@@ -19,7 +19,8 @@ void WritePly(const std::filesystem::path& path, const std::vector<Eigen::Vector
   std::ofstream file(path, std::ios::binary);
   if (!file) throw FileError(path, "cannot open for writing");
   file << "ply\nformat binary_little_endian 1.0\ncomment sewer3d, mm, camera frame\n"
-       << "element vertex " << points.size() << "\nproperty float x\nproperty float y\nproperty float z\n";
+       << "element vertex " << points.size()
+       << "\nproperty float x\nproperty float y\nproperty float z\n";
   if (!colours.empty()) file << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   file << "end_header\n";
   for (size_t i = 0; i < points.size(); ++i) {
@@ -44,7 +45,8 @@ std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
     std::istringstream in(line);
     std::string word;
     in >> word;
-    if (word == "format") in >> format;
+    if (word == "format")
+      in >> format;
     else if (word == "element") {
       std::string name;
       in >> name >> count;
@@ -55,10 +57,13 @@ std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
       in >> type >> name;
       if (type == "list") throw FileError(path, "list property in vertex element");
       properties.emplace_back(type, name);
-    } else if (word == "end_header") break;
+    } else if (word == "end_header")
+      break;
   }
   auto size_of = [&](const std::string& t) -> int {
-    if (t == "float" || t == "float32" || t == "int" || t == "uint" || t == "int32" || t == "uint32") return 4;
+    if (t == "float" || t == "float32" || t == "int" || t == "uint" || t == "int32" ||
+        t == "uint32")
+      return 4;
     if (t == "double" || t == "float64") return 8;
     if (t == "uchar" || t == "char" || t == "uint8" || t == "int8") return 1;
     if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
@@ -70,7 +75,8 @@ std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
       if (properties[i].second == std::string(1, "xyz"[k])) xyz_index[k] = static_cast<int>(i);
     }
   }
-  if (xyz_index[0] < 0 || xyz_index[1] < 0 || xyz_index[2] < 0) throw FileError(path, "vertices lack x, y or z");
+  if (xyz_index[0] < 0 || xyz_index[1] < 0 || xyz_index[2] < 0)
+    throw FileError(path, "vertices lack x, y or z");
   std::vector<Eigen::Vector3d> points(count);
   for (size_t n = 0; n < count; ++n) {
     double values[64] = {0};
@@ -83,14 +89,21 @@ std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
         char buffer[8];
         const int size = size_of(t);
         file.read(buffer, size);
-        if (t == "float" || t == "float32") { float f; std::memcpy(&f, buffer, 4); values[i] = f; }
-        else if (t == "double" || t == "float64") { std::memcpy(&values[i], buffer, 8); }
-        else if (size == 1) values[i] = static_cast<unsigned char>(buffer[0]);
+        if (t == "float" || t == "float32") {
+          float f;
+          std::memcpy(&f, buffer, 4);
+          values[i] = f;
+        } else if (t == "double" || t == "float64") {
+          std::memcpy(&values[i], buffer, 8);
+        } else if (size == 1)
+          values[i] = static_cast<unsigned char>(buffer[0]);
       } else {
         throw FileError(path, "unsupported PLY format " + format);
       }
     }
-    if (!file) throw FileError(path, "truncated: " + std::to_string(n) + " of " + std::to_string(count) + " vertices");
+    if (!file)
+      throw FileError(
+          path, "truncated: " + std::to_string(n) + " of " + std::to_string(count) + " vertices");
     points[n] = {values[xyz_index[0]], values[xyz_index[1]], values[xyz_index[2]]};
   }
   return points;

@@ -4,7 +4,6 @@
 /// red green blue when colours are given.
 
 #include <Eigen/Core>
-
 #include <array>
 #include <cstdint>
 #include <filesystem>

@@ -61,5 +61,4 @@ std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path);
 /// code, station, clock position and true dimensions.
 void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pipe);
 
-
 }  // namespace sewer3d

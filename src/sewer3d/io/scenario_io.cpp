@@ -300,6 +300,8 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
   return s;
 }
 
-Scenario ReadScenario(const std::filesystem::path& path) { return ParseScenario(ReadTextFile(path), path); }
+Scenario ReadScenario(const std::filesystem::path& path) {
+  return ParseScenario(ReadTextFile(path), path);
+}
 
 }  // namespace sewer3d

@@ -18,18 +18,25 @@ using nlohmann::json;
 
 const char* TypeName(Scene::Type t) {
   switch (t) {
-    case Scene::Type::kPlane: return "plane";
-    case Scene::Type::kCylinder: return "cylinder";
-    case Scene::Type::kPipeWall: return "pipe_wall";
+    case Scene::Type::kPlane:
+      return "plane";
+    case Scene::Type::kCylinder:
+      return "cylinder";
+    case Scene::Type::kPipeWall:
+      return "pipe_wall";
   }
   return "plane";
 }
 const char* FeatureName(WallFeature::Type t) {
   switch (t) {
-    case WallFeature::Type::kJoint: return "joint";
-    case WallFeature::Type::kBump: return "bump";
-    case WallFeature::Type::kPit: return "pit";
-    case WallFeature::Type::kCrack: return "crack";
+    case WallFeature::Type::kJoint:
+      return "joint";
+    case WallFeature::Type::kBump:
+      return "bump";
+    case WallFeature::Type::kPit:
+      return "pit";
+    case WallFeature::Type::kCrack:
+      return "crack";
   }
   return "joint";
 }
@@ -41,10 +48,14 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
   const json j = in.ParseObject(text);
   Scene s;
   const std::string type = in.Text(j, "type", "", "");
-  if (type == "plane") s.type = Scene::Type::kPlane;
-  else if (type == "cylinder") s.type = Scene::Type::kCylinder;
-  else if (type == "pipe_wall") s.type = Scene::Type::kPipeWall;
-  else in.Fail("type", "must be plane, cylinder or pipe_wall, got '" + type + "'");
+  if (type == "plane")
+    s.type = Scene::Type::kPlane;
+  else if (type == "cylinder")
+    s.type = Scene::Type::kCylinder;
+  else if (type == "pipe_wall")
+    s.type = Scene::Type::kPipeWall;
+  else
+    in.Fail("type", "must be plane, cylinder or pipe_wall, got '" + type + "'");
   s.material = ParseMaterial(in, in.Text(j, "material", "", "concrete"), "material");
   s.material_seed = static_cast<std::uint64_t>(in.Number(j, "material_seed", "", 1.0));
   s.distance_mm = in.Number(j, "distance_mm", "", s.distance_mm);
@@ -60,11 +71,16 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
       if (!f.is_object()) in.Fail(prefix, "must be an object");
       WallFeature ft;
       const std::string kind = in.Text(f, "type", prefix, "");
-      if (kind == "joint") ft.type = WallFeature::Type::kJoint;
-      else if (kind == "bump") ft.type = WallFeature::Type::kBump;
-      else if (kind == "pit") ft.type = WallFeature::Type::kPit;
-      else if (kind == "crack") ft.type = WallFeature::Type::kCrack;
-      else in.Fail(prefix + "type", "must be joint, bump, pit or crack, got '" + kind + "'");
+      if (kind == "joint")
+        ft.type = WallFeature::Type::kJoint;
+      else if (kind == "bump")
+        ft.type = WallFeature::Type::kBump;
+      else if (kind == "pit")
+        ft.type = WallFeature::Type::kPit;
+      else if (kind == "crack")
+        ft.type = WallFeature::Type::kCrack;
+      else
+        in.Fail(prefix + "type", "must be joint, bump, pit or crack, got '" + kind + "'");
       ft.station_mm = in.Number(f, "station_mm", prefix, 0.0);
       ft.clock_deg = in.Number(f, "clock_deg", prefix, 0.0);
       ft.gap_mm = in.Number(f, "gap_mm", prefix, 0.0);
@@ -112,11 +128,16 @@ std::string SceneToJson(const Scene& s) {
     j["axis_point_mm"] = {s.axis_point_mm.x(), s.axis_point_mm.y(), s.axis_point_mm.z()};
     j["features"] = json::array();
     for (const auto& f : s.features) {
-      j["features"].push_back({{"type", FeatureName(f.type)}, {"station_mm", f.station_mm},
-                               {"clock_deg", f.clock_deg}, {"gap_mm", f.gap_mm},
-                               {"offset_mm", f.offset_mm}, {"height_mm", f.height_mm},
-                               {"radius_mm", f.radius_mm}, {"width_mm", f.width_mm},
-                               {"length_mm", f.length_mm}, {"angle_deg", f.angle_deg}});
+      j["features"].push_back({{"type", FeatureName(f.type)},
+                               {"station_mm", f.station_mm},
+                               {"clock_deg", f.clock_deg},
+                               {"gap_mm", f.gap_mm},
+                               {"offset_mm", f.offset_mm},
+                               {"height_mm", f.height_mm},
+                               {"radius_mm", f.radius_mm},
+                               {"width_mm", f.width_mm},
+                               {"length_mm", f.length_mm},
+                               {"angle_deg", f.angle_deg}});
     }
   }
   return j.dump(2);
@@ -124,8 +145,10 @@ std::string SceneToJson(const Scene& s) {
 
 void WritePatternImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits) {
   cv::Mat pattern;
-  if (bits == 8) frame.pattern.convertTo(pattern, CV_8U);
-  else pattern = frame.pattern;
+  if (bits == 8)
+    frame.pattern.convertTo(pattern, CV_8U);
+  else
+    pattern = frame.pattern;
   WriteImage(path, pattern);
 }
 
@@ -164,38 +187,55 @@ namespace sewer3d {
 
 const char* MaterialName(Material m) {
   switch (m) {
-    case Material::kConcrete: return "concrete";
-    case Material::kVitrifiedClay: return "vitrified_clay";
-    case Material::kPlastic: return "plastic";
-    case Material::kSediment: return "sediment";
+    case Material::kConcrete:
+      return "concrete";
+    case Material::kVitrifiedClay:
+      return "vitrified_clay";
+    case Material::kPlastic:
+      return "plastic";
+    case Material::kSediment:
+      return "sediment";
   }
   return "concrete";
 }
 
 Material ParseMaterial(const JsonReader& in, const std::string& name, const std::string& field) {
-  for (const Material m : {Material::kConcrete, Material::kVitrifiedClay, Material::kPlastic, Material::kSediment}) {
+  for (const Material m :
+       {Material::kConcrete, Material::kVitrifiedClay, Material::kPlastic, Material::kSediment}) {
     if (name == MaterialName(m)) return m;
   }
   in.Fail(field, "must be concrete, vitrified_clay, plastic or sediment, got '" + name + "'");
 }
 
 nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
-  return {{"supersampling", o.supersampling}, {"sensor_width_mm", o.sensor_width_mm},
-          {"camera_f_number", o.camera_f_number}, {"camera_focus_mm", o.camera_focus_mm},
-          {"projector_f_number", o.projector_f_number}, {"projector_focus_mm", o.projector_focus_mm},
-          {"projector_psf_px", o.projector_psf_px}, {"texture_level", o.texture_level},
-          {"pattern_level", o.pattern_level}, {"ambient_level", o.ambient_level},
-          {"vignetting", o.vignetting}, {"speed_mm_s", o.speed_mm_s}, {"exposure_ms", o.exposure_ms},
-          {"motion_direction", {o.motion_direction.x(), o.motion_direction.y(), o.motion_direction.z()}},
-          {"full_well_e", o.sensor.full_well_e}, {"read_noise_e", o.sensor.read_noise_e},
-          {"bits", o.sensor.bits}, {"noise", o.sensor.noise}};
+  return {{"supersampling", o.supersampling},
+          {"sensor_width_mm", o.sensor_width_mm},
+          {"camera_f_number", o.camera_f_number},
+          {"camera_focus_mm", o.camera_focus_mm},
+          {"projector_f_number", o.projector_f_number},
+          {"projector_focus_mm", o.projector_focus_mm},
+          {"projector_psf_px", o.projector_psf_px},
+          {"texture_level", o.texture_level},
+          {"pattern_level", o.pattern_level},
+          {"ambient_level", o.ambient_level},
+          {"vignetting", o.vignetting},
+          {"speed_mm_s", o.speed_mm_s},
+          {"exposure_ms", o.exposure_ms},
+          {"motion_direction",
+           {o.motion_direction.x(), o.motion_direction.y(), o.motion_direction.z()}},
+          {"full_well_e", o.sensor.full_well_e},
+          {"read_noise_e", o.sensor.read_noise_e},
+          {"bits", o.sensor.bits},
+          {"noise", o.sensor.noise}};
 }
 
-void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& p, RenderOptions& o) {
-  in.OnlyKnown(j, p, {"supersampling", "sensor_width_mm", "camera_f_number", "camera_focus_mm",
-                      "projector_f_number", "projector_focus_mm", "projector_psf_px", "texture_level",
-                      "pattern_level", "ambient_level", "vignetting", "speed_mm_s", "exposure_ms",
-                      "motion_direction", "full_well_e", "read_noise_e", "bits", "noise"});
+void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& p,
+                       RenderOptions& o) {
+  in.OnlyKnown(j, p,
+               {"supersampling", "sensor_width_mm", "camera_f_number", "camera_focus_mm",
+                "projector_f_number", "projector_focus_mm", "projector_psf_px", "texture_level",
+                "pattern_level", "ambient_level", "vignetting", "speed_mm_s", "exposure_ms",
+                "motion_direction", "full_well_e", "read_noise_e", "bits", "noise"});
   o.supersampling = in.Integer(j, "supersampling", p, o.supersampling);
   o.sensor_width_mm = in.Number(j, "sensor_width_mm", p, o.sensor_width_mm);
   o.camera_f_number = in.Number(j, "camera_f_number", p, o.camera_f_number);

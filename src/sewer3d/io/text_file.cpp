@@ -10,7 +10,8 @@ namespace sewer3d {
 std::string ReadTextFile(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !file) throw FileError(path, "cannot open file");
+  if (!std::filesystem::is_regular_file(path, ec) || !file)
+    throw FileError(path, "cannot open file");
   std::ostringstream text;
   text << file.rdbuf();
   return text.str();

@@ -73,8 +73,9 @@ std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& point
   double r = std::sqrt(r2);
   ceres::Problem problem;
   for (const auto& p : points) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<CylinderResidual, 1, 3, 3, 1>(new CylinderResidual(p)),
-                             nullptr, c.data(), a.data(), &r);
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<CylinderResidual, 1, 3, 3, 1>(new CylinderResidual(p)),
+        nullptr, c.data(), a.data(), &r);
   }
   problem.SetManifold(a.data(), new ceres::SphereManifold<3>());
   ceres::Solver::Options options;
@@ -100,7 +101,8 @@ std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& point
   return fit;
 }
 
-std::vector<Eigen::Vector3d> InnerPoints(const std::vector<Eigen::Vector3d>& points, double fraction) {
+std::vector<Eigen::Vector3d> InnerPoints(const std::vector<Eigen::Vector3d>& points,
+                                         double fraction) {
   SEWER3D_CHECK(fraction > 0.0 && fraction <= 1.0, "fraction " << fraction);
   double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
   for (const auto& p : points) {
@@ -112,7 +114,8 @@ std::vector<Eigen::Vector3d> InnerPoints(const std::vector<Eigen::Vector3d>& poi
   const double hx = 0.5 * fraction * (x_hi - x_lo), hy = 0.5 * fraction * (y_hi - y_lo);
   std::vector<Eigen::Vector3d> inner;
   for (const auto& p : points) {
-    if (p.z() > 0 && std::abs(p.x() / p.z() - mx) <= hx && std::abs(p.y() / p.z() - my) <= hy) inner.push_back(p);
+    if (p.z() > 0 && std::abs(p.x() / p.z() - mx) <= hx && std::abs(p.y() / p.z() - my) <= hy)
+      inner.push_back(p);
   }
   return inner;
 }

@@ -4,16 +4,15 @@
 /// the surface to the points, then report the residual distances.
 
 #include <Eigen/Core>
-
 #include <optional>
 #include <vector>
 
 namespace sewer3d {
 
 struct PlaneFit {
-  Eigen::Vector3d normal;     ///< unit; points toward the camera (normal.z() < 0)
-  double offset = 0.0;        ///< plane: normal · x + offset = 0
-  double rms_mm = 0.0;        ///< of the orthogonal distances
+  Eigen::Vector3d normal;  ///< unit; points toward the camera (normal.z() < 0)
+  double offset = 0.0;     ///< plane: normal · x + offset = 0
+  double rms_mm = 0.0;     ///< of the orthogonal distances
   double max_mm = 0.0;
 };
 
@@ -24,7 +23,7 @@ struct CylinderFit {
   Eigen::Vector3d axis_point;      ///< point on the axis closest to the camera centre
   Eigen::Vector3d axis_direction;  ///< unit
   double radius_mm = 0.0;
-  double rms_mm = 0.0;             ///< of |distance to axis − radius|
+  double rms_mm = 0.0;  ///< of |distance to axis − radius|
   double max_mm = 0.0;
   bool converged = false;
 };
@@ -36,6 +35,7 @@ std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& point
 
 /// The points whose viewing directions (x/z, y/z) lie in the central `fraction` of the cloud's
 /// extent along both image axes (the paper evaluates an inner part of the image).
-std::vector<Eigen::Vector3d> InnerPoints(const std::vector<Eigen::Vector3d>& points, double fraction);
+std::vector<Eigen::Vector3d> InnerPoints(const std::vector<Eigen::Vector3d>& points,
+                                         double fraction);
 
 }  // namespace sewer3d

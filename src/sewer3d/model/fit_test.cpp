@@ -23,7 +23,7 @@ TEST(FitPlane, RecoversTiltedPlaneAndNoiseLevel) {
   ASSERT_TRUE(fit.has_value());
   EXPECT_LT(std::acos(std::min(1.0, fit->normal.dot(n))), 1e-3);
   EXPECT_NEAR(-fit->offset / fit->normal.z(), 140.0, 0.01);  // z at the optical axis
-  EXPECT_NEAR(fit->rms_mm, 0.05, 0.003);                      // 5000 samples: ~1 %
+  EXPECT_NEAR(fit->rms_mm, 0.05, 0.003);                     // 5000 samples: ~1 %
 }
 
 TEST(FitCylinder, RecoversDecentredTiltedCylinderFromAPatch) {
@@ -32,7 +32,8 @@ TEST(FitCylinder, RecoversDecentredTiltedCylinderFromAPatch) {
   std::uniform_real_distribution<double> angle(-0.6, 0.6), along(-60.0, 60.0);
   const Eigen::Vector3d axis = Eigen::Vector3d(0.05, 1.0, 0.02).normalized();
   const Eigen::Vector3d centre(6.0, 0.0, -12.0);
-  const Eigen::Vector3d e1 = (Eigen::Vector3d::UnitZ() - axis.z() * axis).normalized(), e2 = axis.cross(e1);
+  const Eigen::Vector3d e1 = (Eigen::Vector3d::UnitZ() - axis.z() * axis).normalized(),
+                        e2 = axis.cross(e1);
   std::vector<Eigen::Vector3d> points;
   for (int i = 0; i < 4000; ++i) {
     const double t = angle(rng);

@@ -15,7 +15,8 @@ Codebook::Codebook(const BinaryArray& array, const PatternConstraints& constrain
   table_.reserve(static_cast<std::size_t>(win_rows) * win_cols);
   for (int r = 0; r < win_rows; ++r) {
     for (int c = 0; c < win_cols; ++c) {
-      const auto [it, inserted] = table_.emplace(TiledWindowCode(array, r, c, n), ArrayPosition{r, c});
+      const auto [it, inserted] =
+          table_.emplace(TiledWindowCode(array, r, c, n), ArrayPosition{r, c});
       SEWER3D_CHECK(inserted, "window at (" << r << ", " << c << ") repeats the one at ("
                                             << it->second.row << ", " << it->second.col << ")");
       const int weight = std::popcount(it->first);
@@ -34,13 +35,14 @@ std::optional<ArrayPosition> Codebook::Find(std::uint64_t code) const {
 std::optional<CodewordMatch> Codebook::Decode(std::uint64_t code, int max_corrected_bits) const {
   SEWER3D_CHECK(max_corrected_bits >= 0 && max_corrected_bits <= 1,
                 "only single-bit correction is supported, asked " << max_corrected_bits);
-  SEWER3D_CHECK(2 * max_corrected_bits < min_hamming_,
-                "correcting " << max_corrected_bits << " bits needs min Hamming > "
-                              << 2 * max_corrected_bits);
+  SEWER3D_CHECK(2 * max_corrected_bits < min_hamming_, "correcting " << max_corrected_bits
+                                                                     << " bits needs min Hamming > "
+                                                                     << 2 * max_corrected_bits);
   // No codeword within reach of a word whose weight is too far from theirs: skips the 36
   // flipped lookups for most words that cannot decode (empty or crowded windows).
   const int weight = std::popcount(code);
-  if (weight < min_weight_ - max_corrected_bits || weight > max_weight_ + max_corrected_bits) return std::nullopt;
+  if (weight < min_weight_ - max_corrected_bits || weight > max_weight_ + max_corrected_bits)
+    return std::nullopt;
   if (const auto exact = Find(code)) return CodewordMatch{*exact, code, 0};
   if (max_corrected_bits == 0) return std::nullopt;
   const int bits = window_ * window_;

@@ -12,10 +12,10 @@ namespace sewer3d {
 
 /// What a valid pattern array must satisfy.
 struct PatternConstraints {
-  int window = 6;       ///< side of the square codeword window, elements (2..8)
-  int min_hamming = 3;  ///< every pair of windows differs in at least this many bits
-  int min_weight = 4;   ///< every window holds at least this many spots
-  bool isolated = true; ///< no two spots are 8-adjacent
+  int window = 6;        ///< side of the square codeword window, elements (2..8)
+  int min_hamming = 3;   ///< every pair of windows differs in at least this many bits
+  int min_weight = 4;    ///< every window holds at least this many spots
+  bool isolated = true;  ///< no two spots are 8-adjacent
   /// Windows and adjacency wrap around both edges, so every window of the tiled projector
   /// image is a codeword (not only those that lie inside one tile).
   bool torus = true;
@@ -26,11 +26,11 @@ struct PatternConstraints {
 /// What the verifier found. `valid` is true when every constraint holds.
 struct PatternReport {
   int rows = 0, cols = 0;
-  int windows = 0;              ///< windows checked (rows*cols on a torus)
-  int duplicate_pairs = 0;      ///< pairs of identical windows
-  int close_pairs = 0;          ///< pairs closer than min_hamming (duplicates included)
-  int min_hamming_found = 0;    ///< smallest pairwise distance (window*window+1 if < 2 windows)
-  int min_weight_found = 0;     ///< lightest window
+  int windows = 0;            ///< windows checked (rows*cols on a torus)
+  int duplicate_pairs = 0;    ///< pairs of identical windows
+  int close_pairs = 0;        ///< pairs closer than min_hamming (duplicates included)
+  int min_hamming_found = 0;  ///< smallest pairwise distance (window*window+1 if < 2 windows)
+  int min_weight_found = 0;   ///< lightest window
   int max_weight_found = 0;
   int adjacent_spot_pairs = 0;  ///< 8-adjacent spot pairs (with wrap on a torus)
   double density = 0.0;         ///< spots per element

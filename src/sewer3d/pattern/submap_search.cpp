@@ -89,7 +89,8 @@ class SearchState {
             cc = (cc + cols_) % cols_;
             const int other = rr * cols_ + cc;
             auto& list = neighbours_[r * cols_ + c];
-            if (other != r * cols_ + c && std::find(list.begin(), list.end(), other) == list.end()) {
+            if (other != r * cols_ + c &&
+                std::find(list.begin(), list.end(), other) == list.end()) {
               list.push_back(other);
             }
           }

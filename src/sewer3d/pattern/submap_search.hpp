@@ -50,12 +50,12 @@ struct SubmapSearchOptions {
 };
 
 struct SubmapSearchResult {
-  BinaryArray array;          ///< the best array found (valid only when `reached`)
-  bool reached = false;       ///< all constraints hold
-  int final_cost = 0;         ///< cost of `array` (0 when reached)
+  BinaryArray array;     ///< the best array found (valid only when `reached`)
+  bool reached = false;  ///< all constraints hold
+  int final_cost = 0;    ///< cost of `array` (0 when reached)
   std::int64_t moves = 0;
   double elapsed_s = 0.0;
-  std::string termination;    ///< "reached", "move budget", "time budget" or "stopped"
+  std::string termination;  ///< "reached", "move budget", "time budget" or "stopped"
 };
 
 /// Runs the search. Deterministic for a seed unless the time budget or the callback stops it.

@@ -32,7 +32,8 @@ TEST(PoseGraphBenchmarks, GridsConvergeToTheSameMinimumFromBothStarts) {
     const PoseGraphReport a = Solve(from_odometry, PoseGraphInit::kGiven);
     const PoseGraphReport b = Solve(from_chordal, PoseGraphInit::kChordal);
     ASSERT_TRUE(a.usable && b.usable) << name << ": " << a.termination << " / " << b.termination;
-    EXPECT_LT(a.final_cost, 0.2 * a.given_cost) << name;  // tiny: 128.2 -> 9.26, small: 60280 -> 512.7
+    EXPECT_LT(a.final_cost, 0.2 * a.given_cost)
+        << name;  // tiny: 128.2 -> 9.26, small: 60280 -> 512.7
     // Two very different starts, one minimum: the grids' optimum.
     EXPECT_NEAR(a.final_cost, b.final_cost, 1e-6 * a.final_cost) << name;
   }
@@ -71,8 +72,8 @@ PoseGraphReport Certify(PoseGraph& graph, PoseGraphInit init, int max_iterations
 }
 
 TEST(PoseGraphBenchmarks, CertificateProvesTheOptimaOfAllFourGraphs) {
-  for (const char* name : {"tinyGrid3D.g2o", "smallGrid3D.g2o", "parking-garage.g2o",
-                           "sphere_bignoise_vertex3.g2o"}) {
+  for (const char* name :
+       {"tinyGrid3D.g2o", "smallGrid3D.g2o", "parking-garage.g2o", "sphere_bignoise_vertex3.g2o"}) {
     PoseGraph graph = Load(name);
     const PoseGraphReport report = Certify(graph, PoseGraphInit::kAuto);
     ASSERT_TRUE(report.certificate_applicable) << name << ": " << report.certificate_reason;

@@ -6,7 +6,6 @@
 #include <Eigen/Core>
 #include <Eigen/SVD>
 #include <Eigen/SparseCore>
-
 #include <vector>
 
 namespace sewer3d {

@@ -1,7 +1,6 @@
 #include "sewer3d/posegraph/certificate.hpp"
 
 #include <Eigen/Eigenvalues>
-
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -16,15 +15,15 @@ namespace sewer3d {
 namespace {
 
 using Eigen::MatrixXd;
-using lifted::Point;
 using lifted::CertificateProduct;
-using lifted::Inner;
-using lifted::MultiplierBlocks;
-using lifted::Project;
-using lifted::Retract;
 using lifted::Eigenpair;
+using lifted::Inner;
 using lifted::LargestEigenvalueMagnitude;
 using lifted::MinimumEigenpair;
+using lifted::MultiplierBlocks;
+using lifted::Point;
+using lifted::Project;
+using lifted::Retract;
 
 /// Eigensolver runs per certificate check before it gives up.
 constexpr int kEigenAttempts = 3;
@@ -48,10 +47,12 @@ class TrustRegion {
       bool on_boundary = false;
       MatrixXd hessian_step;
       const MatrixXd step = TruncatedCg(point, radius, hessian_step, on_boundary);
-      const double model_decrease = -(Inner(point.gradient, step) + 0.5 * Inner(step, hessian_step));
+      const double model_decrease =
+          -(Inner(point.gradient, step) + 0.5 * Inner(step, hessian_step));
       Point candidate(form_, Retract(point.x, step));
       // ρ regularised against round-off near convergence (as Manopt does).
-      const double round_off = 1e3 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(point.cost));
+      const double round_off =
+          1e3 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(point.cost));
       const double rho = (point.cost - candidate.cost + round_off) / (model_decrease + round_off);
       if (rho < 0.25) {
         radius *= 0.25;
@@ -91,7 +92,8 @@ class TrustRegion {
       const double alpha = z_r / d_hd;
       const double e_pe_next = e_pe + 2.0 * alpha * e_pd + alpha * alpha * d_pd;
       if (d_hd <= 0.0 || e_pe_next >= radius * radius) {
-        const double tau = (-e_pd + std::sqrt(e_pd * e_pd + d_pd * (radius * radius - e_pe))) / d_pd;
+        const double tau =
+            (-e_pd + std::sqrt(e_pd * e_pd + d_pd * (radius * radius - e_pe))) / d_pd;
         eta += tau * delta;
         h_eta += tau * h_delta;
         on_boundary = true;
@@ -126,7 +128,8 @@ MatrixXd Round(const MatrixXd& x) {
   MatrixXd basis = es.eigenvectors().rightCols(3);  // r × 3, largest three
   MatrixXd rotations = x * basis;
   int positive = 0;
-  for (Eigen::Index i = 0; i < x.rows(); i += 3) positive += rotations.middleRows<3>(i).determinant() > 0.0;
+  for (Eigen::Index i = 0; i < x.rows(); i += 3)
+    positive += rotations.middleRows<3>(i).determinant() > 0.0;
   if (2 * positive < x.rows() / 3) rotations.col(2) *= -1.0;
   for (Eigen::Index i = 0; i < x.rows(); i += 3) {
     rotations.middleRows<3>(i) = ProjectToRotation(rotations.middleRows<3>(i));
@@ -136,12 +139,14 @@ MatrixXd Round(const MatrixXd& x) {
 
 /// Escapes the saddle at rank r along the eigenvector v of λ_min < 0: X⁺ = R([X 0] + α[0 v]),
 /// halving α until the cost drops.
-std::optional<MatrixXd> Escape(const RotationForm& form, const Point& point, const Eigen::VectorXd& v) {
+std::optional<MatrixXd> Escape(const RotationForm& form, const Point& point,
+                               const Eigen::VectorXd& v) {
   MatrixXd lifted = MatrixXd::Zero(point.x.rows(), point.x.cols() + 1);
   lifted.leftCols(point.x.cols()) = point.x;
   MatrixXd direction = MatrixXd::Zero(lifted.rows(), lifted.cols());
   direction.rightCols(1) = v.normalized();
-  for (double alpha = std::sqrt(static_cast<double>(form.NodeCount())); alpha > 1e-8; alpha *= 0.5) {
+  for (double alpha = std::sqrt(static_cast<double>(form.NodeCount())); alpha > 1e-8;
+       alpha *= 0.5) {
     MatrixXd candidate = Retract(lifted, alpha * direction);
     if (form.Cost(candidate) < point.cost) return candidate;
   }
@@ -150,16 +155,19 @@ std::optional<MatrixXd> Escape(const RotationForm& form, const Point& point, con
 
 /// The graph with the rounded rotations (3n × 3) and their best positions, in the input's
 /// gauge: the anchor (first fixed node, else the first node) keeps its pose.
-PoseGraph RoundedGraph(const PoseGraph& graph, const RotationForm& form, const MatrixXd& rotations) {
+PoseGraph RoundedGraph(const PoseGraph& graph, const RotationForm& form,
+                       const MatrixXd& rotations) {
   const MatrixXd positions = form.Positions(rotations);
   PoseGraph out = graph;
   for (int i = 0; i < form.NodeCount(); ++i) {
     const Eigen::Matrix3d r = rotations.middleRows<3>(3 * i).transpose();
-    out.mutable_node(form.Ids()[i]) = Rigid3d(Eigen::Quaterniond(r), Eigen::Vector3d(positions.row(i).transpose()));
+    out.mutable_node(form.Ids()[i]) =
+        Rigid3d(Eigen::Quaterniond(r), Eigen::Vector3d(positions.row(i).transpose()));
   }
   const int anchor = graph.fixed_nodes().empty() ? form.Ids()[0] : graph.fixed_nodes()[0];
   const Rigid3d world_from_rounded = graph.node(anchor) * out.node(anchor).Inverse();
-  for (const auto& [id, pose] : graph.nodes()) out.mutable_node(id) = world_from_rounded * out.node(id);
+  for (const auto& [id, pose] : graph.nodes())
+    out.mutable_node(id) = world_from_rounded * out.node(id);
   return out;
 }
 
@@ -176,8 +184,8 @@ namespace {
 
 /// One staircase on `relaxed` from rotations `x` (3n × 3); fills the relaxation fields of
 /// `report` and returns the rounded rotations.
-MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x, const CertificateOptions& options,
-                   CertificateReport& report) {
+MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x,
+                   const CertificateOptions& options, CertificateReport& report) {
   Point point(relaxed, x);
   TrustRegion trust_region(relaxed, options);
   const double dimension = static_cast<double>(x.rows());
@@ -190,7 +198,8 @@ MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x, const Certifi
     // eigenvalue; the factorisation cannot: restart from other vectors until both agree.
     const double largest = LargestEigenvalueMagnitude(relaxed, point.lambda);
     const double tolerance = options.relative_eigenvalue_tolerance * largest;
-    std::optional<double> eta = relaxed.SmallestPositiveDefiniteShift(point.lambda, 1e-14 * largest, tolerance);
+    std::optional<double> eta =
+        relaxed.SmallestPositiveDefiniteShift(point.lambda, 1e-14 * largest, tolerance);
     Eigenpair lowest;
     lowest.converged = true;
     for (int attempt = 0; attempt < kEigenAttempts && !eta; ++attempt) {
@@ -210,11 +219,13 @@ MatrixXd Staircase(const RotationForm& relaxed, const MatrixXd& x, const Certifi
     if (negative && report.rank < options.max_rank) escaped = Escape(relaxed, point, lowest.vector);
     if (!escaped) {
       report.reason = !lowest.converged ? "the certificate's eigenvalue did not converge"
-                      : !negative       ? "the eigensolver found no eigenvalue below the factorisation's"
-                      : report.rank >= options.max_rank ? "the staircase reached its maximum rank"
-                                                        : "no descent along the certificate's eigenvector";
+                      : !negative ? "the eigensolver found no eigenvalue below the factorisation's"
+                      : report.rank >= options.max_rank
+                          ? "the staircase reached its maximum rank"
+                          : "no descent along the certificate's eigenvector";
       // A valid but looser bound: weak duality with the shift the factorisation accepts.
-      if (const auto loose = relaxed.SmallestPositiveDefiniteShift(point.lambda, tolerance, 4.0 * largest)) {
+      if (const auto loose =
+              relaxed.SmallestPositiveDefiniteShift(point.lambda, tolerance, 4.0 * largest)) {
         report.lower_bound = point.cost - dimension * *loose;
       }
       break;
@@ -248,9 +259,12 @@ CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOpti
   report.dominated_edges = any.DominatedEdges();
   const int n = any.NodeCount();
   MatrixXd x(3 * n, 3);
-  for (int i = 0; i < n; ++i) x.middleRows<3>(3 * i) = graph.node(any.Ids()[i]).RotationMatrix().transpose();
+  for (int i = 0; i < n; ++i)
+    x.middleRows<3>(3 * i) = graph.node(any.Ids()[i]).RotationMatrix().transpose();
   // The graph's cost at rotations with the form's best positions for them.
-  auto cost = [&](const MatrixXd& r) { return exact ? exact->Cost(r) : GraphCost(RoundedGraph(graph, any, r)); };
+  auto cost = [&](const MatrixXd& r) {
+    return exact ? exact->Cost(r) : GraphCost(RoundedGraph(graph, any, r));
+  };
   report.start_cost = cost(x);
   report.lower_bound = -std::numeric_limits<double>::infinity();
   report.rounded_cost = std::numeric_limits<double>::infinity();
@@ -261,7 +275,8 @@ CertificateReport CertifyPoseGraph(const PoseGraph& graph, const CertificateOpti
     report.rounded_cost = exact->Cost(rotations);
   }
   const double gap = report.rounded_cost - report.lower_bound;
-  const bool loose = !exact || !(gap <= kTightGap * std::max(std::abs(report.rounded_cost), 1e-6 * any.Constant()));
+  const bool loose = !exact || !(gap <= kTightGap * std::max(std::abs(report.rounded_cost),
+                                                             1e-6 * any.Constant()));
   if (loose && !dominated && any.DominatedEdges() > 0) {
     dominated = RotationForm::Build(graph, nullptr, RotationInformation::kDominated);
   }

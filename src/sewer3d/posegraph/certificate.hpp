@@ -42,21 +42,21 @@ struct CertificateOptions {
 
 struct CertificateReport {
   bool applicable = false;
-  std::string reason;             ///< why not applicable, or why the check failed
-  double start_cost = 0.0;        ///< ½ Σ rᵀΩr at the given rotations and their best positions
-  double relaxation_cost = 0.0;   ///< tr(XᵀQX) + c at the last critical point
+  std::string reason;            ///< why not applicable, or why the check failed
+  double start_cost = 0.0;       ///< ½ Σ rᵀΩr at the given rotations and their best positions
+  double relaxation_cost = 0.0;  ///< tr(XᵀQX) + c at the last critical point
   /// λ_min(S) there: −η, the verified shift, when solved; else the eigensolver's estimate.
   double min_eigenvalue = 0.0;
   /// relaxation_cost − 3n·η with S + ηI ≻ 0 verified: no poses of the graph cost less;
   /// −∞ when no such η up to 4 |λ|_max was found.
   double lower_bound = 0.0;
-  double rounded_cost = 0.0;      ///< cost of the rounded rotations with their best positions
-  bool relaxation_solved = false; ///< S ⪰ 0 within the tolerance at the final rank
-  int rank = 3;                   ///< rank of the last critical point
-  int dominated_edges = 0;        ///< edges whose information DominatedInformation lowers
+  double rounded_cost = 0.0;          ///< cost of the rounded rotations with their best positions
+  bool relaxation_solved = false;     ///< S ⪰ 0 within the tolerance at the final rank
+  int rank = 3;                       ///< rank of the last critical point
+  int dominated_edges = 0;            ///< edges whose information DominatedInformation lowers
   bool dominated_relaxation = false;  ///< the bound comes from the dominated-information relaxation
-  int iterations = 0;             ///< trust-region iterations over all ranks
-  int eigen_iterations = 0;       ///< Lanczos restarts over all certificate checks
+  int iterations = 0;                 ///< trust-region iterations over all ranks
+  int eigen_iterations = 0;           ///< Lanczos restarts over all certificate checks
   double seconds = 0.0;
 };
 

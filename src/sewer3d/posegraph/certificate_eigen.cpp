@@ -1,8 +1,8 @@
 #include "sewer3d/posegraph/certificate_eigen.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Spectra/SymEigsSolver.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <random>
 
@@ -38,7 +38,8 @@ class CertificateOperator {
 };
 
 /// Attempt 0 starts Lanczos from Spectra's default vector, later attempts from random ones.
-Eigenpair DominantEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, double shift, int attempt) {
+Eigenpair DominantEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, double shift,
+                            int attempt) {
   CertificateOperator op(form, lambda, shift);
   const int n = static_cast<int>(op.rows());
   Spectra::SymEigsSolver<CertificateOperator> solver(op, 1, std::min(n, 60));
@@ -63,7 +64,8 @@ Eigenpair DominantEigenpair(const RotationForm& form, const MultiplierBlocks& la
 }
 
 /// λ_min(S) by a dense eigendecomposition, for small graphs.
-Eigenpair DenseMinimumEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, double* largest) {
+Eigenpair DenseMinimumEigenpair(const RotationForm& form, const MultiplierBlocks& lambda,
+                                double* largest) {
   const int n = 3 * form.NodeCount();
   const MatrixXd s = CertificateProduct(form, lambda, MatrixXd::Identity(n, n));
   const Eigen::SelfAdjointEigenSolver<MatrixXd> es(0.5 * (s + s.transpose()));
@@ -97,7 +99,8 @@ double LargestEigenvalueMagnitude(const RotationForm& form, const MultiplierBloc
   return estimate;
 }
 
-Eigenpair MinimumEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, int attempt, double largest) {
+Eigenpair MinimumEigenpair(const RotationForm& form, const MultiplierBlocks& lambda, int attempt,
+                           double largest) {
   double unused = 0.0;
   return form.NodeCount() <= kDenseNodes ? DenseMinimumEigenpair(form, lambda, &unused)
                                          : DominantEigenpair(form, lambda, -largest, attempt);

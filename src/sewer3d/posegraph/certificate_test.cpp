@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <functional>
 
 #include "sewer3d/posegraph/lifted_cost.hpp"
@@ -27,15 +26,19 @@ Matrix6d IsotropicTranslationInformation(std::mt19937& rng, double s) {
   std::normal_distribution<double> n(0.0, 1.0);
   Eigen::Matrix3d a;
   for (int i = 0; i < 9; ++i) a(i) = n(rng);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(Eigen::Matrix3d::Identity() + 0.5 * s * (a + a.transpose()));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(Eigen::Matrix3d::Identity() +
+                                                          0.5 * s * (a + a.transpose()));
   Matrix6d information = Matrix6d::Zero();
   information.topLeftCorner<3, 3>() = tau(rng) * Eigen::Matrix3d::Identity();
-  information.bottomRightCorner<3, 3>() =
-      100.0 * es.eigenvectors() * es.eigenvalues().cwiseMax(0.05).asDiagonal() * es.eigenvectors().transpose();
+  information.bottomRightCorner<3, 3>() = 100.0 * es.eigenvectors() *
+                                          es.eigenvalues().cwiseMax(0.05).asDiagonal() *
+                                          es.eigenvectors().transpose();
   return information;
 }
 Matrix6d MildlyAnisotropic(std::mt19937& rng) { return IsotropicTranslationInformation(rng, 0.2); }
-Matrix6d StronglyAnisotropic(std::mt19937& rng) { return IsotropicTranslationInformation(rng, 1.0); }
+Matrix6d StronglyAnisotropic(std::mt19937& rng) {
+  return IsotropicTranslationInformation(rng, 1.0);
+}
 
 int DominatedEdges(const PoseGraph& graph) {
   int count = 0;
@@ -55,7 +58,8 @@ std::vector<Rigid3d> RandomTruth(std::mt19937& rng, int count) {
 Eigen::MatrixXd RotationsOf(const PoseGraph& graph) {
   Eigen::MatrixXd x(3 * graph.nodes().size(), 3);
   int i = 0;
-  for (const auto& [id, pose] : graph.nodes()) x.middleRows<3>(3 * i++) = pose.RotationMatrix().transpose();
+  for (const auto& [id, pose] : graph.nodes())
+    x.middleRows<3>(3 * i++) = pose.RotationMatrix().transpose();
   return x;
 }
 
@@ -134,15 +138,20 @@ TEST(RotationForm, DominatedInformationIsBelowTheInformationAndQualifies) {
   std::mt19937 rng(20);
   for (int trial = 0; trial < 200; ++trial) {
     Matrix6d omega = RandomInformation(rng);
-    if (trial % 2 == 0) omega.topRightCorner<3, 3>().setZero(), omega.bottomLeftCorner<3, 3>().setZero();
+    if (trial % 2 == 0)
+      omega.topRightCorner<3, 3>().setZero(), omega.bottomLeftCorner<3, 3>().setZero();
     const Matrix6d lowered = DominatedInformation(omega);
-    const Eigen::Matrix<double, 6, 1> gap = Eigen::SelfAdjointEigenSolver<Matrix6d>(omega - lowered).eigenvalues();
+    const Eigen::Matrix<double, 6, 1> gap =
+        Eigen::SelfAdjointEigenSolver<Matrix6d>(omega - lowered).eigenvalues();
     EXPECT_GT(gap(0), -1e-9 * omega.norm()) << trial;  // Ω − Ω' ⪰ 0: a lower cost everywhere
     EXPECT_EQ((lowered.topRightCorner<3, 3>().norm()), 0.0);
     const double tau = lowered(0, 0);
     EXPECT_GT(tau, 0.0);
-    EXPECT_LT((lowered.topLeftCorner<3, 3>() - tau * Eigen::Matrix3d::Identity()).norm(), 1e-12 * tau);
-    const Eigen::Vector3d rotation = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(lowered.bottomRightCorner<3, 3>()).eigenvalues();
+    EXPECT_LT((lowered.topLeftCorner<3, 3>() - tau * Eigen::Matrix3d::Identity()).norm(),
+              1e-12 * tau);
+    const Eigen::Vector3d rotation =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(lowered.bottomRightCorner<3, 3>())
+            .eigenvalues();
     EXPECT_GT(rotation(0), 0.0);
     EXPECT_LE(rotation(2), rotation(0) + rotation(1) + 1e-12 * omega.norm());
   }
@@ -157,20 +166,26 @@ TEST(LiftedCost, GradientAndHessianMatchFiniteDifferencesAlongTheManifold) {
     ASSERT_TRUE(form);
     for (int r : {3, 5}) {
       std::srand(17);
-      const Eigen::MatrixXd x = lifted::Retract(Eigen::MatrixXd::Zero(36, r), Eigen::MatrixXd::Random(36, r));
+      const Eigen::MatrixXd x =
+          lifted::Retract(Eigen::MatrixXd::Zero(36, r), Eigen::MatrixXd::Random(36, r));
       for (int i = 0; i < 36; i += 3) {
-        EXPECT_LT((x.middleRows<3>(i) * x.middleRows<3>(i).transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+        EXPECT_LT(
+            (x.middleRows<3>(i) * x.middleRows<3>(i).transpose() - Eigen::Matrix3d::Identity())
+                .norm(),
+            1e-12);
       }
       const lifted::Point point(*form, x);
       const Eigen::MatrixXd v = lifted::Project(x, Eigen::MatrixXd::Random(36, r));
       EXPECT_LT((lifted::Project(x, v) - v).norm(), 1e-12 * v.norm());  // a projection
       // Central differences along the (second-order) retraction: f' = ⟨grad, v⟩, f'' = ⟨v, Hess v⟩.
       const double t = 1e-4;
-      const double plus = form->Cost(lifted::Retract(x, t * v)), minus = form->Cost(lifted::Retract(x, -t * v));
+      const double plus = form->Cost(lifted::Retract(x, t * v)),
+                   minus = form->Cost(lifted::Retract(x, -t * v));
       const double slope = lifted::Inner(point.gradient, v);
       const double curvature = lifted::Inner(v, point.Hessian(*form, v));
       EXPECT_NEAR((plus - minus) / (2 * t), slope, 1e-6 * std::abs(slope)) << r;
-      EXPECT_NEAR((plus + minus - 2 * point.cost) / (t * t), curvature, 1e-4 * std::abs(curvature)) << r;
+      EXPECT_NEAR((plus + minus - 2 * point.cost) / (t * t), curvature, 1e-4 * std::abs(curvature))
+          << r;
     }
   }
 }
@@ -182,10 +197,13 @@ TEST(RotationForm, FactorisationDecidesPositiveDefinitenessOfTheCertificate) {
   const auto form = RotationForm::Build(graph, nullptr);
   ASSERT_TRUE(form);
   std::srand(19);
-  const Eigen::MatrixXd x = lifted::Retract(Eigen::MatrixXd::Zero(30, 4), Eigen::MatrixXd::Random(30, 4));
+  const Eigen::MatrixXd x =
+      lifted::Retract(Eigen::MatrixXd::Zero(30, 4), Eigen::MatrixXd::Random(30, 4));
   const lifted::Point point(*form, x);
-  const Eigen::MatrixXd s = lifted::CertificateProduct(*form, point.lambda, Eigen::MatrixXd::Identity(30, 30));
-  const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (s + s.transpose())).eigenvalues();
+  const Eigen::MatrixXd s =
+      lifted::CertificateProduct(*form, point.lambda, Eigen::MatrixXd::Identity(30, 30));
+  const Eigen::VectorXd eigenvalues =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (s + s.transpose())).eigenvalues();
   const double lowest = eigenvalues(0), margin = 1e-6 * eigenvalues.cwiseAbs().maxCoeff();
   ASSERT_LT(lowest, -1.0);  // an arbitrary point: S is indefinite
   EXPECT_TRUE(form->IsPositiveDefinite(point.lambda, -lowest + margin));
@@ -231,7 +249,8 @@ std::vector<double> MultiStartMinima(const PoseGraph& measured, const std::vecto
   for (int start = 0; start < 8; ++start) {
     PoseGraph graph = measured;
     for (size_t id = 1; id < truth.size(); ++id) {
-      graph.mutable_node(static_cast<int>(id)) = Perturb(truth[id], rng, start == 0 ? 0.0 : 2.0, 50.0);
+      graph.mutable_node(static_cast<int>(id)) =
+          Perturb(truth[id], rng, start == 0 ? 0.0 : 2.0, 50.0);
     }
     const PoseGraphReport lm = OptimisePoseGraph(graph, options);
     EXPECT_TRUE(lm.usable);
@@ -256,7 +275,8 @@ struct RingOutcome {
   PoseGraphReport report;
 };
 
-RingOutcome SolveNoisyRing(unsigned seed, const std::function<Matrix6d(std::mt19937&)>& information) {
+RingOutcome SolveNoisyRing(unsigned seed,
+                           const std::function<Matrix6d(std::mt19937&)>& information) {
   std::mt19937 rng(seed);
   const std::vector<Rigid3d> truth = RandomTruth(rng, 30);
   const PoseGraph measured = RingGraph(truth, rng, 0.1, 5.0, information);
@@ -293,7 +313,7 @@ TEST(Certificate, FullSixBySixInformationGetsAValidBound) {
   // Random information a aᵀ + I: anisotropic translation, coupling, anisotropic rotation.
   const RingOutcome ring = SolveNoisyRing(21, RandomInformation);
   EXPECT_TRUE(ring.report.dominated_relaxation);
-  EXPECT_EQ(ring.report.dominated_edges, 39);  // every edge
+  EXPECT_EQ(ring.report.dominated_edges, 39);           // every edge
   EXPECT_GT(ring.report.lower_bound, 0.3 * ring.best);  // 0.584 against 1.2179
 }
 

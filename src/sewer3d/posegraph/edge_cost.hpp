@@ -16,7 +16,9 @@ namespace sewer3d {
 class EdgeCost {
  public:
   EdgeCost(const Rigid3d& a_from_b, const Matrix6d& sqrt_information)
-      : p_ab_(a_from_b.translation), q_ab_(a_from_b.rotation), sqrt_information_(sqrt_information) {}
+      : p_ab_(a_from_b.translation),
+        q_ab_(a_from_b.rotation),
+        sqrt_information_(sqrt_information) {}
 
   template <typename T>
   bool operator()(const T* p_a_ptr, const T* q_a_ptr, const T* p_b_ptr, const T* q_b_ptr,

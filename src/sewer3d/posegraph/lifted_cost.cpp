@@ -41,9 +41,11 @@ MultiplierBlocks Multipliers(const MatrixXd& x, const MatrixXd& qx) {
   return lambda;
 }
 
-MatrixXd CertificateProduct(const RotationForm& form, const MultiplierBlocks& lambda, const MatrixXd& v) {
+MatrixXd CertificateProduct(const RotationForm& form, const MultiplierBlocks& lambda,
+                            const MatrixXd& v) {
   MatrixXd out = form.Apply(v);
-  for (size_t i = 0; i < lambda.size(); ++i) out.middleRows<3>(3 * i) -= lambda[i] * v.middleRows<3>(3 * i);
+  for (size_t i = 0; i < lambda.size(); ++i)
+    out.middleRows<3>(3 * i) -= lambda[i] * v.middleRows<3>(3 * i);
   return out;
 }
 
@@ -52,7 +54,8 @@ double Inner(const MatrixXd& a, const MatrixXd& b) { return a.cwiseProduct(b).su
 Point::Point(const RotationForm& form, MatrixXd at) : x(std::move(at)), qx(form.Apply(x)) {
   lambda = Multipliers(x, qx);
   gradient = 2.0 * qx;
-  for (size_t i = 0; i < lambda.size(); ++i) gradient.middleRows<3>(3 * i) -= 2.0 * lambda[i] * x.middleRows<3>(3 * i);
+  for (size_t i = 0; i < lambda.size(); ++i)
+    gradient.middleRows<3>(3 * i) -= 2.0 * lambda[i] * x.middleRows<3>(3 * i);
   cost = form.Cost(x, qx);
 }
 

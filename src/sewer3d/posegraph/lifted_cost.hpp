@@ -6,7 +6,6 @@
 /// Hessian, and the certificate matrix S = Q − Diag(Λ).
 
 #include <Eigen/Core>
-
 #include <vector>
 
 #include "sewer3d/posegraph/rotation_form.hpp"
@@ -39,10 +38,10 @@ struct Point {
   /// Riemannian Hessian applied to a tangent vector: 2 Proj_X((Q − Diag(Λ)) V).
   Eigen::MatrixXd Hessian(const RotationForm& form, const Eigen::MatrixXd& v) const;
 
-  Eigen::MatrixXd x, qx;    ///< X and Q X
-  MultiplierBlocks lambda;  ///< Λ(X)
-  Eigen::MatrixXd gradient; ///< Riemannian gradient 2 (QX − Diag(Λ) X)
-  double cost = 0.0;        ///< tr(XᵀQX) + c
+  Eigen::MatrixXd x, qx;     ///< X and Q X
+  MultiplierBlocks lambda;   ///< Λ(X)
+  Eigen::MatrixXd gradient;  ///< Riemannian gradient 2 (QX − Diag(Λ) X)
+  double cost = 0.0;         ///< tr(XᵀQX) + c
 };
 
 }  // namespace sewer3d::lifted

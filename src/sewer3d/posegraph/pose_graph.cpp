@@ -20,8 +20,9 @@ void PoseGraph::AddEdge(const PoseEdge& edge) {
   SEWER3D_CHECK(IsSymmetricPositiveDefinite(edge.information),
                 "information of edge " << edge.from << " -> " << edge.to
                                        << " is not symmetric positive definite");
-  SEWER3D_CHECK(edge.a_from_b.translation.allFinite() && edge.a_from_b.rotation.coeffs().allFinite(),
-                "edge " << edge.from << " -> " << edge.to << " has non-finite values");
+  SEWER3D_CHECK(
+      edge.a_from_b.translation.allFinite() && edge.a_from_b.rotation.coeffs().allFinite(),
+      "edge " << edge.from << " -> " << edge.to << " has non-finite values");
   edges_.push_back(edge);
 }
 

@@ -169,8 +169,8 @@ TEST(PoseGraph, RegularisationEdgeKeepsAStraightPipeStraight) {
   }
   Matrix6d covariance = Matrix6d::Identity();
   covariance.diagonal() << 1.0, 1.0, 1.0, 1e-6, 1e-6, 1e-6;  // 1 mm, 0.06°
-  graph.AddRegularisationEdge(0, n - 1, {Eigen::Quaterniond::Identity(), Eigen::Vector3d(1000.0, 0, 0)},
-                              covariance);
+  graph.AddRegularisationEdge(
+      0, n - 1, {Eigen::Quaterniond::Identity(), Eigen::Vector3d(1000.0, 0, 0)}, covariance);
   EXPECT_EQ(graph.edges().back().kind, EdgeKind::kRegularisation);
   const double lateral_before = std::abs(graph.node(n - 1).translation.y());
   OptimisePoseGraph(graph, PoseGraphOptions{});

@@ -2,7 +2,6 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-
 #include <string>
 #include <unordered_map>
 
@@ -28,7 +27,8 @@ std::string Disqualification(const Matrix6d& information) {
 }  // namespace
 
 Eigen::Matrix3d DominatedRotationInformation(const Eigen::Matrix3d& information) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 * (information + information.transpose()));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(0.5 *
+                                                          (information + information.transpose()));
   Eigen::Vector3d lambda = es.eigenvalues();  // ascending
   if (lambda(2) <= lambda(0) + lambda(1)) return information;
   lambda(2) = lambda(0) + lambda(1);
@@ -40,24 +40,28 @@ Matrix6d DominatedInformation(const Matrix6d& information) {
   Matrix6d out = Matrix6d::Zero();
   Eigen::Matrix3d omega_r = omega.bottomRightCorner<3, 3>();
   if (Disqualification(omega).empty()) {
-    out.topLeftCorner<3, 3>() = omega.topLeftCorner<3, 3>().trace() / 3.0 * Eigen::Matrix3d::Identity();
+    out.topLeftCorner<3, 3>() =
+        omega.topLeftCorner<3, 3>().trace() / 3.0 * Eigen::Matrix3d::Identity();
   } else {
     // diag(τI, Ω_r − Cᵀ(Ω_t − τI)⁻¹C) ⪯ Ω for τ < λ_min(Ω_t) (Schur complement). τ = λ_min
     // without coupling C; with it, halved from λ_min until the rotation block stays positive
     // definite (it is at τ = 0, since Ω ≻ 0).
     const Eigen::Matrix3d omega_t = omega.topLeftCorner<3, 3>();
     const Eigen::Matrix3d coupling = omega.topRightCorner<3, 3>();
-    double tau = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(omega_t, Eigen::EigenvaluesOnly).eigenvalues()(0);
+    double tau = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(omega_t, Eigen::EigenvaluesOnly)
+                     .eigenvalues()(0);
     if (coupling.cwiseAbs().maxCoeff() > 0.0) {
       for (int halving = 0; halving < 60; ++halving) {
         tau *= 0.5;
         const Eigen::Matrix3d schur =
-            omega_r - coupling.transpose() * (omega_t - tau * Eigen::Matrix3d::Identity()).inverse() * coupling;
+            omega_r - coupling.transpose() *
+                          (omega_t - tau * Eigen::Matrix3d::Identity()).inverse() * coupling;
         if (Eigen::LLT<Eigen::Matrix3d>(schur).info() == Eigen::Success) {
           omega_r = schur;
           break;
         }
-        if (halving == 59) tau = 0.0, omega_r = omega_r - coupling.transpose() * omega_t.inverse() * coupling;
+        if (halving == 59)
+          tau = 0.0, omega_r = omega_r - coupling.transpose() * omega_t.inverse() * coupling;
       }
     }
     out.topLeftCorner<3, 3>() = tau * Eigen::Matrix3d::Identity();
@@ -85,12 +89,15 @@ std::optional<RotationForm> RotationForm::Build(const PoseGraph& graph, std::str
     const std::string edge = "edge " + std::to_string(e.from) + " -> " + std::to_string(e.to) + " ";
     if (e.huber_delta > 0.0) return fail(edge + "has a robust loss");
     const std::string reason = Disqualification(e.information);
-    if (!reason.empty() && rotation_information == RotationInformation::kExact) return fail(edge + reason);
+    if (!reason.empty() && rotation_information == RotationInformation::kExact)
+      return fail(edge + reason);
     const int a = index.at(e.from), b = index.at(e.to);
     const Matrix6d dominated = DominatedInformation(e.information);
-    const bool lowered = !reason.empty() || dominated.bottomRightCorner<3, 3>() != e.information.bottomRightCorner<3, 3>();
+    const bool lowered = !reason.empty() || dominated.bottomRightCorner<3, 3>() !=
+                                                e.information.bottomRightCorner<3, 3>();
     form.dominated_edges_ += lowered;
-    const Matrix6d& information = rotation_information == RotationInformation::kDominated ? dominated : e.information;
+    const Matrix6d& information =
+        rotation_information == RotationInformation::kDominated ? dominated : e.information;
     const Eigen::Matrix3d omega_r = information.bottomRightCorner<3, 3>();
     const Eigen::Matrix3d m =
         0.5 * (omega_r + omega_r.transpose()) - 0.5 * omega_r.trace() * Eigen::Matrix3d::Identity();
@@ -130,10 +137,12 @@ std::optional<RotationForm> RotationForm::Build(const PoseGraph& graph, std::str
   form.laplacian_.resize(n - 1, n - 1);
   form.laplacian_.setFromTriplets(laplacian.begin(), laplacian.end());
   if (n > 1) {
-    auto factor = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(form.laplacian_);
+    auto factor =
+        std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(form.laplacian_);
     // A disconnected graph leaves a singular Laplacian: a (near-)zero pivot.
     const double max_diagonal = form.laplacian_.diagonal().maxCoeff();
-    if (factor->info() != Eigen::Success || !(factor->vectorD().minCoeff() > 1e-12 * max_diagonal)) {
+    if (factor->info() != Eigen::Success ||
+        !(factor->vectorD().minCoeff() > 1e-12 * max_diagonal)) {
       return fail("the graph is not connected");
     }
     form.laplacian_factor_ = std::move(factor);
@@ -157,18 +166,21 @@ double RotationForm::Cost(const Eigen::MatrixXd& x, const Eigen::MatrixXd& qx) c
 
 double RotationForm::Cost(const Eigen::MatrixXd& x) const { return Cost(x, Apply(x)); }
 
-std::optional<double> RotationForm::SmallestPositiveDefiniteShift(const std::vector<Eigen::Matrix3d>& blocks,
-                                                                 double from, double to) const {
+std::optional<double> RotationForm::SmallestPositiveDefiniteShift(
+    const std::vector<Eigen::Matrix3d>& blocks, double from, double to) const {
   if (!(from > 0.0)) return std::nullopt;
   const int n = NodeCount(), m = n - 1;  // m grounded positions, then 3n rotation coordinates
   Triplets t;
   t.reserve(laplacian_.nonZeros() + 2 * coupling_.nonZeros() + direct_.nonZeros() + 9 * n);
-  auto append = [&t](const Eigen::SparseMatrix<double>& matrix, int row0, int col0, bool transpose) {
+  auto append = [&t](const Eigen::SparseMatrix<double>& matrix, int row0, int col0,
+                     bool transpose) {
     for (int k = 0; k < matrix.outerSize(); ++k) {
       for (Eigen::SparseMatrix<double>::InnerIterator it(matrix, k); it; ++it) {
         const int r = static_cast<int>(it.row()), c = static_cast<int>(it.col());
-        if (transpose) t.emplace_back(row0 + c, col0 + r, it.value());
-        else t.emplace_back(row0 + r, col0 + c, it.value());
+        if (transpose)
+          t.emplace_back(row0 + c, col0 + r, it.value());
+        else
+          t.emplace_back(row0 + r, col0 + c, it.value());
       }
     }
   };
@@ -191,7 +203,8 @@ std::optional<double> RotationForm::SmallestPositiveDefiniteShift(const std::vec
   return std::nullopt;
 }
 
-bool RotationForm::IsPositiveDefinite(const std::vector<Eigen::Matrix3d>& blocks, double shift) const {
+bool RotationForm::IsPositiveDefinite(const std::vector<Eigen::Matrix3d>& blocks,
+                                      double shift) const {
   return SmallestPositiveDefiniteShift(blocks, shift, shift).has_value();
 }
 

@@ -18,7 +18,6 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
-
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,12 +27,12 @@
 
 namespace sewer3d {
 
-/// An edge's rotation term is a squared norm, ½ ‖(R_a R̂ − R_b) W‖²_F with W Wᵀ = R̂ᵀ(½ tr Ω_r I − Ω_r)R̂,
-/// and so stays non-negative in the Stiefel lift, exactly when ½ tr Ω_r I − Ω_r ⪰ 0: when the
-/// largest eigenvalue of Ω_r is at most the sum of the other two. Otherwise the lifted cost
-/// can go negative and the relaxation loses its tightness, even without noise.
-/// Returns Ω_r with its largest eigenvalue lowered to the sum of the other two where needed:
-/// the largest such matrix below Ω_r along its eigenvectors, so its cost bounds Ω_r's from below.
+/// An edge's rotation term is a squared norm, ½ ‖(R_a R̂ − R_b) W‖²_F with W Wᵀ = R̂ᵀ(½ tr Ω_r I −
+/// Ω_r)R̂, and so stays non-negative in the Stiefel lift, exactly when ½ tr Ω_r I − Ω_r ⪰ 0: when
+/// the largest eigenvalue of Ω_r is at most the sum of the other two. Otherwise the lifted cost can
+/// go negative and the relaxation loses its tightness, even without noise. Returns Ω_r with its
+/// largest eigenvalue lowered to the sum of the other two where needed: the largest such matrix
+/// below Ω_r along its eigenvectors, so its cost bounds Ω_r's from below.
 Eigen::Matrix3d DominatedRotationInformation(const Eigen::Matrix3d& information);
 
 /// A block-diagonal information diag(τI, Ω_r') ⪯ Ω whose cost is quadratic in the rotations
@@ -53,8 +52,9 @@ class RotationForm {
   /// Builds the form; nullopt with `why` set when the graph does not qualify: robust losses,
   /// no edges, a graph not connected, and for kExact anisotropic translation information or
   /// translation–rotation cross terms (relative size > 1e-6).
-  static std::optional<RotationForm> Build(const PoseGraph& graph, std::string* why,
-                                           RotationInformation rotation_information = RotationInformation::kExact);
+  static std::optional<RotationForm> Build(
+      const PoseGraph& graph, std::string* why,
+      RotationInformation rotation_information = RotationInformation::kExact);
 
   /// c = Σ ½ tr Ω_r: the cost's scale (every rotation residual at 90° costs about this).
   double Constant() const { return constant_; }
@@ -94,8 +94,8 @@ class RotationForm {
 
  private:
   std::vector<int> ids_;
-  Eigen::SparseMatrix<double> direct_;   // 3n × 3n: rotation terms + translation C block
-  Eigen::SparseMatrix<double> coupling_; // (n−1) × 3n: position–rotation block B
+  Eigen::SparseMatrix<double> direct_;     // 3n × 3n: rotation terms + translation C block
+  Eigen::SparseMatrix<double> coupling_;   // (n−1) × 3n: position–rotation block B
   Eigen::SparseMatrix<double> laplacian_;  // (n−1) × (n−1): positions, node 0 grounded
   std::shared_ptr<const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> laplacian_factor_;
   Eigen::SparseMatrix<double> approximation_;

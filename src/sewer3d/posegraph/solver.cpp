@@ -169,8 +169,7 @@ LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
     const double delta = e.huber_delta > 0.0 ? e.huber_delta : options.huber_delta;
     ceres::LossFunction* loss = delta > 0.0 ? new ceres::HuberLoss(delta) : nullptr;
     problem.AddResidualBlock(EdgeCost::Create(e.a_from_b, SqrtInformation(e.information)), loss,
-                             p[a].data(), q[a].coeffs().data(), p[b].data(),
-                             q[b].coeffs().data());
+                             p[a].data(), q[a].coeffs().data(), p[b].data(), q[b].coeffs().data());
   }
   for (size_t i = 0; i < count; ++i) {
     if (!problem.HasParameterBlock(p[i].data())) continue;
@@ -194,7 +193,8 @@ LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
   result.seconds = Seconds(solve_start);
 
   bool finite = true;
-  for (size_t i = 0; i < count; ++i) finite = finite && p[i].allFinite() && q[i].coeffs().allFinite();
+  for (size_t i = 0; i < count; ++i)
+    finite = finite && p[i].allFinite() && q[i].coeffs().allFinite();
   if (finite) {  // a diverged solve leaves the initial poses in place
     for (size_t i = 0; i < count; ++i) graph.mutable_node(ix.id_of_index[i]) = Rigid3d(q[i], p[i]);
   }

@@ -40,22 +40,24 @@ struct PoseGraphReport {
   int iterations = 0;
   double init_seconds = 0.0;
   double solve_seconds = 0.0;
-  std::string termination;    ///< Ceres' termination type and message
-  bool usable = false;        ///< converged (or hit the budget while decreasing) with finite poses
+  std::string termination;  ///< Ceres' termination type and message
+  bool usable = false;      ///< converged (or hit the budget while decreasing) with finite poses
   int nodes = 0, edges = 0;
 
   /// With PoseGraphOptions::certify:
   bool certificate_applicable = false;
-  std::string certificate_reason;   ///< why not applicable, or why not converged
-  double lower_bound = 0.0;         ///< no poses of this graph cost less
-  int relaxation_rank = 0;          ///< rank at which the staircase stopped
-  bool relaxation_solved = false;   ///< the semidefinite relaxation was solved (S ⪰ 0)
-  int dominated_edges = 0;          ///< edges with lowered information (certificate.hpp)
-  bool dominated_relaxation = false;///< the bound comes from the dominated-information relaxation
-  bool certificate_improved = false;///< the staircase's rounded solution beat LM's and was taken
+  std::string certificate_reason;     ///< why not applicable, or why not converged
+  double lower_bound = 0.0;           ///< no poses of this graph cost less
+  int relaxation_rank = 0;            ///< rank at which the staircase stopped
+  bool relaxation_solved = false;     ///< the semidefinite relaxation was solved (S ⪰ 0)
+  int dominated_edges = 0;            ///< edges with lowered information (certificate.hpp)
+  bool dominated_relaxation = false;  ///< the bound comes from the dominated-information relaxation
+  bool certificate_improved = false;  ///< the staircase's rounded solution beat LM's and was taken
   double certificate_seconds = 0.0;
   /// final_cost is within this fraction of the global optimum (final − bound) / final.
-  double RelativeGap() const { return final_cost > 0.0 ? (final_cost - lower_bound) / final_cost : 0.0; }
+  double RelativeGap() const {
+    return final_cost > 0.0 ? (final_cost - lower_bound) / final_cost : 0.0;
+  }
 };
 
 /// Chordal initialisation: rotations from the linear relaxation Σ w‖R_b − R_a R̂_ab‖²_F

@@ -22,7 +22,8 @@ inline Rigid3d Perturb(const Rigid3d& pose, std::mt19937& rng, double rot_rad, d
   std::normal_distribution<double> n(0.0, 1.0);
   const Eigen::Vector3d w(n(rng) * rot_rad, n(rng) * rot_rad, n(rng) * rot_rad);
   const Eigen::Quaterniond dq(Eigen::AngleAxisd(w.norm(), w.normalized()));
-  return {pose.rotation * dq, pose.translation + Eigen::Vector3d(n(rng), n(rng), n(rng)) * trans_mm};
+  return {pose.rotation * dq,
+          pose.translation + Eigen::Vector3d(n(rng), n(rng), n(rng)) * trans_mm};
 }
 
 inline Matrix6d RandomInformation(std::mt19937& rng) {
@@ -45,9 +46,9 @@ inline Matrix6d RingInformation(std::mt19937&) {
 
 /// A ring of poses with odometry and a few loop closures, measured from `truth` with the given
 /// noise; each edge's information from `information`.
-inline PoseGraph RingGraph(const std::vector<Rigid3d>& truth, std::mt19937& rng, double rot_noise,
-                           double trans_noise,
-                           const std::function<Matrix6d(std::mt19937&)>& information = RingInformation) {
+inline PoseGraph RingGraph(
+    const std::vector<Rigid3d>& truth, std::mt19937& rng, double rot_noise, double trans_noise,
+    const std::function<Matrix6d(std::mt19937&)>& information = RingInformation) {
   PoseGraph graph;
   for (size_t i = 0; i < truth.size(); ++i) graph.SetNode(static_cast<int>(i), truth[i]);
   const int n = static_cast<int>(truth.size());

@@ -59,7 +59,8 @@ double Aggregate(std::uint64_t seed, const Eigen::Vector2d& p) {
       // Irregular outline: the radius wobbles with the direction.
       const Eigen::Vector2d d = p - centre;
       if (d.squaredNorm() > 1.5625 * radius * radius) continue;  // beyond the largest wobble
-      const double wobble = 0.75 + 0.5 * ValueNoise(seed + i * 31 + j, 2.0 + std::atan2(d.y(), d.x()), 0.5);
+      const double wobble =
+          0.75 + 0.5 * ValueNoise(seed + i * 31 + j, 2.0 + std::atan2(d.y(), d.x()), 0.5);
       const double r = d.norm() / (radius * wobble);
       if (r < 1.0) {
         const double edge = std::min(1.0, (1.0 - r) * radius * 3.0);
@@ -72,7 +73,9 @@ double Aggregate(std::uint64_t seed, const Eigen::Vector2d& p) {
 
 }  // namespace
 
-double SmoothNoise(std::uint64_t seed, double x, double y, int octaves) { return Fbm(seed, x, y, octaves); }
+double SmoothNoise(std::uint64_t seed, double x, double y, int octaves) {
+  return Fbm(seed, x, y, octaves);
+}
 
 double HashNormal(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
   const double u1 = std::max(HashUniform(a, b, c, 11), 1e-300);

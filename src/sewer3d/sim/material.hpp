@@ -4,7 +4,6 @@
 /// coordinates (mm). Deterministic for a seed.
 
 #include <Eigen/Core>
-
 #include <cstdint>
 
 #include "sewer3d/sim/scene.hpp"

@@ -31,8 +31,14 @@ struct Setup {
   double camera_aperture_mm, projector_aperture_mm;
   cv::Mat2d corner_rays;  // normalised (x, y) at pixel corners; NaN where not invertible
 
-  Setup(const ModuleDescription& m, const BinaryArray& p, const Surface& s, const RenderOptions& opt)
-      : module(m), pattern(p), surface(s), o(opt), camera(m.camera), projector(m.projector),
+  Setup(const ModuleDescription& m, const BinaryArray& p, const Surface& s,
+        const RenderOptions& opt)
+      : module(m),
+        pattern(p),
+        surface(s),
+        o(opt),
+        camera(m.camera),
+        projector(m.projector),
         projector_rotation(m.projector_from_camera.RotationMatrix()),
         projector_centre(m.projector_from_camera.Inverse().translation) {
     const double pitch_mm = o.sensor_width_mm / m.camera.width;
@@ -53,10 +59,14 @@ struct Setup {
     const PatternLayout& layout = module.pattern;
     const double radius = 0.5 * layout.spot_diameter_px;
     const double reach = radius + 4.0 * sigma_px;
-    const int c_lo = static_cast<int>(std::floor((uv.x() - layout.offset_px.x() + 0.5 - reach) / layout.pitch_px - 0.5));
-    const int c_hi = static_cast<int>(std::ceil((uv.x() - layout.offset_px.x() + 0.5 + reach) / layout.pitch_px - 0.5));
-    const int r_lo = static_cast<int>(std::floor((uv.y() - layout.offset_px.y() + 0.5 - reach) / layout.pitch_px - 0.5));
-    const int r_hi = static_cast<int>(std::ceil((uv.y() - layout.offset_px.y() + 0.5 + reach) / layout.pitch_px - 0.5));
+    const int c_lo = static_cast<int>(
+        std::floor((uv.x() - layout.offset_px.x() + 0.5 - reach) / layout.pitch_px - 0.5));
+    const int c_hi = static_cast<int>(
+        std::ceil((uv.x() - layout.offset_px.x() + 0.5 + reach) / layout.pitch_px - 0.5));
+    const int r_lo = static_cast<int>(
+        std::floor((uv.y() - layout.offset_px.y() + 0.5 - reach) / layout.pitch_px - 0.5));
+    const int r_hi = static_cast<int>(
+        std::ceil((uv.y() - layout.offset_px.y() + 0.5 + reach) / layout.pitch_px - 0.5));
     double value = 0.0;
     const double inv = 1.0 / (std::sqrt(2.0) * sigma_px);
     for (int r = r_lo; r <= r_hi; ++r) {
@@ -83,9 +93,10 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
   const auto hit = s.surface.Intersect(origin, direction);
   if (!hit) return out;
   const RenderOptions& o = s.o;
-  const Eigen::Vector3d albedo = hit->albedo.allFinite()
-                                     ? hit->albedo
-                                     : MaterialAlbedo(hit->material, s.surface.MaterialSeed(), hit->surface_mm);
+  const Eigen::Vector3d albedo =
+      hit->albedo.allFinite()
+          ? hit->albedo
+          : MaterialAlbedo(hit->material, s.surface.MaterialSeed(), hit->surface_mm);
   const double grey = albedo.mean();
   const double vignetting = o.vignetting ? std::pow(cos_alpha, 4) : 1.0;
   if (o.images != RenderImages::kPattern) {
@@ -94,17 +105,20 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
     const double d_light = to_light.norm();
     const double cos_light = std::max(0.0, hit->normal.dot(to_light) / d_light);
     const double falloff = std::pow(kReferenceDistanceMm / d_light, 2) * cos_light;
-    out.texture = (albedo / 0.5) * (o.texture_level * falloff * cos_alpha * cos_alpha + o.ambient_level);
+    out.texture =
+        (albedo / 0.5) * (o.texture_level * falloff * cos_alpha * cos_alpha + o.ambient_level);
     out.texture *= vignetting;
   }
   if (o.images == RenderImages::kTexture) return out;
   // Pattern light from the projector.
   const Eigen::Vector3d p_rig = hit->point - rig_shift;
-  const Eigen::Vector3d p_projector = s.projector_rotation * p_rig + s.module.projector_from_camera.translation;
+  const Eigen::Vector3d p_projector =
+      s.projector_rotation * p_rig + s.module.projector_from_camera.translation;
   double pattern = o.ambient_level;
   const auto uv = s.projector.Project(p_projector);
   const auto& pi = s.module.projector;
-  if (uv && uv->x() >= -0.5 && uv->y() >= -0.5 && uv->x() <= pi.width - 0.5 && uv->y() <= pi.height - 0.5) {
+  if (uv && uv->x() >= -0.5 && uv->y() >= -0.5 && uv->x() <= pi.width - 0.5 &&
+      uv->y() <= pi.height - 0.5) {
     const Eigen::Vector3d projector_centre = s.projector_centre + rig_shift;
     const Eigen::Vector3d to_projector = projector_centre - hit->point;
     const double d_projector = to_projector.norm();
@@ -114,7 +128,8 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
                            ? CircleOfConfusionPx(s.module.projector.fx, s.projector_aperture_mm,
                                                  o.projector_focus_mm, p_projector.z())
                            : 0.0;
-    const double sigma = std::sqrt(o.projector_psf_px * o.projector_psf_px + std::pow(coc / 2.5, 2));
+    const double sigma =
+        std::sqrt(o.projector_psf_px * o.projector_psf_px + std::pow(coc / 2.5, 2));
     const double lens = o.vignetting ? std::pow(cos_beta, 4) : 1.0;
     pattern += o.pattern_level * s.SpotProfile(*uv, sigma) * lens *
                std::pow(kReferenceDistanceMm / d_projector, 2) * cos_in;
@@ -131,7 +146,8 @@ std::uint16_t Digitise(double signal, const SensorModel& sensor, std::uint64_t s
     electrons += sensor.read_noise_e * HashNormal(seed, pixel, channel + 100);
   }
   const double max_dn = (1 << sensor.bits) - 1;
-  return static_cast<std::uint16_t>(std::clamp(std::round(electrons / sensor.full_well_e * max_dn), 0.0, max_dn));
+  return static_cast<std::uint16_t>(
+      std::clamp(std::round(electrons / sensor.full_well_e * max_dn), 0.0, max_dn));
 }
 
 }  // namespace
@@ -142,7 +158,8 @@ void RenderOptions::Check() const {
   SEWER3D_CHECK(camera_f_number >= 0.0 && projector_f_number >= 0.0, "f-number");
   SEWER3D_CHECK(camera_focus_mm > 0.0 && projector_focus_mm > 0.0, "focus distance");
   SEWER3D_CHECK(projector_psf_px > 0.0, "projector_psf_px must be positive");
-  SEWER3D_CHECK(texture_level >= 0.0 && pattern_level >= 0.0 && ambient_level >= 0.0, "light level");
+  SEWER3D_CHECK(texture_level >= 0.0 && pattern_level >= 0.0 && ambient_level >= 0.0,
+                "light level");
   SEWER3D_CHECK(speed_mm_s >= 0.0 && exposure_ms >= 0.0, "motion");
   SEWER3D_CHECK(motion_direction.norm() > 0.0, "motion direction");
   SEWER3D_CHECK(sensor.bits >= 8 && sensor.bits <= 12, "bits " << sensor.bits << " (8..12)");
@@ -178,7 +195,8 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
   frame.pattern.create(h, w);
   frame.texture.create(h, w);
   frame.truth_depth.create(h, w);
-  const Eigen::Vector3d motion = o.motion_direction.normalized() * (o.speed_mm_s * o.exposure_ms * 1e-3);
+  const Eigen::Vector3d motion =
+      o.motion_direction.normalized() * (o.speed_mm_s * o.exposure_ms * 1e-3);
 
   tbb::parallel_for(0, h, [&](int v) {
     for (int u = 0; u < w; ++u) {
@@ -187,7 +205,7 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
       float depth = NAN;
       if (centre_ray && o.truth_depth) {
         const auto hit = surface.Intersect(Eigen::Vector3d::Zero(),
-                                   Eigen::Vector3d(centre_ray->x(), centre_ray->y(), 1.0));
+                                           Eigen::Vector3d(centre_ray->x(), centre_ray->y(), 1.0));
         if (hit) depth = static_cast<float>(hit->point.z());
       }
       frame.truth_depth(v, u) = depth;
@@ -199,8 +217,8 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
           // Stratified position in the pixel; the aperture sample uses a scrambled stratum.
           const double sx = (k % n + HashUniform(o.seed, pixel, k, 1)) / n;
           const double sy = (k / n + HashUniform(o.seed, pixel, k, 2)) / n;
-          const cv::Vec2d xy = (1 - sx) * (1 - sy) * c00 + sx * (1 - sy) * c10 +
-                               (1 - sx) * sy * c01 + sx * sy * c11;
+          const cv::Vec2d xy =
+              (1 - sx) * (1 - sy) * c00 + sx * (1 - sy) * c10 + (1 - sx) * sy * c01 + sx * sy * c11;
           Eigen::Vector3d direction(xy[0], xy[1], 1.0);
           const double cos_alpha = 1.0 / direction.norm();
           const double tau = n * n > 1 ? (k + HashUniform(o.seed, pixel, k, 3)) / (n * n) : 0.5;
@@ -211,7 +229,8 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
             const int kk = static_cast<int>(HashUniform(o.seed, pixel, 7) * n * n + k) % (n * n);
             const double radius = 0.5 * setup.camera_aperture_mm *
                                   std::sqrt((kk % n + HashUniform(o.seed, pixel, k, 4)) / n);
-            const double angle = 2.0 * std::numbers::pi * (kk / n + HashUniform(o.seed, pixel, k, 5)) / n;
+            const double angle =
+                2.0 * std::numbers::pi * (kk / n + HashUniform(o.seed, pixel, k, 5)) / n;
             const Eigen::Vector3d lens(radius * std::cos(angle), radius * std::sin(angle), 0.0);
             const Eigen::Vector3d focus = direction * o.camera_focus_mm;
             origin += lens;
@@ -225,13 +244,17 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
       const double pattern_signal = sum.pattern / (n * n);
       const Eigen::Vector3d texture_signal = sum.texture / (n * n);
       frame.pattern_signal(v, u) = static_cast<float>(pattern_signal);
-      frame.texture_signal(v, u) = cv::Vec3f(texture_signal.x(), texture_signal.y(), texture_signal.z());
-      frame.pattern(v, u) = o.images == RenderImages::kTexture ? 0 : Digitise(pattern_signal, o.sensor, o.seed, pixel, 0);
-      frame.texture(v, u) = o.images == RenderImages::kPattern
-                                ? cv::Vec3w(0, 0, 0)
-                                : cv::Vec3w(Digitise(texture_signal.x(), o.sensor, o.seed, pixel, 1),
-                                            Digitise(texture_signal.y(), o.sensor, o.seed, pixel, 2),
-                                            Digitise(texture_signal.z(), o.sensor, o.seed, pixel, 3));
+      frame.texture_signal(v, u) =
+          cv::Vec3f(texture_signal.x(), texture_signal.y(), texture_signal.z());
+      frame.pattern(v, u) = o.images == RenderImages::kTexture
+                                ? 0
+                                : Digitise(pattern_signal, o.sensor, o.seed, pixel, 0);
+      frame.texture(v, u) =
+          o.images == RenderImages::kPattern
+              ? cv::Vec3w(0, 0, 0)
+              : cv::Vec3w(Digitise(texture_signal.x(), o.sensor, o.seed, pixel, 1),
+                          Digitise(texture_signal.y(), o.sensor, o.seed, pixel, 2),
+                          Digitise(texture_signal.z(), o.sensor, o.seed, pixel, 3));
     }
   });
   frame.samples = static_cast<std::int64_t>(w) * h * n * n;

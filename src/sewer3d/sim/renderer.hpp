@@ -8,7 +8,6 @@
 /// distance and incidence, vignetting; sensor: photon shot noise, read noise, quantisation.
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <opencv2/core.hpp>
 
@@ -33,21 +32,21 @@ enum class RenderImages { kBoth, kPattern, kTexture };
 struct RenderOptions {
   RenderImages images = RenderImages::kBoth;
   bool truth_depth = true;  ///< trace the pixel-centre ray for truth_depth (else all NaN)
-  int supersampling = 3;           ///< S: S x S samples per pixel (area and aperture)
+  int supersampling = 3;    ///< S: S x S samples per pixel (area and aperture)
   /// Physical width of the camera sensor (2592 x 2.2 µm); with the image width it gives the
   /// pixel pitch, hence the physical focal length and aperture of camera and projector.
   double sensor_width_mm = 5.7;
-  double camera_f_number = 8.0;    ///< 0: pinhole camera (no defocus)
-  double camera_focus_mm = 112.5;  ///< harmonic mean of 75 and 225 mm: equal blur at both ends
-  double projector_f_number = 8.0; ///< 0: no projector defocus
+  double camera_f_number = 8.0;     ///< 0: pinhole camera (no defocus)
+  double camera_focus_mm = 112.5;   ///< harmonic mean of 75 and 225 mm: equal blur at both ends
+  double projector_f_number = 8.0;  ///< 0: no projector defocus
   double projector_focus_mm = 112.5;
-  double projector_psf_px = 0.3;   ///< Gaussian sigma of the projector optics at focus, proj. px
+  double projector_psf_px = 0.3;  ///< Gaussian sigma of the projector optics at focus, proj. px
   /// Signal (fraction of full scale) from albedo 0.5 facing the camera at 150 mm on the axis.
   double texture_level = 0.6;
   double pattern_level = 0.8;
-  double ambient_level = 0.02;     ///< ambient light, same reference, in both images
-  bool vignetting = true;          ///< cos⁴ falloff of camera and projector lenses
-  double speed_mm_s = 0.0;         ///< rig motion during the exposure (0: no motion blur)
+  double ambient_level = 0.02;  ///< ambient light, same reference, in both images
+  bool vignetting = true;       ///< cos⁴ falloff of camera and projector lenses
+  double speed_mm_s = 0.0;      ///< rig motion during the exposure (0: no motion blur)
   double exposure_ms = 2.0;
   Eigen::Vector3d motion_direction = Eigen::Vector3d::UnitY();  ///< camera frame
   SensorModel sensor;
@@ -59,12 +58,12 @@ struct RenderOptions {
 };
 
 struct RenderedFrame {
-  cv::Mat1f pattern_signal;   ///< expected pattern signal, fraction of full scale, no noise
-  cv::Mat3f texture_signal;   ///< expected texture signal, RGB
-  cv::Mat1w pattern;          ///< digital numbers, 0 .. 2^bits − 1
-  cv::Mat3w texture;          ///< RGB digital numbers
-  cv::Mat1f truth_depth;      ///< z (mm) of the surface at each pixel centre; NaN: no surface
-  std::int64_t samples = 0;   ///< rays traced
+  cv::Mat1f pattern_signal;  ///< expected pattern signal, fraction of full scale, no noise
+  cv::Mat3f texture_signal;  ///< expected texture signal, RGB
+  cv::Mat1w pattern;         ///< digital numbers, 0 .. 2^bits − 1
+  cv::Mat3w texture;         ///< RGB digital numbers
+  cv::Mat1f truth_depth;     ///< z (mm) of the surface at each pixel centre; NaN: no surface
+  std::int64_t samples = 0;  ///< rays traced
 };
 
 /// Renders the frame; multi-threaded, deterministic for options.seed. Images not asked for

@@ -20,9 +20,12 @@ ModuleDescription SmallModule() {
 }
 
 // Intensity centroid of `image` in a (2r+1)² window around `centre`.
-std::optional<Eigen::Vector2d> Centroid(const cv::Mat1f& image, const Eigen::Vector2d& centre, int r) {
-  const int cu = static_cast<int>(std::round(centre.x())), cv_ = static_cast<int>(std::round(centre.y()));
-  if (cu - r < 0 || cv_ - r < 0 || cu + r >= image.cols || cv_ + r >= image.rows) return std::nullopt;
+std::optional<Eigen::Vector2d> Centroid(const cv::Mat1f& image, const Eigen::Vector2d& centre,
+                                        int r) {
+  const int cu = static_cast<int>(std::round(centre.x())),
+            cv_ = static_cast<int>(std::round(centre.y()));
+  if (cu - r < 0 || cv_ - r < 0 || cu + r >= image.cols || cv_ + r >= image.rows)
+    return std::nullopt;
   double sum = 0, su = 0, sv = 0;
   for (int v = cv_ - r; v <= cv_ + r; ++v) {
     for (int u = cu - r; u <= cu + r; ++u) {
@@ -70,18 +73,21 @@ TEST(Renderer, TruthDepthMatchesAnalyticSurfaces) {
   Scene plane;
   plane.distance_mm = 90.0;
   plane.tilt_deg = -15.0;
-  const cv::Mat1f plane_depth = RenderFrame(module, DefaultPatternArray(), plane, options).truth_depth;
+  const cv::Mat1f plane_depth =
+      RenderFrame(module, DefaultPatternArray(), plane, options).truth_depth;
   Scene cylinder;
   cylinder.type = Scene::Type::kCylinder;
   cylinder.diameter_mm = 200.0;
   cylinder.axis_point_mm = {5.0, 0.0, 15.0};
-  const cv::Mat1f cylinder_depth = RenderFrame(module, DefaultPatternArray(), cylinder, options).truth_depth;
+  const cv::Mat1f cylinder_depth =
+      RenderFrame(module, DefaultPatternArray(), cylinder, options).truth_depth;
   double worst_plane = 0.0, worst_cylinder = 0.0;
   for (int v = 0; v < module.camera.height; v += 7) {
     for (int u = 0; u < module.camera.width; u += 7) {
       const Eigen::Vector2d xy = *camera.Unproject({double(u), double(v)});
       const double tan_tilt = std::tan(-15.0 * M_PI / 180.0);
-      worst_plane = std::max(worst_plane, std::abs(plane_depth(v, u) - 90.0 / (1.0 - xy.y() * tan_tilt)));
+      worst_plane =
+          std::max(worst_plane, std::abs(plane_depth(v, u) - 90.0 / (1.0 - xy.y() * tan_tilt)));
       // (z x − 5)² + (z − 15)² = 100², far root.
       const double a = xy.x() * xy.x() + 1, b = -2 * (5 * xy.x() + 15), c = 25 + 225 - 10000.0;
       const double z = (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
@@ -104,7 +110,8 @@ TEST(Renderer, ProjectorDefocusGrowsAwayFromFocus) {
     Scene plane;
     plane.distance_mm = distance;
     plane.material = Material::kPlastic;
-    const cv::Mat1f image = RenderFrame(module, DefaultPatternArray(), plane, options).pattern_signal;
+    const cv::Mat1f image =
+        RenderFrame(module, DefaultPatternArray(), plane, options).pattern_signal;
     double area = 0.0, image_max = 0.0;
     int tiles = 0;
     cv::minMaxLoc(image, nullptr, &image_max);
@@ -172,7 +179,8 @@ TEST(Renderer, MotionBlurSmearsTheTextureAlongTheMotion) {
     options.speed_mm_s = speed_mm_s;
     options.exposure_ms = 10.0;  // 1 mm of travel along camera y: ~2.9 px at 150 mm
     cv::Mat1f image;
-    cv::extractChannel(RenderFrame(module, DefaultPatternArray(), plane, options).texture_signal, image, 1);
+    cv::extractChannel(RenderFrame(module, DefaultPatternArray(), plane, options).texture_signal,
+                       image, 1);
     double across = 0.0, along = 0.0;
     for (int v = 0; v + 1 < image.rows; ++v) {
       for (int u = 0; u + 1 < image.cols; ++u) {

@@ -140,14 +140,15 @@ double WallDisplacementMm(const Scene& scene, double clock_rad, double station_m
 
 double DistanceToSurfaceMm(const Scene& scene, const Eigen::Vector3d& point) {
   if (scene.type == Scene::Type::kPlane) {
-    const Eigen::Vector3d n =
-        Eigen::AngleAxisd(scene.tilt_deg * kDeg, Eigen::Vector3d::UnitX()) * Eigen::Vector3d(0, 0, -1);
+    const Eigen::Vector3d n = Eigen::AngleAxisd(scene.tilt_deg * kDeg, Eigen::Vector3d::UnitX()) *
+                              Eigen::Vector3d(0, 0, -1);
     return std::abs(n.dot(point - Eigen::Vector3d(0.0, 0.0, scene.distance_mm)));
   }
   const CylinderFrame f = FrameOf(scene);
   double clock, station, rho;
   ToCylinder(f, point, clock, station, rho);
-  if (scene.type == Scene::Type::kCylinder || scene.features.empty()) return std::abs(rho - f.radius);
+  if (scene.type == Scene::Type::kCylinder || scene.features.empty())
+    return std::abs(rho - f.radius);
   // Displaced wall: the shortest distance to the wall profile along the axis and around it
   // within ±kReach, counting the vertical faces of steps (joint gaps and offsets), where the
   // radial distance alone would be wrong by the step's height.
@@ -158,11 +159,13 @@ double DistanceToSurfaceMm(const Scene& scene, const Eigen::Vector3d& point) {
     double previous = NAN;
     for (int k = -n; k <= n; ++k) {
       const double along = k * kStep;
-      const double wall = axis == 0 ? f.radius - WallDisplacementMm(scene, clock, station + along)
-                                    : f.radius - WallDisplacementMm(scene, clock + along / rho, station);
+      const double wall = axis == 0
+                              ? f.radius - WallDisplacementMm(scene, clock, station + along)
+                              : f.radius - WallDisplacementMm(scene, clock + along / rho, station);
       best = std::min(best, std::hypot(along, rho - wall));
       // A face between two samples whose walls straddle the point's radius.
-      if (k > -n && (rho - previous) * (rho - wall) < 0.0) best = std::min(best, std::abs(along - 0.5 * kStep));
+      if (k > -n && (rho - previous) * (rho - wall) < 0.0)
+        best = std::min(best, std::abs(along - 0.5 * kStep));
       previous = wall;
     }
   }
@@ -210,9 +213,11 @@ std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o
     // Tilt the normal by the displacement gradient (central differences, 0.05 mm).
     constexpr double h = 0.05;
     const double dd_ds = (WallDisplacementMm(scene, clock, station + h) -
-                          WallDisplacementMm(scene, clock, station - h)) / (2 * h);
+                          WallDisplacementMm(scene, clock, station - h)) /
+                         (2 * h);
     const double dd_darc = (WallDisplacementMm(scene, clock + h / rho, station) -
-                            WallDisplacementMm(scene, clock - h / rho, station)) / (2 * h);
+                            WallDisplacementMm(scene, clock - h / rho, station)) /
+                           (2 * h);
     const Eigen::Vector3d tangent = -std::sin(clock) * f.e1 + std::cos(clock) * f.e2;
     normal = (normal - dd_ds * f.a - dd_darc * tangent).normalized();
   }

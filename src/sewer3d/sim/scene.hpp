@@ -4,7 +4,6 @@
 /// and a pipe-wall patch (cylinder plus displacement features). All in the camera frame, mm.
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -51,10 +50,10 @@ struct Scene {
 
 /// Where a ray meets the surface.
 struct SurfaceHit {
-  double t = 0.0;                  ///< ray parameter (direction need not be unit)
-  Eigen::Vector3d point;           ///< camera frame, mm
-  Eigen::Vector3d normal;          ///< unit, facing the ray origin
-  Eigen::Vector2d surface_mm;      ///< 2-D surface coordinates for textures (unrolled wall)
+  double t = 0.0;              ///< ray parameter (direction need not be unit)
+  Eigen::Vector3d point;       ///< camera frame, mm
+  Eigen::Vector3d normal;      ///< unit, facing the ray origin
+  Eigen::Vector2d surface_mm;  ///< 2-D surface coordinates for textures (unrolled wall)
   Material material = Material::kConcrete;  ///< what the surface is made of there
   /// Albedo given by the surface itself (a printed target); NaN: from the material.
   Eigen::Vector3d albedo = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());

@@ -63,9 +63,9 @@ TEST(Scene, PipeWallFollowsItsDisplacementField) {
     EXPECT_TRUE(hit.has_value());
     return std::hypot(hit->point.x(), hit->point.z());
   };
-  EXPECT_NEAR(radius_at(0.3), 145.0, 1e-6);   // station ~ +45 mm
-  EXPECT_NEAR(radius_at(-0.07), 150.0, 1e-3);  // station ~ −10 mm, plain wall
-  EXPECT_NEAR(radius_at(0.0), 153.0, 1e-6);   // in the gap
+  EXPECT_NEAR(radius_at(0.3), 145.0, 1e-6);            // station ~ +45 mm
+  EXPECT_NEAR(radius_at(-0.07), 150.0, 1e-3);          // station ~ −10 mm, plain wall
+  EXPECT_NEAR(radius_at(0.0), 153.0, 1e-6);            // in the gap
   EXPECT_NEAR(radius_at(-40.0 / 142.0), 142.0, 0.05);  // bump top (station −40)
   EXPECT_NEAR(WallDisplacementMm(s, 0.0, -40.0), 8.0, 1e-12);
 }

@@ -21,13 +21,15 @@ std::vector<Eigen::Vector2d> ProjectedSpotCentres(const ModuleDescription& modul
       const Eigen::Vector2d centre = module.pattern.ElementCentre(r, c);
       const double reach = 0.5 * module.pattern.spot_diameter_px + 1.0;
       const double a = whole_spots_only ? reach : -reach;
-      if (centre.x() - a < -0.5 || centre.y() - a < -0.5 || centre.x() + a > module.projector.width - 0.5 ||
+      if (centre.x() - a < -0.5 || centre.y() - a < -0.5 ||
+          centre.x() + a > module.projector.width - 0.5 ||
           centre.y() + a > module.projector.height - 0.5) {
         continue;
       }
       const auto ray = projector.Ray(centre);
       if (!ray) continue;
-      const auto hit = Intersect(scene, camera_from_projector.translation, camera_from_projector.rotation * *ray);
+      const auto hit = Intersect(scene, camera_from_projector.translation,
+                                 camera_from_projector.rotation * *ray);
       if (!hit) continue;
       if (const auto pixel = camera.Project(hit->point)) pixels.push_back(*pixel);
     }

@@ -5,7 +5,6 @@
 /// camera), independently of the renderer's sampling.
 
 #include <Eigen/Core>
-
 #include <vector>
 
 #include "sewer3d/camera/module.hpp"

@@ -17,8 +17,12 @@ void TriangulationOptions::Check() const {
 
 Triangulator::Triangulator(const ModuleDescription& module, int array_rows, int array_cols,
                            const TriangulationOptions& options)
-    : module_(module), array_rows_(array_rows), array_cols_(array_cols), options_(options),
-      camera_(module.camera), projector_(module.projector) {
+    : module_(module),
+      array_rows_(array_rows),
+      array_cols_(array_cols),
+      options_(options),
+      camera_(module.camera),
+      projector_(module.projector) {
   options_.Check();
   SEWER3D_CHECK(array_rows > 0 && array_cols > 0, "array size");
   p_projector_.leftCols<3>() = module.projector_from_camera.RotationMatrix();
@@ -26,14 +30,17 @@ Triangulator::Triangulator(const ModuleDescription& module, int array_rows, int 
   const PatternLayout& layout = module.pattern;
   element_cols_ = static_cast<int>(std::ceil(module.projector.width / layout.pitch_px)) + 1;
   element_rows_ = static_cast<int>(std::ceil(module.projector.height / layout.pitch_px)) + 1;
-  element_xy_.assign(static_cast<size_t>(element_cols_) * element_rows_, Eigen::Vector2d::Constant(std::nan("")));
+  element_xy_.assign(static_cast<size_t>(element_cols_) * element_rows_,
+                     Eigen::Vector2d::Constant(std::nan("")));
   for (int r = 0; r < element_rows_; ++r) {
     for (int c = 0; c < element_cols_; ++c) {
       const Eigen::Vector2d centre = layout.ElementCentre(r, c);
-      const bool inside = centre.x() >= -0.5 && centre.y() >= -0.5 && centre.x() <= module.projector.width - 0.5 &&
+      const bool inside = centre.x() >= -0.5 && centre.y() >= -0.5 &&
+                          centre.x() <= module.projector.width - 0.5 &&
                           centre.y() <= module.projector.height - 0.5;
       if (!inside) continue;
-      if (const auto xy = projector_.Unproject(centre)) element_xy_[static_cast<size_t>(r) * element_cols_ + c] = *xy;
+      if (const auto xy = projector_.Unproject(centre))
+        element_xy_[static_cast<size_t>(r) * element_cols_ + c] = *xy;
     }
   }
 }
@@ -44,8 +51,8 @@ const Eigen::Vector2d* Triangulator::Element(int r, int c) const {
   return std::isnan(xy.x()) ? nullptr : &xy;
 }
 
-std::vector<TriangulatedPoint> Triangulator::Triangulate(const std::vector<CodedObservation>& observations,
-                                                         TriangulationStats* stats) const {
+std::vector<TriangulatedPoint> Triangulator::Triangulate(
+    const std::vector<CodedObservation>& observations, TriangulationStats* stats) const {
   TriangulationStats local;
   TriangulationStats& st = stats ? *stats : local;
   const PatternLayout& layout = module_.pattern;
@@ -65,8 +72,10 @@ std::vector<TriangulatedPoint> Triangulator::Triangulate(const std::vector<Coded
     // bends it slightly).
     double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
     for (int i = 0; i <= 2; ++i) {  // ends and middle; the one-pitch margin covers the bend
-      const double inv_z = 1.0 / options.z_max_mm + (1.0 / options.z_min_mm - 1.0 / options.z_max_mm) * i / 2.0;
-      const auto uv = projector_.Project(p_projector_.leftCols<3>() * (ray / inv_z) + p_projector_.col(3));
+      const double inv_z =
+          1.0 / options.z_max_mm + (1.0 / options.z_min_mm - 1.0 / options.z_max_mm) * i / 2.0;
+      const auto uv =
+          projector_.Project(p_projector_.leftCols<3>() * (ray / inv_z) + p_projector_.col(3));
       if (!uv) continue;
       u_lo = std::min(u_lo, uv->x()), u_hi = std::max(u_hi, uv->x());
       v_lo = std::min(v_lo, uv->y()), v_hi = std::max(v_hi, uv->y());
@@ -94,9 +103,11 @@ std::vector<TriangulatedPoint> Triangulator::Triangulate(const std::vector<Coded
         const auto x = TriangulateDlt(*xy, *projector_xy, p_projector_);
         if (!x || x->z() < options.z_min_mm || x->z() > options.z_max_mm) continue;
         const auto back_camera = camera_.Project(*x);
-        const auto back_projector = projector_.Project(p_projector_.leftCols<3>() * *x + p_projector_.col(3));
+        const auto back_projector =
+            projector_.Project(p_projector_.leftCols<3>() * *x + p_projector_.col(3));
         if (!back_camera || !back_projector) continue;
-        const double error = std::max((*back_camera - o.camera_px).norm(), (*back_projector - centre).norm());
+        const double error =
+            std::max((*back_camera - o.camera_px).norm(), (*back_projector - centre).norm());
         if (error > options.max_reprojection_px) continue;
         ++passing;
         if (error < best.reprojection_px) {
@@ -119,21 +130,20 @@ std::vector<TriangulatedPoint> Triangulator::Triangulate(const std::vector<Coded
   return points;
 }
 
-std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& module, int array_rows,
-                                                       int array_cols,
-                                                       const std::vector<CodedObservation>& observations,
-                                                       const TriangulationOptions& options,
-                                                       TriangulationStats* stats) {
+std::vector<TriangulatedPoint> TriangulateObservations(
+    const ModuleDescription& module, int array_rows, int array_cols,
+    const std::vector<CodedObservation>& observations, const TriangulationOptions& options,
+    TriangulationStats* stats) {
   return Triangulator(module, array_rows, array_cols, options).Triangulate(observations, stats);
 }
 
 int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
                         const std::vector<CodedObservation>& observations, double radius_px,
                         double min_step_mm, double fraction) {
-  const NeighbourLists neighbours = RadiusNeighbours(static_cast<int>(points.size()), radius_px,
-                                                     [&](int i) -> const Eigen::Vector2d& {
-                                                       return observations[points[i].observation].camera_px;
-                                                     });
+  const NeighbourLists neighbours = RadiusNeighbours(
+      static_cast<int>(points.size()), radius_px, [&](int i) -> const Eigen::Vector2d& {
+        return observations[points[i].observation].camera_px;
+      });
   std::vector<char> keep(points.size(), 1);
   std::vector<double> depths;
   for (size_t i = 0; i < points.size(); ++i) {

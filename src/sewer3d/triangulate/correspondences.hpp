@@ -4,7 +4,6 @@
 /// tile (paper §decode) and rejects wrong decodes; DLT triangulates (paper §triangulate).
 
 #include <Eigen/Core>
-
 #include <vector>
 
 #include "sewer3d/camera/module.hpp"
@@ -24,7 +23,7 @@ struct TriangulationOptions {
   /// columns), or two tiles fit one ray.
   double z_min_mm = 65.0;
   double z_max_mm = 250.0;
-  double max_reprojection_px = 1.0; ///< in camera and projector, for the chosen element
+  double max_reprojection_px = 1.0;  ///< in camera and projector, for the chosen element
   void Check() const;
 };
 
@@ -36,9 +35,9 @@ struct TriangulatedPoint {
 };
 
 struct TriangulationStats {
-  int unprojectable = 0;       ///< camera pixel beyond the lens's fold
-  int no_element = 0;          ///< no tile of the decoded position fits the epipolar line
-  int ambiguous = 0;           ///< more than one tile fits
+  int unprojectable = 0;  ///< camera pixel beyond the lens's fold
+  int no_element = 0;     ///< no tile of the decoded position fits the epipolar line
+  int ambiguous = 0;      ///< more than one tile fits
 };
 
 /// Triangulation for one module, with what depends only on the module computed once: the
@@ -63,11 +62,10 @@ class Triangulator {
 };
 
 /// One-off: Triangulator(module, ...).Triangulate(observations, stats).
-std::vector<TriangulatedPoint> TriangulateObservations(const ModuleDescription& module,
-                                                       int array_rows, int array_cols,
-                                                       const std::vector<CodedObservation>& observations,
-                                                       const TriangulationOptions& options,
-                                                       TriangulationStats* stats);
+std::vector<TriangulatedPoint> TriangulateObservations(
+    const ModuleDescription& module, int array_rows, int array_cols,
+    const std::vector<CodedObservation>& observations, const TriangulationOptions& options,
+    TriangulationStats* stats);
 
 /// Removes points whose depth disagrees with the median depth of their image neighbours
 /// (within `radius_px`) by more than max(min_step_mm, fraction · z), and points with fewer

@@ -28,18 +28,24 @@ cv::Mat1f InterpolateDepth(cv::Size image_size, const std::vector<Eigen::Vector2
     bool known = true;
     for (int k = 0; k < 3; ++k) {
       const auto it = index.find({t[2 * k], t[2 * k + 1]});
-      if (it == index.end()) known = false;
-      else ids[k] = it->second;
+      if (it == index.end())
+        known = false;
+      else
+        ids[k] = it->second;
     }
     if (!known) continue;  // a triangle touching Subdiv2D's outer virtual vertices
     const Eigen::Vector2d a = pixels[ids[0]], b = pixels[ids[1]], c = pixels[ids[2]];
-    if ((a - b).norm() > max_edge_px || (b - c).norm() > max_edge_px || (c - a).norm() > max_edge_px) continue;
+    if ((a - b).norm() > max_edge_px || (b - c).norm() > max_edge_px ||
+        (c - a).norm() > max_edge_px)
+      continue;
     const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
     if (std::abs(area) < 1e-9) continue;
     const int u0 = std::max(0, static_cast<int>(std::ceil(std::min({a.x(), b.x(), c.x()}))));
-    const int u1 = std::min(image_size.width - 1, static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}))));
+    const int u1 = std::min(image_size.width - 1,
+                            static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}))));
     const int v0 = std::max(0, static_cast<int>(std::ceil(std::min({a.y(), b.y(), c.y()}))));
-    const int v1 = std::min(image_size.height - 1, static_cast<int>(std::floor(std::max({a.y(), b.y(), c.y()}))));
+    const int v1 = std::min(image_size.height - 1,
+                            static_cast<int>(std::floor(std::max({a.y(), b.y(), c.y()}))));
     for (int v = v0; v <= v1; ++v) {
       for (int u = u0; u <= u1; ++u) {
         const Eigen::Vector2d p(u, v);

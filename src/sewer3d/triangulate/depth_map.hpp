@@ -5,7 +5,6 @@
 /// than max_edge_px (holes, depth steps, the border of the lit area) stay empty (NaN).
 
 #include <Eigen/Core>
-
 #include <opencv2/core.hpp>
 #include <vector>
 

@@ -4,7 +4,6 @@
 /// 2nd ed., §12.2, p. 312), in normalised coordinates (distortion already removed).
 
 #include <Eigen/Core>
-
 #include <optional>
 
 #include "sewer3d/core/rigid3.hpp"

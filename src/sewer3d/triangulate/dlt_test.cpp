@@ -18,7 +18,8 @@ TEST(Dlt, ExactWithoutNoiseAcrossTheWorkingRange) {
     const double depth = z(rng);
     const Eigen::Vector3d p(xy(rng) * depth, (xy(rng) + 0.25) * depth, depth);
     const Eigen::Vector3d q = m.projector_from_camera * p;
-    const auto x = TriangulateDlt(p.head<2>() / p.z(), q.head<2>() / q.z(), m.projector_from_camera);
+    const auto x =
+        TriangulateDlt(p.head<2>() / p.z(), q.head<2>() / q.z(), m.projector_from_camera);
     ASSERT_TRUE(x.has_value());
     EXPECT_LT((*x - p).norm(), 1e-9 * depth);
   }
