@@ -1,18 +1,15 @@
 #pragma once
 /// \file
-/// The files of a capture run (docs/formats.md): rig.json, the acquisition index, odometry,
-/// and the ground truth under truth/. Errors are FileError naming the file (and line).
+/// The files of a capture run (docs/formats.md): run.json, rig.json, the image index
+/// acquisitions.csv and odometry.csv, and LoadRun, which reads and checks a whole run. The
+/// simulator's truth/ is not read here (simio/truth_io.hpp): the processing chain never sees
+/// it. Errors are FileError naming the file (and line or field).
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "sewer3d/core/rigid3.hpp"
-#include "sewer3d/pattern/binary_array.hpp"
-#include "sewer3d/sim/odometry.hpp"
-#include "sewer3d/sim/pipe_world.hpp"
-#include "sewer3d/sim/rig.hpp"
-#include "sewer3d/sim/trajectory.hpp"
+#include "sewer3d/run/capture_run.hpp"
 
 namespace sewer3d {
 
@@ -27,38 +24,33 @@ std::string RigToJson(const Rig& rig);
 void WriteRig(const std::filesystem::path& path, const Rig& rig);
 LoadedRig ReadRig(const std::filesystem::path& path);
 
-/// One image of the run, as listed in acquisitions.csv.
-struct IndexEntry {
-  int module = 0;
-  int counter = 0;
-  ImageKind kind = ImageKind::kPattern;
-  double time_s = 0.0;  ///< middle of the exposure
-  double exposure_ms = 0.0;
-  std::string file;  ///< relative to the run folder
+/// run.json with the file names rig.json, acquisitions.csv, odometry.csv and the counts.
+struct RunCounts {
+  int modules = 0, acquisitions = 0, images = 0;
+  double simulation_seconds = 0.0;  ///< simulated runs: time spent simulating
 };
-void WriteIndex(const std::filesystem::path& path, const std::vector<IndexEntry>& entries);
-std::vector<IndexEntry> ReadIndex(const std::filesystem::path& path);
+void WriteRunInfo(const std::filesystem::path& path, const RunInfo& info, const RunCounts& counts);
+RunInfo ReadRunInfo(const std::filesystem::path& path);
 
-/// odometry.csv: what the robot reports (time_s, distance_mm).
-void WriteOdometry(const std::filesystem::path& path, const std::vector<OdometrySample>& samples);
-/// truth/odometry.csv: every sample with its error terms.
-void WriteOdometryTruth(const std::filesystem::path& path,
-                        const std::vector<OdometrySample>& samples);
+/// acquisitions.csv: every image of the run, sorted by time.
+void WriteIndex(const std::filesystem::path& path, const std::vector<RunImage>& images);
+/// Checks each row's fields (module and counter non-negative integers, known image kind, finite
+/// time, exposure ≥ 0, a relative file name inside the run) and that rows are sorted by time.
+std::vector<RunImage> ReadIndex(const std::filesystem::path& path);
 
-/// truth/poses.csv: the true world_from_carrier at each image's time.
-struct TruthPose {
-  int module = 0;
-  int counter = 0;
-  ImageKind kind = ImageKind::kPattern;
-  double time_s = 0.0;
-  double station_mm = 0.0;  ///< carrier centre
-  Rigid3d world_from_carrier;
+/// odometry.csv: time_s,distance_mm; times strictly increasing.
+void WriteOdometry(const std::filesystem::path& path, const std::vector<OdometryReading>& readings);
+std::vector<OdometryReading> ReadOdometry(const std::filesystem::path& path);
+
+struct LoadRunOptions {
+  /// Accept a run whose run.json says "complete": false (a capture that stopped part-way):
+  /// images whose file is missing are dropped. Otherwise such a run is refused.
+  bool allow_incomplete = false;
 };
-void WriteTruthPoses(const std::filesystem::path& path, const std::vector<TruthPose>& poses);
-std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path);
 
-/// truth/features.json: every joint, feature and deformed section with id, EN 13508-2 main
-/// code, station, clock position and true dimensions.
-void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pipe);
+/// Reads run.json, rig.json (with the pattern matrices), acquisitions.csv and odometry.csv of
+/// the run folder `folder` and checks them against each other: every image's module exists in
+/// the rig, no image is listed twice, every listed image file exists. Reads no image.
+CaptureRun LoadRun(const std::filesystem::path& folder, const LoadRunOptions& options = {});
 
 }  // namespace sewer3d

@@ -10,7 +10,7 @@
 #include "sewer3d/posegraph/lifted_cost.hpp"
 #include "sewer3d/posegraph/rotation_form.hpp"
 #include "sewer3d/posegraph/solver.hpp"
-#include "sewer3d/posegraph/test_graphs.hpp"
+#include "sewer3d/testing/test_graphs.hpp"
 
 namespace sewer3d {
 namespace {

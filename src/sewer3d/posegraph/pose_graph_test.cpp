@@ -9,7 +9,7 @@
 
 #include "sewer3d/posegraph/edge_cost.hpp"
 #include "sewer3d/posegraph/solver.hpp"
-#include "sewer3d/posegraph/test_graphs.hpp"
+#include "sewer3d/testing/test_graphs.hpp"
 
 namespace sewer3d {
 namespace {

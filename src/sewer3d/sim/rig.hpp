@@ -1,9 +1,8 @@
 #pragma once
 /// \file
-/// The six-module carrier (docs/simulator.md, "Rig"): modules rotated by 360°/n around the
-/// carrier axis, camera and projector centres on the axis, modules staggered along it.
-/// Carrier frame: z along the carrier axis (forward), y down and x right when the robot is
-/// upright, origin at the carrier's centre. Each camera looks radially outward, its y axis
+/// The six-module carrier as designed (docs/simulator.md, "Rig"): modules rotated by 360°/n
+/// around the carrier axis, camera and projector centres on the axis, modules staggered along
+/// it (the Rig type itself is run/rig.hpp). Each camera looks radially outward, its y axis
 /// along the carrier axis (the module's baseline), its x axis toward increasing clock.
 
 #include <string>
@@ -11,23 +10,9 @@
 
 #include "sewer3d/camera/module.hpp"
 #include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/run/rig.hpp"
 
 namespace sewer3d {
-
-struct RigModule {
-  std::string name;
-  double clock_h = 12.0;  ///< nominal viewing direction on the carrier
-  ModuleDescription module;
-  Rigid3d carrier_from_camera;
-};
-
-struct Rig {
-  double carrier_diameter_mm = 150.0;
-  double carrier_length_mm = 600.0;
-  std::vector<RigModule> modules;
-
-  void Check() const;  ///< throws std::invalid_argument
-};
 
 struct RigOptions {
   int modules = 6;
@@ -42,9 +27,6 @@ struct RigOptions {
 /// Places copies of `module` on the carrier; throws std::invalid_argument when they do not
 /// fit in the carrier's length.
 Rig MakeRig(const ModuleDescription& module, const RigOptions& options);
-
-/// Centre of a module's projector in the carrier frame.
-Eigen::Vector3d ProjectorCentreInCarrier(const RigModule& m);
 
 /// The part of a straight, round pipe wall one module covers, seen with the carrier at a
 /// given offset from the pipe axis.

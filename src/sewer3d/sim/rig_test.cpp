@@ -141,7 +141,7 @@ TEST(CapturePlan, RateFollowsTheOverlapAndTripletsAreSpaced) {
   ASSERT_EQ(plan.shots.size(), plan.acquisitions * 6u * 3u);
   for (size_t i = 1; i < plan.shots.size(); ++i)
     EXPECT_LE(plan.shots[i - 1].time_s, plan.shots[i].time_s);
-  for (const Shot& shot : plan.shots) {
+  for (const RunImage& shot : plan.shots) {
     const double t0 = shot.counter * plan.period_s + (shot.module % 2) * 0.020;
     EXPECT_NEAR(shot.time_s, t0 + static_cast<int>(shot.kind) * 0.005, 1e-12);
   }

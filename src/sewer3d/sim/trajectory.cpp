@@ -63,18 +63,6 @@ Rigid3d Trajectory::WorldFromCarrier(double t) const {
   return pipe_.PathFrame(StationAt(t)) * Rigid3d(attitude, offset);
 }
 
-const char* ImageKindName(ImageKind kind) {
-  switch (kind) {
-    case ImageKind::kTextureBefore:
-      return "texture_before";
-    case ImageKind::kPattern:
-      return "pattern";
-    case ImageKind::kTextureAfter:
-      return "texture_after";
-  }
-  return "pattern";
-}
-
 void CaptureOptions::Check() const {
   SEWER3D_CHECK(overlap >= 0.0 && overlap < 0.95, "overlap " << overlap);
   SEWER3D_CHECK(triplet_interval_ms > 0.0 && group_delay_ms >= 0.0 && exposure_ms >= 0.0,
@@ -102,14 +90,16 @@ CapturePlan PlanCaptures(const Rig& rig, const Trajectory& trajectory, const Cap
     for (size_t k = 0; k < rig.modules.size(); ++k) {
       const double t0 = j * plan.period_s + (k % 2) * o.group_delay_ms * 1e-3;
       for (int i = 0; i < 3; ++i) {
-        plan.shots.push_back({static_cast<int>(k), j, static_cast<ImageKind>(i),
-                              t0 + i * o.triplet_interval_ms * 1e-3});
+        const auto kind = static_cast<ImageKind>(i);
+        plan.shots.push_back({static_cast<int>(k), j, kind, t0 + i * o.triplet_interval_ms * 1e-3,
+                              o.exposure_ms,
+                              "images/" + ImageStem(static_cast<int>(k), j, kind) + ".png"});
       }
     }
     plan.acquisitions = j + 1;
   }
   std::stable_sort(plan.shots.begin(), plan.shots.end(),
-                   [](const Shot& a, const Shot& b) { return a.time_s < b.time_s; });
+                   [](const RunImage& a, const RunImage& b) { return a.time_s < b.time_s; });
   return plan;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/run/capture_run.hpp"
 #include "sewer3d/sim/pipe_world.hpp"
 #include "sewer3d/sim/rig.hpp"
 
@@ -44,9 +45,6 @@ class Trajectory {
   double duration_s_ = 0.0;
 };
 
-enum class ImageKind { kTextureBefore, kPattern, kTextureAfter };
-const char* ImageKindName(ImageKind kind);
-
 struct CaptureOptions {
   double overlap = 0.6;  ///< along the pipe between consecutive acquisitions of a module
   double triplet_interval_ms = 5.0;  ///< texture, pattern, texture this far apart
@@ -59,18 +57,12 @@ struct CaptureOptions {
   void Check() const;
 };
 
-struct Shot {
-  int module = 0;
-  int counter = 0;  ///< acquisition number
-  ImageKind kind = ImageKind::kPattern;
-  double time_s = 0.0;  ///< middle of the exposure
-};
-
 struct CapturePlan {
   double period_s = 0.0;      ///< between acquisitions
   double footprint_mm = 0.0;  ///< measurable length along the pipe per acquisition
   int acquisitions = 0;
-  std::vector<Shot> shots;  ///< ordered by time
+  /// Every image to take, ordered by time, with its run file (images/m<k>/…png) and exposure.
+  std::vector<RunImage> shots;
 };
 
 /// Plans acquisitions every period_s = (1 − overlap) · footprint / speed until the carrier

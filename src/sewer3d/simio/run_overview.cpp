@@ -1,4 +1,4 @@
-#include "sewer3d/pipeline/run_overview.hpp"
+#include "sewer3d/simio/run_overview.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -35,7 +35,7 @@ cv::Mat3b RunOverview(const PipeGeometry& pipe, const Rig& rig, const Trajectory
   };
   std::vector<Dot> dots;
   double lo = 1e18, hi = -1e18;
-  for (const Shot& shot : plan.shots) {
+  for (const RunImage& shot : plan.shots) {
     if (shot.kind != ImageKind::kPattern) continue;
     const RigModule& m = rig.modules[shot.module];
     const Rigid3d world_from_camera =

@@ -1,4 +1,4 @@
-#include "sewer3d/io/scenario_io.hpp"
+#include "sewer3d/simio/scenario_io.hpp"
 
 #include <fmt/format.h>
 
@@ -7,6 +7,7 @@
 
 #include "sewer3d/io/json_reader.hpp"
 #include "sewer3d/io/text_file.hpp"
+#include "sewer3d/simio/render_json.hpp"
 
 namespace sewer3d {
 namespace {

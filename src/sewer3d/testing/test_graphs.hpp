@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Synthetic pose graphs for the posegraph tests: random poses, perturbations, and a ring of
+/// Synthetic pose graphs for tests: random poses, perturbations, and a ring of
 /// poses with odometry and loop closures measured from the truth.
 
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sewer3d/pipeline/simulate_run.hpp"
+#include "sewer3d/simio/simulate_run.hpp"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -6,27 +6,23 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
-#include <nlohmann/json.hpp>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/run_io.hpp"
-#include "sewer3d/io/scenario_io.hpp"
-#include "sewer3d/io/scene_io.hpp"
 #include "sewer3d/io/text_file.hpp"
-#include "sewer3d/pipeline/run_overview.hpp"
 #include "sewer3d/sim/material.hpp"
 #include "sewer3d/sim/odometry.hpp"
 #include "sewer3d/sim/surface.hpp"
+#include "sewer3d/simio/run_overview.hpp"
+#include "sewer3d/simio/scenario_io.hpp"
+#include "sewer3d/simio/scene_io.hpp"
+#include "sewer3d/simio/truth_io.hpp"
 
 namespace sewer3d {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string ShotStem(const Shot& s) {
-  return fmt::format("m{}/{:06d}_{}", s.module, s.counter, ImageKindName(s.kind));
-}
 
 std::uintmax_t FolderBytes(const fs::path& dir) {
   std::uintmax_t bytes = 0;
@@ -39,21 +35,14 @@ std::uintmax_t FolderBytes(const fs::path& dir) {
 
 void WriteRunJson(const fs::path& out, const Scenario& s, const CapturePlan& plan, bool complete,
                   double seconds) {
-  const nlohmann::json j{{"format", "sewer3d-run"},
-                         {"version", 1},
-                         {"complete", complete},
-                         {"created_by", "sewer3d simulate run"},
-                         {"scenario", s.name},
-                         {"seed", s.seed},
-                         {"rig", "rig.json"},
-                         {"index", "acquisitions.csv"},
-                         {"odometry", "odometry.csv"},
-                         {"modules", s.rig.modules},
-                         {"acquisitions", plan.acquisitions},
-                         {"images", plan.shots.size()},
-                         {"acquisition_period_s", plan.period_s},
-                         {"simulation_seconds", seconds}};
-  WriteTextFile(out / "run.json", j.dump(2) + "\n");
+  RunInfo info;
+  info.complete = complete;
+  info.created_by = "sewer3d simulate run";
+  info.scenario = s.name;
+  info.seed = s.seed;
+  info.acquisition_period_s = plan.period_s;
+  WriteRunInfo(out / "run.json", info,
+               {s.rig.modules, plan.acquisitions, static_cast<int>(plan.shots.size()), seconds});
 }
 
 }  // namespace
@@ -82,17 +71,17 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
   WriteRunJson(out, scenario, plan, false, 0.0);
   WriteRig(out / "rig.json", rig);
   WritePatternMatrix(out / "pattern.png", pattern);
-  std::vector<IndexEntry> index;
+  const std::vector<RunImage>& index = plan.shots;
   std::vector<TruthPose> poses;
-  for (const Shot& s : plan.shots) {
-    index.push_back({s.module, s.counter, s.kind, s.time_s, scenario.capture.exposure_ms,
-                     "images/" + ShotStem(s) + ".png"});
+  for (const RunImage& s : plan.shots) {
     poses.push_back({s.module, s.counter, s.kind, s.time_s, trajectory.StationAt(s.time_s),
                      trajectory.WorldFromCarrier(s.time_s)});
   }
   WriteIndex(out / "acquisitions.csv", index);
   const auto odometry = SimulateOdometry(trajectory, scenario.odometry, scenario.seed);
-  WriteOdometry(out / "odometry.csv", odometry);
+  std::vector<OdometryReading> readings;
+  for (const OdometrySample& o : odometry) readings.push_back({o.time_s, o.measured_mm});
+  WriteOdometry(out / "odometry.csv", readings);
   WriteOdometryTruth(out / "truth" / "odometry.csv", odometry);
   WriteTruthPoses(out / "truth" / "poses.csv", poses);
   WriteTextFile(out / "truth" / "scenario.json", ScenarioToJson(scenario) + "\n");
@@ -104,7 +93,7 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
   std::atomic<int> done{0};
   std::mutex progress_mutex;
   tbb::parallel_for(0, total, 1, [&](int i) {
-    const Shot& shot = plan.shots[i];
+    const RunImage& shot = plan.shots[i];
     const RigModule& m = rig.modules[shot.module];
     const Rigid3d world_from_camera = poses[i].world_from_carrier * m.carrier_from_camera;
     RenderOptions o = scenario.render;
@@ -134,7 +123,9 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
     else
       WriteTextureImage(image, frame, o.sensor.bits);
     if (truth) {
-      WriteImage(out / "truth" / "depth" / (ShotStem(shot) + ".tiff"), frame.truth_depth);
+      WriteImage(
+          out / "truth" / "depth" / (ImageStem(shot.module, shot.counter, shot.kind) + ".tiff"),
+          frame.truth_depth);
     }
     const int now = ++done;
     if (progress) {

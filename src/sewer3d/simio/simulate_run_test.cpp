@@ -1,7 +1,7 @@
 // The tiny preset written as a capture run, then read back through the documented files only:
 // every image's ground-truth depth must agree with the world seen through the true pose.
 
-#include "sewer3d/pipeline/simulate_run.hpp"
+#include "sewer3d/simio/simulate_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,8 +15,9 @@
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/run_io.hpp"
-#include "sewer3d/io/scenario_io.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/simio/scenario_io.hpp"
+#include "sewer3d/simio/truth_io.hpp"
 
 namespace sewer3d {
 namespace {
@@ -50,22 +51,22 @@ SimulatedRun TinyRun::result_;
 int TinyRun::calls_ = 0;
 
 TEST_F(TinyRun, TruthDepthAgreesWithTheWorldThroughTheTruePose) {
-  const LoadedRig rig = ReadRig(dir_ / "rig.json");
-  const auto index = ReadIndex(dir_ / "acquisitions.csv");
+  const CaptureRun run = LoadRun(dir_);
+  const std::vector<RunImage>& index = run.images;
   const auto poses = ReadTruthPoses(dir_ / "truth" / "poses.csv");
   const Scenario scenario = ReadScenario(dir_ / "truth" / "scenario.json");
   const PipeGeometry pipe(scenario.world);
-  ASSERT_EQ(rig.rig.modules.size(), 6u);
+  ASSERT_EQ(run.rig.modules.size(), 6u);
   ASSERT_EQ(index.size(), poses.size());
   ASSERT_EQ(static_cast<int>(index.size()), result_.images);
   EXPECT_EQ(calls_, result_.images);
   double worst = 0.0;
   int on_steps = 0;
   for (size_t i = 0; i < index.size(); ++i) {
-    const IndexEntry& e = index[i];
+    const RunImage& e = index[i];
     ASSERT_EQ(poses[i].module, e.module);
     ASSERT_EQ(poses[i].time_s, e.time_s);
-    const RigModule& m = rig.rig.modules[e.module];
+    const RigModule& m = run.rig.modules[e.module];
     const cv::Mat image = ReadImage(dir_ / e.file, cv::IMREAD_UNCHANGED);
     ASSERT_EQ(image.cols, m.module.camera.width);
     ASSERT_EQ(image.rows, m.module.camera.height);
@@ -112,14 +113,24 @@ TEST_F(TinyRun, TruthDepthAgreesWithTheWorldThroughTheTruePose) {
             2e-3);  // float32 depth at ~150 mm is exact to ~1e-5 mm; poses written to 1e-6 mm
 }
 
-TEST_F(TinyRun, RunFolderIsCompleteAndMatchesThePlan) {
+TEST_F(TinyRun, RunFolderLoadsCompleteAndMatchesThePlan) {
   EXPECT_GE(result_.plan.acquisitions, 2);
   EXPECT_EQ(result_.images, result_.plan.acquisitions * 18);
-  const auto index = ReadIndex(dir_ / "acquisitions.csv");
-  for (const IndexEntry& e : index) EXPECT_TRUE(fs::exists(dir_ / e.file)) << e.file;
-  std::ifstream run(dir_ / "run.json");
-  std::string text((std::istreambuf_iterator<char>(run)), std::istreambuf_iterator<char>());
-  EXPECT_NE(text.find("\"complete\": true"), std::string::npos);
+  const CaptureRun run = LoadRun(dir_);  // checks that every listed image exists
+  EXPECT_TRUE(run.info.complete);
+  EXPECT_EQ(run.info.scenario, "tiny");
+  EXPECT_NEAR(run.info.acquisition_period_s, result_.plan.period_s, 1e-9);
+  EXPECT_EQ(static_cast<int>(run.images.size()), result_.images);
+  ASSERT_EQ(run.patterns.size(), 6u);
+  const auto acquisitions = GroupAcquisitions(run.images);
+  EXPECT_EQ(static_cast<int>(acquisitions.size()), result_.plan.acquisitions * 6);
+  for (const Acquisition& a : acquisitions) {
+    for (const ImageKind k : kImageKinds) EXPECT_GE(a.Image(k), 0);
+  }
+  // Odometry covers the run at 20 Hz and reads within a few mm of the planned travel.
+  ASSERT_GE(run.odometry.size(), 2u);
+  EXPECT_NEAR(run.odometry[1].time_s - run.odometry[0].time_s, 0.05, 1e-6);
+  EXPECT_GE(run.odometry.back().time_s, run.images.back().time_s);
   EXPECT_GT(result_.bytes, 1000u);
   for (const NeighbourOverlap& o : result_.overlap) EXPECT_GT(o.overlap_deg, 5.0);
 }

@@ -1,4 +1,4 @@
-#include "sewer3d/io/scene_io.hpp"
+#include "sewer3d/simio/scene_io.hpp"
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -10,6 +10,7 @@
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/json_reader.hpp"
 #include "sewer3d/io/text_file.hpp"
+#include "sewer3d/simio/render_json.hpp"
 
 namespace sewer3d {
 namespace {
@@ -61,8 +62,8 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
   s.distance_mm = in.Number(j, "distance_mm", "", s.distance_mm);
   s.tilt_deg = in.Number(j, "tilt_deg", "", s.tilt_deg);
   s.diameter_mm = in.Number(j, "diameter_mm", "", s.diameter_mm);
-  s.axis = in.Vector(j, "axis", s.axis);
-  s.axis_point_mm = in.Vector(j, "axis_point_mm", s.axis_point_mm);
+  s.axis = in.Vector(j, "axis", "", s.axis);
+  s.axis_point_mm = in.Vector(j, "axis_point_mm", "", s.axis_point_mm);
   if (const auto it = j.find("features"); it != j.end()) {
     if (!it->is_array()) in.Fail("features", "must be an array");
     for (size_t i = 0; i < it->size(); ++i) {
@@ -249,7 +250,7 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
   o.vignetting = in.Bool(j, "vignetting", p, o.vignetting);
   o.speed_mm_s = in.Number(j, "speed_mm_s", p, o.speed_mm_s);
   o.exposure_ms = in.Number(j, "exposure_ms", p, o.exposure_ms);
-  o.motion_direction = in.Vector(j, "motion_direction", o.motion_direction);
+  o.motion_direction = in.Vector(j, "motion_direction", p, o.motion_direction);
   o.sensor.full_well_e = in.Number(j, "full_well_e", p, o.sensor.full_well_e);
   o.sensor.read_noise_e = in.Number(j, "read_noise_e", p, o.sensor.read_noise_e);
   o.sensor.bits = in.Integer(j, "bits", p, o.sensor.bits);

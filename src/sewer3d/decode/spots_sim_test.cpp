@@ -1,11 +1,10 @@
-#include "sewer3d/decode/spots.hpp"
-
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/decode/niblack.hpp"
+#include "sewer3d/decode/spots.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/renderer.hpp"
 #include "sewer3d/sim/spot_truth.hpp"

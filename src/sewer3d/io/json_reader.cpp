@@ -1,0 +1,195 @@
+#include "sewer3d/io/json_reader.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace sewer3d {
+namespace {
+
+std::string Format(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
+}  // namespace
+
+void JsonReader::Fail(const std::string& field, const std::string& problem) const {
+  throw FileError(path_, "field '" + field + "' " + problem);
+}
+
+JsonReader::json JsonReader::ParseObject(const std::string& text) const {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    const std::string what = e.what();
+    const auto colon = what.find(": ");  // drop nlohmann's "[json.exception...] " prefix
+    throw FileError(
+        path_, "invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
+  }
+  if (!j.is_object()) throw FileError(path_, "must hold a JSON object");
+  return j;
+}
+
+void JsonReader::OnlyKnown(const json& j, const std::string& prefix,
+                           std::initializer_list<const char*> known) const {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool found = false;
+    for (const char* k : known) found = found || it.key() == k;
+    if (!found) Fail(prefix + it.key(), "is not a known field");
+  }
+}
+
+const JsonReader::json& JsonReader::Object(const json& j, const char* key,
+                                           const std::string& prefix) const {
+  static const json empty = json::object();
+  const auto it = j.find(key);
+  if (it == j.end()) return empty;
+  if (!it->is_object()) Fail(prefix + key, "must be an object");
+  return *it;
+}
+
+const JsonReader::json& JsonReader::Array(const json& j, const char* key,
+                                          const std::string& prefix) const {
+  static const json empty = json::array();
+  const auto it = j.find(key);
+  if (it == j.end()) return empty;
+  if (!it->is_array()) Fail(prefix + key, "must be an array");
+  return *it;
+}
+
+double JsonReader::Number(const json& j, const char* key, const std::string& prefix,
+                          double fallback) const {
+  return j.contains(key) ? Number(j, key, prefix) : fallback;
+}
+
+int JsonReader::Integer(const json& j, const char* key, const std::string& prefix,
+                        int fallback) const {
+  const auto it = j.find(key);
+  if (it == j.end()) return fallback;
+  if (!it->is_number_integer()) Fail(prefix + key, "must be an integer");
+  return it->get<int>();
+}
+
+bool JsonReader::Bool(const json& j, const char* key, const std::string& prefix,
+                      bool fallback) const {
+  const auto it = j.find(key);
+  if (it == j.end()) return fallback;
+  if (!it->is_boolean()) Fail(prefix + key, "must be true or false");
+  return it->get<bool>();
+}
+
+std::string JsonReader::Text(const json& j, const char* key, const std::string& prefix,
+                             const std::string& fallback) const {
+  const auto it = j.find(key);
+  if (it == j.end()) return fallback;
+  if (!it->is_string()) Fail(prefix + key, "must be a string");
+  return it->get<std::string>();
+}
+
+Eigen::Vector3d JsonReader::Vector(const json& j, const char* key, const std::string& prefix,
+                                   const Eigen::Vector3d& fallback) const {
+  if (!j.contains(key)) return fallback;
+  const auto v = Numbers(j, key, prefix, 3);
+  return {v[0], v[1], v[2]};
+}
+
+const JsonReader::json& JsonReader::Member(const json& j, const char* key,
+                                           const std::string& prefix) const {
+  const auto it = j.find(key);
+  if (it == j.end()) Fail(prefix + key, "is missing");
+  return *it;
+}
+
+const JsonReader::json& JsonReader::RequiredObject(const json& j, const char* key,
+                                                   const std::string& prefix) const {
+  const json& value = Member(j, key, prefix);
+  if (!value.is_object()) Fail(prefix + key, "must be an object");
+  return value;
+}
+
+double JsonReader::Number(const json& j, const char* key, const std::string& prefix) const {
+  const json& value = Member(j, key, prefix);
+  if (!value.is_number()) Fail(prefix + key, "must be a number, got " + value.dump());
+  const double x = value.get<double>();
+  if (!std::isfinite(x)) Fail(prefix + key, "must be finite");
+  return x;
+}
+
+double JsonReader::Positive(const json& j, const char* key, const std::string& prefix) const {
+  const double x = Number(j, key, prefix);
+  if (!(x > 0.0)) Fail(prefix + key, "must be positive, got " + Format(x));
+  return x;
+}
+
+int JsonReader::PositiveSize(const json& j, const char* key, const std::string& prefix) const {
+  const json& value = Member(j, key, prefix);
+  if (!value.is_number_integer()) Fail(prefix + key, "must be an integer, got " + value.dump());
+  const auto x = value.get<std::int64_t>();
+  if (x <= 0 || x > 1'000'000)
+    Fail(prefix + key, "must be a positive size, got " + std::to_string(x));
+  return static_cast<int>(x);
+}
+
+std::string JsonReader::Text(const json& j, const char* key, const std::string& prefix) const {
+  const json& value = Member(j, key, prefix);
+  if (!value.is_string() || value.get<std::string>().empty())
+    Fail(prefix + key, "must be a non-empty string");
+  return value.get<std::string>();
+}
+
+std::vector<double> JsonReader::Numbers(const json& j, const char* key, const std::string& prefix,
+                                        size_t count) const {
+  const json& value = Member(j, key, prefix);
+  const std::string what = "must be an array of " + std::to_string(count) + " finite numbers";
+  if (!value.is_array() || value.size() != count) Fail(prefix + key, what);
+  std::vector<double> out;
+  for (const json& x : value) {
+    if (!x.is_number() || !std::isfinite(x.get<double>())) Fail(prefix + key, what);
+    out.push_back(x.get<double>());
+  }
+  return out;
+}
+
+Eigen::Matrix3d JsonReader::Rotation(const json& j, const char* key,
+                                     const std::string& prefix) const {
+  const auto r = Numbers(j, key, prefix, 9);
+  Eigen::Matrix3d rotation;
+  rotation << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
+  const double error = (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm();
+  if (error > 1e-4 || rotation.determinant() < 0.0) {
+    Fail(prefix + key, "is not a rotation (R^T R - I = " + Format(error) +
+                           ", det = " + Format(rotation.determinant()) + ")");
+  }
+  return rotation;
+}
+
+Rigid3d JsonReader::Pose(const json& j, const char* key, const std::string& prefix) const {
+  const json& pose = RequiredObject(j, key, prefix);
+  const std::string inner = prefix + key + ".";
+  const Eigen::Matrix3d rotation = Rotation(pose, "rotation", inner);
+  const auto t = Numbers(pose, "translation_mm", inner, 3);
+  return Rigid3d(rotation, Eigen::Vector3d(t[0], t[1], t[2]));
+}
+
+nlohmann::json PoseToJson(const Rigid3d& pose, nlohmann::json j) {
+  const Eigen::Matrix3d r = pose.RotationMatrix();
+  j["rotation"] = {r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)};
+  const Eigen::Vector3d& t = pose.translation;
+  j["translation_mm"] = {t.x(), t.y(), t.z()};
+  return j;
+}
+
+nlohmann::json IntrinsicsJson(const CameraIntrinsics& c, nlohmann::json j) {
+  j["width"] = c.width;
+  j["height"] = c.height;
+  j["fx"] = c.fx;
+  j["fy"] = c.fy;
+  j["cx"] = c.cx;
+  j["cy"] = c.cy;
+  j["k"] = {c.k[0], c.k[1], c.k[2]};
+  return j;
+}
+
+}  // namespace sewer3d

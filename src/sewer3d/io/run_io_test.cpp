@@ -1,0 +1,183 @@
+// The capture-run files (docs/formats.md) written and read back, and LoadRun's refusals of
+// inconsistent runs, each naming the file and what is wrong.
+
+#include "sewer3d/io/run_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+
+namespace sewer3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Two modules looking up and down, 90 mm apart along the carrier.
+Rig TwoModuleRig() {
+  ModuleDescription module = MakeDefaultModule({.camera_width = 648, .camera_height = 486});
+  module.pattern.matrix_path = "pattern.png";
+  Rig rig;
+  for (int k = 0; k < 2; ++k) {
+    RigModule m;
+    m.name = "m" + std::to_string(k);
+    m.clock_h = k == 0 ? 12.0 : 6.0;
+    m.module = module;
+    Eigen::Matrix3d r;
+    const double s = k == 0 ? 1.0 : -1.0;
+    r << s, 0, 0, 0, 0, -s, 0, 1, 0;  // x along the clock, y along the axis, z radial
+    m.carrier_from_camera = Rigid3d(r, Eigen::Vector3d(0, 0, 90.0 * k - 45.0));
+    rig.modules.push_back(m);
+  }
+  return rig;
+}
+
+class RunIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("sewer3d_run_io_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // A complete two-module run of two acquisitions with empty image files.
+  void WriteRun() {
+    rig_ = TwoModuleRig();
+    WriteRig(dir_ / "rig.json", rig_);
+    WritePatternMatrix(dir_ / "pattern.png", DefaultPatternArray());
+    images_.clear();
+    for (int j = 0; j < 2; ++j) {
+      for (int m = 0; m < 2; ++m) {
+        for (const ImageKind k : kImageKinds) {
+          const double t = 0.1 * j + 0.02 * m + 0.005 * static_cast<int>(k);
+          const std::string file = "images/m" + std::to_string(m) + "/" + std::to_string(j) + "_" +
+                                   ImageKindName(k) + ".png";
+          images_.push_back({m, j, k, t, 2.0, file});
+          fs::create_directories((dir_ / file).parent_path());
+          std::ofstream(dir_ / file) << "x";
+        }
+      }
+    }
+    std::sort(images_.begin(), images_.end(),
+              [](const RunImage& a, const RunImage& b) { return a.time_s < b.time_s; });
+    WriteIndex(dir_ / "acquisitions.csv", images_);
+    WriteOdometry(dir_ / "odometry.csv", {{0.0, 0.0}, {0.05, 5.02}, {0.10, 9.98}, {0.15, 15.1}});
+    RunInfo info;
+    info.created_by = "test";
+    info.seed = 7;
+    info.acquisition_period_s = 0.1;
+    WriteRunInfo(dir_ / "run.json", info, {2, 2, 12, 0.0});
+  }
+
+  std::string ErrorOf(const LoadRunOptions& options = {}) {
+    try {
+      LoadRun(dir_, options);
+    } catch (const FileError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+      return what;
+    }
+    ADD_FAILURE() << "no error";
+    return "";
+  }
+
+  fs::path dir_;
+  Rig rig_;
+  std::vector<RunImage> images_;
+};
+
+TEST_F(RunIoTest, WholeRunRoundTrips) {
+  WriteRun();
+  const CaptureRun run = LoadRun(dir_);
+  EXPECT_EQ(run.folder, dir_);
+  EXPECT_TRUE(run.info.complete);
+  EXPECT_EQ(run.info.created_by, "test");
+  EXPECT_EQ(run.info.seed, 7u);
+  EXPECT_DOUBLE_EQ(run.info.acquisition_period_s, 0.1);
+  ASSERT_EQ(run.rig.modules.size(), 2u);
+  ASSERT_EQ(run.patterns.size(), 2u);
+  EXPECT_EQ(run.patterns[1].rows, DefaultPatternArray().rows);
+  for (size_t k = 0; k < 2; ++k) {
+    const RigModule &a = rig_.modules[k], &b = run.rig.modules[k];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_DOUBLE_EQ(a.clock_h, b.clock_h);
+    EXPECT_LT((a.carrier_from_camera.translation - b.carrier_from_camera.translation).norm(), 1e-9);
+    EXPECT_LT(a.carrier_from_camera.rotation.angularDistance(b.carrier_from_camera.rotation), 1e-9);
+    EXPECT_DOUBLE_EQ(a.module.camera.fx, b.module.camera.fx);
+  }
+  ASSERT_EQ(run.images.size(), images_.size());
+  for (size_t i = 0; i < images_.size(); ++i) {
+    EXPECT_EQ(run.images[i].module, images_[i].module);
+    EXPECT_EQ(run.images[i].counter, images_[i].counter);
+    EXPECT_EQ(run.images[i].kind, images_[i].kind);
+    EXPECT_NEAR(run.images[i].time_s, images_[i].time_s, 1e-6);  // written to 1 µs
+    EXPECT_EQ(run.images[i].file, images_[i].file);
+  }
+  ASSERT_EQ(run.odometry.size(), 4u);
+  EXPECT_DOUBLE_EQ(run.odometry[2].distance_mm, 9.98);
+}
+
+TEST_F(RunIoTest, RefusesInconsistentRuns) {
+  WriteRun();
+  fs::remove(dir_ / images_[4].file);
+  EXPECT_NE(ErrorOf().find(images_[4].file + ": listed in acquisitions.csv but missing"),
+            std::string::npos);
+
+  WriteRun();
+  images_[3].module = 2;
+  WriteIndex(dir_ / "acquisitions.csv", images_);
+  EXPECT_NE(ErrorOf().find("module 2 is not in rig.json (2 modules)"), std::string::npos);
+
+  WriteRun();
+  images_[5] = images_[4];
+  images_[5].time_s += 0.001;
+  WriteIndex(dir_ / "acquisitions.csv", images_);
+  EXPECT_NE(ErrorOf().find("lists two"), std::string::npos);
+
+  WriteRun();
+  std::swap(images_[0], images_[1]);
+  WriteIndex(dir_ / "acquisitions.csv", images_);
+  EXPECT_NE(ErrorOf().find("acquisitions.csv: line 3: time_s 0 is before"), std::string::npos);
+
+  WriteRun();
+  images_[0].file = "../elsewhere.png";
+  WriteIndex(dir_ / "acquisitions.csv", images_);
+  EXPECT_NE(ErrorOf().find("inside the run folder"), std::string::npos);
+
+  WriteRun();
+  std::ofstream(dir_ / "acquisitions.csv")
+      << "module,counter,image,time_s,exposure_ms,file\n0,0,pattern,abc,2,x.png\n";
+  EXPECT_NE(ErrorOf().find("line 2: time_s 'abc' is not a number"), std::string::npos);
+
+  WriteRun();
+  WriteOdometry(dir_ / "odometry.csv", {{0.0, 0.0}, {0.05, 5.0}, {0.05, 5.1}});
+  EXPECT_NE(ErrorOf().find("odometry.csv: line 4: time_s 0.05 does not increase"),
+            std::string::npos);
+
+  WriteRun();
+  std::ofstream(dir_ / "rig.json") << R"({"format": "sewer3d-rig", "modules": [{"module": {}}]})";
+  EXPECT_NE(ErrorOf().find("rig.json: modules[0].module"), std::string::npos);
+}
+
+TEST_F(RunIoTest, IncompleteRunOnlyWhenAskedAndWithoutMissingImages) {
+  WriteRun();
+  RunInfo info;
+  info.complete = false;
+  WriteRunInfo(dir_ / "run.json", info, {2, 2, 12, 0.0});
+  fs::remove(dir_ / images_.back().file);
+  EXPECT_NE(ErrorOf().find("stopped part-way"), std::string::npos);
+  const CaptureRun run = LoadRun(dir_, {.allow_incomplete = true});
+  EXPECT_FALSE(run.info.complete);
+  EXPECT_EQ(run.images.size(), images_.size() - 1);
+}
+
+}  // namespace
+}  // namespace sewer3d

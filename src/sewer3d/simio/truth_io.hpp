@@ -1,0 +1,37 @@
+#pragma once
+/// \file
+/// The ground truth a simulated run keeps in truth/ (docs/formats.md): odometry error terms,
+/// true carrier poses, the defects with their true dimensions. Only the simulator writes these
+/// and only evaluation reads them; the processing chain never links this.
+
+#include <filesystem>
+#include <vector>
+
+#include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/run/capture_run.hpp"
+#include "sewer3d/sim/odometry.hpp"
+#include "sewer3d/sim/pipe_world.hpp"
+
+namespace sewer3d {
+
+/// truth/odometry.csv: every sample with its error terms.
+void WriteOdometryTruth(const std::filesystem::path& path,
+                        const std::vector<OdometrySample>& samples);
+
+/// truth/poses.csv: the true world_from_carrier at each image's time.
+struct TruthPose {
+  int module = 0;
+  int counter = 0;
+  ImageKind kind = ImageKind::kPattern;
+  double time_s = 0.0;
+  double station_mm = 0.0;  ///< carrier centre
+  Rigid3d world_from_carrier;
+};
+void WriteTruthPoses(const std::filesystem::path& path, const std::vector<TruthPose>& poses);
+std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path);
+
+/// truth/features.json: every joint, feature and deformed section with id, EN 13508-2 main
+/// code, station, clock position and true dimensions.
+void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pipe);
+
+}  // namespace sewer3d
