@@ -5,8 +5,9 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libopencv-dev libopencv-contrib-dev libceres-dev
-  libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libtbb-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev libspectra-dev
+  clang-format clang-tidy python3
 )
 
 missing=()
