@@ -9,8 +9,8 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/ply_io.hpp"
-#include "sewer3d/simio/scene_io.hpp"
 #include "sewer3d/model/fit.hpp"
+#include "sewer3d/simio/scene_io.hpp"
 
 namespace sewer3d::cli {
 

@@ -10,11 +10,11 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/io/module_io.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/sim/renderer.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
 #include "sewer3d/simio/scene_io.hpp"
-#include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/simio/simulate_run.hpp"
-#include "sewer3d/sim/renderer.hpp"
 
 namespace sewer3d::cli {
 namespace {

@@ -10,10 +10,10 @@
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/module_io.hpp"
-#include "sewer3d/simio/scene_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/sim/board.hpp"
 #include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/simio/scene_io.hpp"
 
 namespace sewer3d::cli {
 

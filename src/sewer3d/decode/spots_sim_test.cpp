@@ -2,12 +2,12 @@
 
 #include <random>
 
-#include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/decode/niblack.hpp"
 #include "sewer3d/decode/spots.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/renderer.hpp"
 #include "sewer3d/sim/spot_truth.hpp"
+#include "sewer3d/testing/small_module.hpp"
 
 namespace sewer3d {
 namespace {
@@ -51,10 +51,7 @@ TEST(Niblack, MatchesBruteForceWindowStatistics) {
 }
 
 TEST(Spots, FindsRenderedSpotsWithSubpixelPrecision) {
-  DefaultModuleOptions module_options;
-  module_options.camera_width = 648;
-  module_options.camera_height = 486;
-  const ModuleDescription module = MakeDefaultModule(module_options);
+  const ModuleDescription module = testing::SmallDefaultModule(648);
   const BinaryArray pattern = DefaultPatternArray();
   Scene plane;
   plane.distance_mm = 130.0;

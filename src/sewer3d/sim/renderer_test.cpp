@@ -4,20 +4,15 @@
 
 #include <cmath>
 
-#include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/material.hpp"
 #include "sewer3d/sim/spot_truth.hpp"
+#include "sewer3d/testing/small_module.hpp"
 
 namespace sewer3d {
 namespace {
 
-ModuleDescription SmallModule() {
-  DefaultModuleOptions options;
-  options.camera_width = 648;
-  options.camera_height = 486;
-  return MakeDefaultModule(options);
-}
+ModuleDescription SmallModule() { return testing::SmallDefaultModule(648); }
 
 // Intensity centroid of `image` in a (2r+1)² window around `centre`.
 std::optional<Eigen::Vector2d> Centroid(const cv::Mat1f& image, const Eigen::Vector2d& centre,
