@@ -26,9 +26,10 @@ struct BoardLayout {
   void Check() const;
 };
 
+/// Options of the decoding and corner transfer; the defaults are `sewer3d calibrate module`'s.
 struct ModuleCalibratorOptions {
-  DecoderOptions decoder;
-  TriangulationOptions triangulation;
+  DecoderOptions decoder;              ///< decoding the pattern images
+  TriangulationOptions triangulation;  ///< picking each spot's pattern tile
   /// Both passes' corner transfer; its lens models must be unset (the second pass sets them).
   CornerTransferOptions corner_transfer;
   void Check() const;
@@ -47,6 +48,7 @@ struct CaptureOutcome {
   int spots_decoded = 0;    ///< spots with a projector element (0 when the board was not found)
 };
 
+/// Both passes of a module calibration and the module they give.
 struct ModuleFromCapturesResult {
   ModuleCalibrationResult first_pass;   ///< corners carried by homographies in pixels
   ModuleCalibrationResult second_pass;  ///< carried again with first_pass's lens models
@@ -72,6 +74,7 @@ class ModuleCalibrator {
   /// The pose is used only when every corner is found and carried into the projector.
   CaptureOutcome AddCapture(const cv::Mat1b& texture_grey, const cv::Mat& pattern_image);
 
+  /// Captures kept so far (the views of Calibrate, in the order they were added).
   int captures_used() const { return static_cast<int>(views_.size()); }
 
   /// The two-pass calibration of the captures used so far. Needs captures_used() >= 3
