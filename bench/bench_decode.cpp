@@ -2,17 +2,15 @@
 // realistic noise), next to OpenCV's ximgproc::niBlackThreshold and connectedComponentsWithStats.
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc.hpp>
 
 #include "sewer3d/camera/default_module.hpp"
-#include "sewer3d/decode/decoder.hpp"
 #include "sewer3d/decode/niblack.hpp"
 #include "sewer3d/decode/spots.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/renderer.hpp"
-#include "sewer3d/triangulate/correspondences.hpp"
+#include "sewer3d/triangulate/reconstruct_frame.hpp"
 
 namespace sewer3d {
 namespace {
@@ -72,39 +70,24 @@ void BM_ConnectedComponentsOpenCV(benchmark::State& state) {
 }
 BENCHMARK(BM_ConnectedComponentsOpenCV)->Unit(benchmark::kMillisecond);
 
-void BM_DecodeAndTriangulate(benchmark::State& state) {
+// The whole single-frame chain as `sewer3d reconstruct` and the pipeline run it: decode,
+// triangulate, drop depth outliers, depth map (no texture).
+void BM_ReconstructFrame(benchmark::State& state) {
   const cv::Mat1b& image = PatternImage();
-  const ModuleDescription module = MakeDefaultModule({});
-  const BinaryArray pattern = DefaultPatternArray();
-  Decoder decoder(module, pattern, PatternConstraints{}, DecoderOptions{});
-  const Triangulator triangulator(module, pattern.rows, pattern.cols, TriangulationOptions{});
-  std::size_t points = 0;
-  DecodeResult last;
-  double triangulate_s = 0.0, outliers_s = 0.0;
-  for (auto _ : state) {
-    last = decoder.Decode(image);
-    const auto t0 = std::chrono::steady_clock::now();
-    std::vector<CodedObservation> observations;
-    for (const SpotCode& c : last.codes)
-      observations.push_back({last.spots[c.spot].centre_px, c.row, c.col});
-    auto triangulated = triangulator.Triangulate(observations, nullptr);
-    const auto t1 = std::chrono::steady_clock::now();
-    RejectDepthOutliers(triangulated, observations);
-    const auto t2 = std::chrono::steady_clock::now();
-    triangulate_s = std::chrono::duration<double>(t1 - t0).count();
-    outliers_s = std::chrono::duration<double>(t2 - t1).count();
-    points = triangulated.size();
-  }
-  state.counters["triangulate_ms"] = triangulate_s * 1e3;
-  state.counters["outliers_ms"] = outliers_s * 1e3;
-  state.counters["spots"] = static_cast<double>(last.spots.size());
-  state.counters["points"] = static_cast<double>(points);
-  state.counters["binarise_ms"] = last.seconds_binarise * 1e3;
-  state.counters["spots_ms"] = last.seconds_spots * 1e3;
-  state.counters["lattice_ms"] = last.seconds_lattice * 1e3;
-  state.counters["codewords_ms"] = last.seconds_codewords * 1e3;
+  FrameReconstructor reconstructor(MakeDefaultModule({}), DefaultPatternArray(),
+                                   PatternConstraints{});
+  FrameReport last;
+  for (auto _ : state) last = reconstructor.Reconstruct(image).report;
+  state.counters["spots"] = last.spots_found;
+  state.counters["points"] = last.points;
+  state.counters["binarise_ms"] = last.seconds.binarise * 1e3;
+  state.counters["spots_ms"] = last.seconds.spots * 1e3;
+  state.counters["lattice_ms"] = last.seconds.lattice * 1e3;
+  state.counters["codewords_ms"] = last.seconds.codewords * 1e3;
+  state.counters["triangulate_ms"] = last.seconds.triangulate * 1e3;  // with outlier rejection
+  state.counters["depth_map_ms"] = last.seconds.depth_map * 1e3;
 }
-BENCHMARK(BM_DecodeAndTriangulate)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReconstructFrame)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace sewer3d

@@ -9,10 +9,9 @@
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/chessboard.hpp"
-#include "sewer3d/calib/module_calibration.hpp"
+#include "sewer3d/calib/module_from_captures.hpp"
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/command.hpp"
-#include "sewer3d/decode/decoder.hpp"
 #include "sewer3d/io/calibration_io.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
@@ -20,7 +19,6 @@
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pattern/constraints.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
-#include "sewer3d/triangulate/correspondences.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -110,7 +108,6 @@ struct ModuleArgs {
 int RunModule(const ModuleArgs& a) {
   namespace fs = std::filesystem;
   const auto board_size = ParseSize(a.board);
-  const auto board = BoardCorners(board_size->first, board_size->second, a.square_mm);
   std::vector<fs::path> poses;
   for (const auto& entry : fs::directory_iterator(a.captures)) {
     if (entry.is_directory() && fs::exists(entry.path() / "texture.png") &&
@@ -147,10 +144,11 @@ int RunModule(const ModuleArgs& a) {
                     fmt::format("image is {}x{}, the nominal module's camera {}x{}", first.cols,
                                 first.rows, nominal.camera.width, nominal.camera.height));
   }
-  Decoder decoder(nominal, pattern, InferConstraints(pattern), DecoderOptions{});
-  const Triangulator triangulator(nominal, pattern.rows, pattern.cols, TriangulationOptions{});
-  std::vector<SpotCorrespondences> spots;
-  std::vector<ModuleCalibrationView> views;
+  BoardLayout board_layout;
+  board_layout.cols = board_size->first;
+  board_layout.rows = board_size->second;
+  board_layout.square_mm = a.square_mm;
+  ModuleCalibrator calibrator(nominal, pattern, InferConstraints(pattern), board_layout);
   std::vector<std::string> used;
   for (const fs::path& pose : poses) {
     const cv::Mat texture = ReadImage(pose / "texture.png", cv::IMREAD_GRAYSCALE);
@@ -158,62 +156,36 @@ int RunModule(const ModuleArgs& a) {
     if (texture.size() != first.size() || pattern_image.size() != first.size()) {
       throw FileError(pose, "images differ in size from the first pose's");
     }
-    const auto corners = DetectChessboard(texture, board_size->first, board_size->second);
-    if (!corners) {
+    const CaptureOutcome outcome = calibrator.AddCapture(texture, pattern_image);
+    if (outcome.status == CaptureOutcome::Status::kBoardNotFound) {
       fmt::print("{}: {} board not found, skipped\n", pose.string(), a.board);
       continue;
     }
-    const DecodeResult decoded = decoder.Decode(pattern_image);
-    std::vector<CodedObservation> observations;
-    for (const SpotCode& c : decoded.codes)
-      observations.push_back({decoded.spots[c.spot].centre_px, c.row, c.col});
-    SpotCorrespondences ps;
-    for (const TriangulatedPoint& p : triangulator.Triangulate(observations, nullptr)) {
-      ps.camera_px.push_back(observations[p.observation].camera_px);
-      ps.projector_px.push_back(nominal.pattern.ElementCentre(p.row, p.col));
-    }
-    const auto transferred = CornersInProjector(*corners, ps.camera_px, ps.projector_px);
-    const auto missing =
-        std::count_if(transferred.begin(), transferred.end(), [](const auto& c) { return !c; });
-    if (missing > 0) {
+    if (outcome.status == CaptureOutcome::Status::kCornersNotCarried) {
       fmt::print("{}: {} of {} corners without enough decoded spots around them, skipped\n",
-                 pose.string(), missing, corners->size());
+                 pose.string(), outcome.corners_missing, outcome.corners);
       continue;
     }
-    ModuleCalibrationView view;
-    view.camera_corners = *corners;
-    for (const auto& c : transferred) view.projector_corners.push_back(*c);
-    views.push_back(std::move(view));
-    spots.push_back(std::move(ps));
     used.push_back(pose.filename().string());
     fmt::print(stderr, "\rcalibrate module: {} of {} poses read ", used.size(), poses.size());
   }
   fmt::print(stderr, "\n");
-  if (views.size() < 3) {
+  if (used.size() < 3) {
     fmt::print(stderr,
                "sewer3d: error: {} of {} poses usable; module calibration needs at least 3\n",
-               views.size(), poses.size());
+               used.size(), poses.size());
     return 1;
   }
-  // Second pass: corners carried again with the first calibration's lens models.
-  const ModuleCalibrationResult first_pass =
-      CalibrateModule(views, board, nominal.camera.width, nominal.camera.height,
-                      nominal.projector.width, nominal.projector.height);
-  RetransferCorners(views, spots, first_pass.camera, first_pass.projector);
-  const ModuleCalibrationResult r =
-      CalibrateModule(views, board, nominal.camera.width, nominal.camera.height,
-                      nominal.projector.width, nominal.projector.height);
-  ModuleDescription module = nominal;
-  module.camera = r.camera;
-  module.projector = r.projector;
-  module.projector_from_camera = r.projector_from_camera;
+  const ModuleFromCapturesResult calibrated = calibrator.Calibrate();
+  const ModuleCalibrationResult& r = calibrated.second_pass;
+  ModuleDescription module = calibrated.module;
   module.pattern.matrix_path = "pattern.png";
   module.source_json.clear();
   SaveModule(a.out, module);
   WritePatternMatrix(fs::path(a.out).parent_path() / "pattern.png", pattern);
   fmt::print(
       "calibrated module from {} of {} poses: camera RMS {:.4f} px, projector RMS {:.4f} px{}\n",
-      views.size(), poses.size(), r.camera_rms_px, r.projector_rms_px,
+      used.size(), poses.size(), r.camera_rms_px, r.projector_rms_px,
       r.converged ? "" : " (not converged)");
   fmt::print(
       "camera     fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  "
@@ -230,7 +202,7 @@ int RunModule(const ModuleArgs& a) {
       "extrinsics baseline {:.3f} ± {:.3f} mm, projector centre ({:.3f}, {:.3f}, {:.3f}) mm, "
       "rotation ± {:.4f} deg\n",
       c.norm(), r.sigma[8], c.x(), c.y(), c.z(), r.sigma[9]);
-  for (size_t v = 0; v < views.size(); ++v) {
+  for (size_t v = 0; v < used.size(); ++v) {
     fmt::print("  {}  camera {:.4f} px  projector {:.4f} px\n", used[v], r.view_camera_rms_px[v],
                r.view_projector_rms_px[v]);
   }

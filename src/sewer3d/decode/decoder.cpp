@@ -14,6 +14,14 @@ double Since(Clock::time_point t) {
 
 }  // namespace
 
+std::vector<CodedObservation> CodedObservations(const DecodeResult& decoded) {
+  std::vector<CodedObservation> observations;
+  observations.reserve(decoded.codes.size());
+  for (const SpotCode& c : decoded.codes)
+    observations.push_back({decoded.spots[c.spot].centre_px, c.row, c.col});
+  return observations;
+}
+
 Decoder::Decoder(const ModuleDescription& module, const BinaryArray& pattern,
                  const PatternConstraints& constraints, const DecoderOptions& options)
     : module_(module),

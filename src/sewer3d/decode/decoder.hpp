@@ -3,8 +3,10 @@
 /// The single-shot decoder (paper §decode) for one module: Niblack binarisation, sub-pixel
 /// spots, lattice recovery, window lookup with single-bit correction and voting. Buffers are
 /// kept between frames. The result maps camera spots to array positions (mod the array
-/// size); triangulate/ picks the tile with the epipolar constraint.
+/// size), handed on as CodedObservations; triangulate/ picks the tile with the epipolar
+/// constraint.
 
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -34,6 +36,18 @@ struct DecodeResult {
   CodewordStats stats;
   double seconds_binarise = 0, seconds_spots = 0, seconds_lattice = 0, seconds_codewords = 0;
 };
+
+/// A decoded camera spot: where it is and which array element it shows, known modulo the
+/// array size (the tile along the epipolar line is chosen by triangulate/). What the decoder
+/// hands on to triangulation and calibration.
+struct CodedObservation {
+  Eigen::Vector2d camera_px;  ///< spot centre, camera pixel (pixel centres at integers)
+  int row_mod = 0;            ///< array row, 0 .. rows − 1
+  int col_mod = 0;            ///< array column, 0 .. cols − 1
+};
+
+/// One observation per decoded spot, in the order of `decoded.codes`.
+std::vector<CodedObservation> CodedObservations(const DecodeResult& decoded);
 
 class Decoder {
  public:

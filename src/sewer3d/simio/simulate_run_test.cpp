@@ -12,12 +12,12 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "sewer3d/camera/camera_model.hpp"
-#include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
 #include "sewer3d/simio/truth_io.hpp"
+#include "sewer3d/testing/small_module.hpp"
 
 namespace sewer3d {
 namespace {
@@ -30,15 +30,12 @@ class TinyRun : public ::testing::Test {
     dir_ = fs::temp_directory_path() / "sewer3d_tiny_run_test";
     fs::remove_all(dir_);
     const Scenario s = PresetScenario("tiny");
-    DefaultModuleOptions o;
-    o.camera_width = s.camera_width;
-    o.camera_height = s.camera_width * 3 / 4;
     int calls = 0;
-    result_ =
-        SimulateRun(s, MakeDefaultModule(o), DefaultPatternArray(), dir_, [&](int done, int total) {
-          ++calls;
-          EXPECT_LE(done, total);
-        });
+    result_ = SimulateRun(s, testing::SmallDefaultModule(s.camera_width), DefaultPatternArray(),
+                          dir_, [&](int done, int total) {
+                            ++calls;
+                            EXPECT_LE(done, total);
+                          });
     calls_ = calls;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }

@@ -137,11 +137,17 @@ std::vector<TriangulatedPoint> TriangulateObservations(
   return Triangulator(module, array_rows, array_cols, options).Triangulate(observations, stats);
 }
 
+void DepthOutlierOptions::Check() const {
+  SEWER3D_CHECK(radius_px > 0.0, "radius_px " << radius_px);
+  SEWER3D_CHECK(min_step_mm >= 0.0 && fraction >= 0.0, "depth step");
+}
+
 int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
-                        const std::vector<CodedObservation>& observations, double radius_px,
-                        double min_step_mm, double fraction) {
+                        const std::vector<CodedObservation>& observations,
+                        const DepthOutlierOptions& options) {
+  options.Check();
   const NeighbourLists neighbours = RadiusNeighbours(
-      static_cast<int>(points.size()), radius_px, [&](int i) -> const Eigen::Vector2d& {
+      static_cast<int>(points.size()), options.radius_px, [&](int i) -> const Eigen::Vector2d& {
         return observations[points[i].observation].camera_px;
       });
   std::vector<char> keep(points.size(), 1);
@@ -157,7 +163,7 @@ int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
     std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
     const double median = depths[depths.size() / 2];
     const double z = points[i].point_mm.z();
-    if (std::abs(z - median) > std::max(min_step_mm, fraction * z)) keep[i] = 0;
+    if (std::abs(z - median) > std::max(options.min_step_mm, options.fraction * z)) keep[i] = 0;
   }
   std::vector<TriangulatedPoint> kept;
   kept.reserve(points.size());

@@ -7,15 +7,9 @@
 #include <vector>
 
 #include "sewer3d/camera/module.hpp"
+#include "sewer3d/decode/decoder.hpp"
 
 namespace sewer3d {
-
-/// A camera spot whose array position is known modulo the array size.
-struct CodedObservation {
-  Eigen::Vector2d camera_px;
-  int row_mod = 0;
-  int col_mod = 0;
-};
 
 struct TriangulationOptions {
   /// Depth range searched along each camera ray: the working range (75–225 mm) with margin.
@@ -67,13 +61,20 @@ std::vector<TriangulatedPoint> TriangulateObservations(
     const std::vector<CodedObservation>& observations, const TriangulationOptions& options,
     TriangulationStats* stats);
 
+/// Depth-outlier rejection: a wrong decode lands tens of millimetres off the surface, while real
+/// steps (joints) are a few millimetres.
+struct DepthOutlierOptions {
+  double radius_px = 30.0;   ///< image neighbours compared with
+  double min_step_mm = 5.0;  ///< depth differences up to max(min_step_mm, fraction · z) pass
+  double fraction = 0.05;
+  void Check() const;
+};
+
 /// Removes points whose depth disagrees with the median depth of their image neighbours
 /// (within `radius_px`) by more than max(min_step_mm, fraction · z), and points with fewer
-/// than two neighbours:
-/// a wrong decode lands tens of millimetres off the surface, while real steps (joints) are a
-/// few millimetres. Returns the number removed.
+/// than two neighbours. Returns the number removed.
 int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
-                        const std::vector<CodedObservation>& observations, double radius_px = 30.0,
-                        double min_step_mm = 5.0, double fraction = 0.05);
+                        const std::vector<CodedObservation>& observations,
+                        const DepthOutlierOptions& options = {});
 
 }  // namespace sewer3d

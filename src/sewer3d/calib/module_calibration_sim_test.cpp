@@ -1,8 +1,6 @@
 // Module calibration on exact synthetic correspondences with pixel noise, and the corner
 // transfer by local homographies.
 
-#include "sewer3d/calib/module_calibration.hpp"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -10,21 +8,15 @@
 #include <random>
 
 #include "sewer3d/calib/camera_calibration.hpp"
-#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/calib/module_calibration.hpp"
 #include "sewer3d/sim/board.hpp"
+#include "sewer3d/testing/small_module.hpp"
 
 namespace sewer3d {
 namespace {
 
-ModuleDescription HalfSizeDefaultModule() {
-  DefaultModuleOptions options;
-  options.camera_width = 1296;
-  options.camera_height = 972;
-  return MakeDefaultModule(options);
-}
-
 TEST(ModuleCalibration, RecoversCameraProjectorAndExtrinsics) {
-  const ModuleDescription truth = HalfSizeDefaultModule();
+  const ModuleDescription truth = testing::SmallDefaultModule(1296);
   Checkerboard board;
   const auto poses = RandomBoardPoses(truth, board, 20, 5);
   const auto corners = BoardCorners(board.cols, board.rows, board.square_mm);
@@ -85,7 +77,7 @@ TEST(CornerTransfer, FollowsTheLocalHomography) {
 TEST(CornerTransfer, UndistortedFitIsExactOnALensDistortedPlane) {
   // A plane seen by the default module (k1 = -0.08 on both sides): the camera -> projector map
   // is a homography only between undistorted coordinates.
-  const ModuleDescription truth = HalfSizeDefaultModule();
+  const ModuleDescription truth = testing::SmallDefaultModule(1296);
   const CameraModel camera(truth.camera), projector(truth.projector);
   const Eigen::Vector3d normal = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
   const double distance = 120.0;  // mm, plane n.x = d

@@ -1,0 +1,95 @@
+#include "sewer3d/calib/module_from_captures.hpp"
+
+#include <algorithm>
+
+#include "sewer3d/calib/camera_calibration.hpp"
+#include "sewer3d/calib/chessboard.hpp"
+#include "sewer3d/core/check.hpp"
+
+namespace sewer3d {
+
+void BoardLayout::Check() const {
+  SEWER3D_CHECK(cols >= 2 && rows >= 2, "board " << cols << "x" << rows);
+  SEWER3D_CHECK(square_mm > 0.0, "square_mm " << square_mm);
+}
+
+void ModuleCalibratorOptions::Check() const {
+  triangulation.Check();
+  SEWER3D_CHECK(!corner_transfer.camera && !corner_transfer.projector,
+                "corner transfer lens models are set by the second pass");
+}
+
+ModuleCalibrator::ModuleCalibrator(const ModuleDescription& nominal, const BinaryArray& pattern,
+                                   const PatternConstraints& constraints, const BoardLayout& board,
+                                   const ModuleCalibratorOptions& options)
+    : nominal_(nominal),
+      board_(board),
+      options_(options),
+      decoder_(nominal, pattern, constraints, options.decoder),
+      triangulator_(nominal, pattern.rows, pattern.cols, options.triangulation) {
+  board_.Check();
+  options_.Check();
+}
+
+CaptureOutcome ModuleCalibrator::AddCapture(const cv::Mat1b& texture_grey,
+                                            const cv::Mat& pattern_image) {
+  SEWER3D_CHECK(
+      texture_grey.cols == nominal_.camera.width && texture_grey.rows == nominal_.camera.height,
+      "texture " << texture_grey.cols << "x" << texture_grey.rows << " but the nominal camera is "
+                 << nominal_.camera.width << "x" << nominal_.camera.height);
+  CaptureOutcome outcome;
+  const auto corners = DetectChessboard(texture_grey, board_.cols, board_.rows);
+  if (!corners) {
+    outcome.status = CaptureOutcome::Status::kBoardNotFound;
+    return outcome;
+  }
+  outcome.corners = static_cast<int>(corners->size());
+  const std::vector<CodedObservation> observations =
+      CodedObservations(decoder_.Decode(pattern_image));
+  // Each decoded spot's projector element centre: exact, unlike the spot's camera centre.
+  SpotCorrespondences spots;
+  for (const TriangulatedPoint& p : triangulator_.Triangulate(observations, nullptr)) {
+    spots.camera_px.push_back(observations[p.observation].camera_px);
+    spots.projector_px.push_back(nominal_.pattern.ElementCentre(p.row, p.col));
+  }
+  outcome.spots_decoded = static_cast<int>(spots.camera_px.size());
+  const auto transferred =
+      CornersInProjector(*corners, spots.camera_px, spots.projector_px, options_.corner_transfer);
+  outcome.corners_missing = static_cast<int>(
+      std::count_if(transferred.begin(), transferred.end(), [](const auto& c) { return !c; }));
+  if (outcome.corners_missing > 0) {
+    outcome.status = CaptureOutcome::Status::kCornersNotCarried;
+    return outcome;
+  }
+  ModuleCalibrationView view;
+  view.camera_corners = *corners;
+  for (const auto& c : transferred) view.projector_corners.push_back(*c);
+  views_.push_back(std::move(view));
+  spots_.push_back(std::move(spots));
+  return outcome;
+}
+
+ModuleFromCapturesResult ModuleCalibrator::Calibrate() const {
+  SEWER3D_CHECK(views_.size() >= 3, views_.size() << " captures used; calibration needs 3");
+  const auto board = BoardCorners(board_.cols, board_.rows, board_.square_mm);
+  const auto calibrate = [&](const std::vector<ModuleCalibrationView>& views) {
+    return CalibrateModule(views, board, nominal_.camera.width, nominal_.camera.height,
+                           nominal_.projector.width, nominal_.projector.height);
+  };
+  ModuleFromCapturesResult result;
+  result.first_pass = calibrate(views_);
+  // Second pass: the homographies fitted between undistorted coordinates, where a plane's
+  // camera -> projector map is exactly one (lens distortion bends it in pixels).
+  std::vector<ModuleCalibrationView> views = views_;
+  result.views_retransferred =
+      RetransferCorners(views, spots_, result.first_pass.camera, result.first_pass.projector,
+                        options_.corner_transfer);
+  result.second_pass = calibrate(views);
+  result.module = nominal_;
+  result.module.camera = result.second_pass.camera;
+  result.module.projector = result.second_pass.projector;
+  result.module.projector_from_camera = result.second_pass.projector_from_camera;
+  return result;
+}
+
+}  // namespace sewer3d

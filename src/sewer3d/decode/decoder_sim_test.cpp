@@ -1,0 +1,80 @@
+// The decoder on rendered frames with realistic noise (sim/): every decoded array position
+// checked against the element the true surface puts under the spot.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/decode/decoder.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/testing/small_module.hpp"
+
+namespace sewer3d {
+namespace {
+
+struct Outcome {
+  int spots = 0, decoded = 0, wrong = 0;
+};
+
+// Decodes a realistic render; a decode is wrong when the projector element whose centre is
+// nearest to where the spot's camera ray meets the true surface differs, modulo the array.
+Outcome DecodeRender(const ModuleDescription& module, const Scene& scene, std::uint64_t seed) {
+  const BinaryArray pattern = DefaultPatternArray();
+  RenderOptions render;
+  render.seed = seed;
+  render.images = RenderImages::kPattern;
+  const RenderedFrame frame = RenderFrame(module, pattern, scene, render);
+  Decoder decoder(module, pattern, PatternConstraints{}, DecoderOptions{});
+  const DecodeResult decoded = decoder.Decode(frame.pattern);
+  const std::vector<CodedObservation> observations = CodedObservations(decoded);
+  EXPECT_EQ(observations.size(), decoded.codes.size());
+  const CameraModel camera(module.camera), projector(module.projector);
+  const PatternLayout& layout = module.pattern;
+  const auto mod = [](int i, int n) { return (i % n + n) % n; };
+  Outcome out;
+  out.spots = static_cast<int>(decoded.spots.size());
+  out.decoded = static_cast<int>(observations.size());
+  for (const CodedObservation& o : observations) {
+    const auto ray = camera.Ray(o.camera_px);
+    const auto hit = ray ? Intersect(scene, Eigen::Vector3d::Zero(), *ray) : std::nullopt;
+    const auto uv =
+        hit ? projector.Project(module.projector_from_camera * hit->point) : std::nullopt;
+    if (!uv) {
+      ++out.wrong;
+      continue;
+    }
+    // Inverse of ElementCentre: u = offset_u + (c + 0.5) · pitch − 0.5.
+    const int c = static_cast<int>(
+        std::lround((uv->x() - layout.offset_px.x() + 0.5) / layout.pitch_px - 0.5));
+    const int r = static_cast<int>(
+        std::lround((uv->y() - layout.offset_px.y() + 0.5) / layout.pitch_px - 0.5));
+    if (mod(r, pattern.rows) != o.row_mod || mod(c, pattern.cols) != o.col_mod) ++out.wrong;
+  }
+  ::testing::Test::RecordProperty("spots", out.spots);
+  ::testing::Test::RecordProperty("decoded", out.decoded);
+  ::testing::Test::RecordProperty("wrong", out.wrong);
+  return out;
+}
+
+TEST(Decoder, PlaneAt90mmDecodesTheTruePositions) {
+  Scene plane;
+  plane.distance_mm = 90.0;
+  const Outcome o = DecodeRender(testing::SmallDefaultModule(648), plane, 1);
+  EXPECT_GT(o.decoded, 0.95 * o.spots);
+  EXPECT_EQ(o.wrong, 0);
+}
+
+TEST(Decoder, Dn300CylinderDecodesTheTruePositions) {
+  Scene cylinder;
+  cylinder.type = Scene::Type::kCylinder;
+  cylinder.diameter_mm = 300.0;
+  cylinder.axis_point_mm = {8.0, 0.0, -10.0};
+  const Outcome o = DecodeRender(testing::SmallDefaultModule(648), cylinder, 2);
+  EXPECT_GT(o.decoded, 0.93 * o.spots);
+  EXPECT_EQ(o.wrong, 0);
+}
+
+}  // namespace
+}  // namespace sewer3d

@@ -1,0 +1,53 @@
+#include "sewer3d/io/reconstruction_io.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/ply_io.hpp"
+#include "sewer3d/io/text_file.hpp"
+
+namespace sewer3d {
+
+void WriteFrameReconstruction(const std::filesystem::path& folder, const FrameReconstruction& frame,
+                              const std::string& image) {
+  std::vector<Eigen::Vector3d> xyz;
+  std::vector<std::array<std::uint8_t, 3>> colours;
+  xyz.reserve(frame.points.size());
+  for (const FramePoint& p : frame.points) {
+    xyz.push_back(p.point_mm);
+    if (frame.coloured) colours.push_back(p.rgb);
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw FileError(folder, "cannot create folder: " + ec.message());
+  WritePly(folder / "cloud.ply", xyz, colours);
+  WriteImage(folder / "depth.tiff", frame.depth_mm);
+  WriteDepthPreview(folder / "depth.png", frame.depth_mm);
+  WriteFrameReport(folder / "report.json", frame.report, image);
+}
+
+void WriteFrameReport(const std::filesystem::path& path, const FrameReport& r,
+                      const std::string& image) {
+  nlohmann::json report;  // a std::map underneath: keys come out sorted, as report.json has them
+  report["image"] = image;
+  report["spots_found"] = r.spots_found;
+  report["lattice_groups"] = r.lattice_groups;
+  report["lattice_conflicts"] = r.lattice_conflicts;
+  report["windows_read"] = r.windows_read;
+  report["windows_decoded"] = r.windows_decoded;
+  report["bits_corrected"] = r.bits_corrected;
+  report["spots_decoded"] = r.spots_decoded;
+  report["rejected"] = {{"votes_split_or_too_few", r.rejected.votes_split_or_too_few},
+                        {"beyond_lens_fold", r.rejected.beyond_lens_fold},
+                        {"no_tile_on_epipolar_line", r.rejected.no_tile_on_epipolar_line},
+                        {"several_tiles_fit", r.rejected.several_tiles_fit},
+                        {"depth_outlier_or_isolated", r.rejected.depth_outlier_or_isolated}};
+  report["points"] = r.points;
+  report["seconds"] = {{"binarise", r.seconds.binarise},       {"spots", r.seconds.spots},
+                       {"lattice", r.seconds.lattice},         {"codewords", r.seconds.codewords},
+                       {"triangulate", r.seconds.triangulate}, {"depth_map", r.seconds.depth_map}};
+  WriteTextFile(path, report.dump(2) + "\n");
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,107 @@
+#include "sewer3d/triangulate/reconstruct_frame.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/triangulate/depth_map.hpp"
+
+namespace sewer3d {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+const FrameReconstructionOptions& Checked(const FrameReconstructionOptions& options) {
+  options.Check();
+  return options;
+}
+
+}  // namespace
+
+void FrameReconstructionOptions::Check() const {
+  decoder.niblack.Check();
+  decoder.spots.Check();
+  decoder.lattice.Check();
+  triangulation.Check();
+  outliers.Check();
+  SEWER3D_CHECK(max_edge_steps > 0.0, "max_edge_steps " << max_edge_steps);
+}
+
+FrameReconstructor::FrameReconstructor(const ModuleDescription& module, const BinaryArray& pattern,
+                                       const PatternConstraints& constraints,
+                                       const FrameReconstructionOptions& options)
+    : module_(module),
+      options_(Checked(options)),
+      decoder_(module, pattern, constraints, options.decoder),
+      triangulator_(module, pattern.rows, pattern.cols, options.triangulation) {}
+
+FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image,
+                                                    const cv::Mat3b* texture_bgr) {
+  SEWER3D_CHECK(pattern_image.type() == CV_8UC1 || pattern_image.type() == CV_16UC1,
+                "pattern image must be 8- or 16-bit grey");
+  SEWER3D_CHECK(!texture_bgr || texture_bgr->size() == pattern_image.size(),
+                "texture size differs from the pattern image");
+  const DecodeResult decoded = decoder_.Decode(pattern_image);
+  const std::vector<CodedObservation> observations = CodedObservations(decoded);
+  FrameReconstruction frame;
+  FrameReport& report = frame.report;
+  auto t = Clock::now();
+  TriangulationStats stats;
+  std::vector<TriangulatedPoint> points = triangulator_.Triangulate(observations, &stats);
+  report.rejected.depth_outlier_or_isolated =
+      RejectDepthOutliers(points, observations, options_.outliers);
+  report.seconds.triangulate = Since(t);
+  t = Clock::now();
+  frame.coloured = texture_bgr != nullptr;
+  frame.points.reserve(points.size());
+  pixels_.clear();
+  depths_.clear();
+  for (const TriangulatedPoint& p : points) {
+    FramePoint& out = frame.points.emplace_back();
+    out.point_mm = p.point_mm;
+    out.camera_px = observations[p.observation].camera_px;
+    out.row = p.row;
+    out.col = p.col;
+    if (texture_bgr) {  // the nearest pixel: spots are a few pixels wide, colour varies slowly
+      const cv::Vec3b bgr = (*texture_bgr)(static_cast<int>(std::lround(out.camera_px.y())),
+                                           static_cast<int>(std::lround(out.camera_px.x())));
+      out.rgb = {bgr[2], bgr[1], bgr[0]};
+    }
+    pixels_.push_back(out.camera_px);
+    depths_.push_back(out.point_mm.z());
+  }
+  frame.depth_mm = InterpolateDepth(pattern_image.size(), pixels_, depths_,
+                                    options_.max_edge_steps * module_.pattern.pitch_px);
+  report.seconds.depth_map = Since(t);
+
+  report.spots_found = static_cast<int>(decoded.spots.size());
+  report.lattice_groups = decoded.lattice.groups;
+  report.lattice_conflicts = decoded.lattice.conflicts;
+  report.windows_read = decoded.stats.windows_read;
+  report.windows_decoded = decoded.stats.windows_decoded;
+  report.bits_corrected = decoded.stats.bits_corrected;
+  report.spots_decoded = static_cast<int>(decoded.codes.size());
+  report.rejected.votes_split_or_too_few = decoded.stats.spots_ambiguous;
+  report.rejected.beyond_lens_fold = stats.unprojectable;
+  report.rejected.no_tile_on_epipolar_line = stats.no_element;
+  report.rejected.several_tiles_fit = stats.ambiguous;
+  report.points = static_cast<int>(frame.points.size());
+  report.seconds.binarise = decoded.seconds_binarise;
+  report.seconds.spots = decoded.seconds_spots;
+  report.seconds.lattice = decoded.seconds_lattice;
+  report.seconds.codewords = decoded.seconds_codewords;
+  return frame;
+}
+
+FrameReconstruction ReconstructFrame(const ModuleDescription& module, const BinaryArray& pattern,
+                                     const PatternConstraints& constraints,
+                                     const cv::Mat& pattern_image, const cv::Mat3b* texture_bgr,
+                                     const FrameReconstructionOptions& options) {
+  return FrameReconstructor(module, pattern, constraints, options)
+      .Reconstruct(pattern_image, texture_bgr);
+}
+
+}  // namespace sewer3d
