@@ -82,7 +82,7 @@ class RunIoTest : public ::testing::Test {
     try {
       LoadRun(dir_, options);
     } catch (const FileError& e) {
-      const std::string what = e.what();
+      std::string what = e.what();
       EXPECT_EQ(what.find('\n'), std::string::npos) << what;
       return what;
     }

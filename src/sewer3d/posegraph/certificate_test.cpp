@@ -92,7 +92,7 @@ TEST(RotationForm, RefusesGraphsWhoseCostIsNotQuadraticInTheRotations) {
   const PoseGraph good = RingGraph(truth, rng, 0.01, 1.0, MildlyAnisotropic);
   std::string why;
   ASSERT_TRUE(RotationForm::Build(good, &why)) << why;
-  auto refused = [&](PoseGraph graph, const std::string& expected) {
+  auto refused = [&](const PoseGraph& graph, const std::string& expected) {
     const bool built = RotationForm::Build(graph, &why).has_value();
     EXPECT_FALSE(built) << expected;
     EXPECT_NE(why.find(expected), std::string::npos) << why;
