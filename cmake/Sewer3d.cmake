@@ -51,7 +51,8 @@ endfunction()
 
 # sewer3d_test(MODULE NAME SOURCES ... [DEPS ...]) -> CTest test "MODULE/NAME".
 # A unit test links its own module and the test-support library sewer3d_testing. A test that
-# needs rendered images from the simulator is named *_sim_test.cpp and may add sewer3d_sim to
+# needs the simulator (rendered images, simulated runs) is named *_sim_test.cpp and may add
+# sewer3d_sim or sewer3d_simio to
 # DEPS; other sewer3d_* DEPS are refused by tests/check_layers.py. Third-party DEPS are free.
 function(sewer3d_test module name)
   if(NOT SEWER3D_BUILD_TESTS)

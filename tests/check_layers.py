@@ -5,8 +5,9 @@ Reads the targets CMake recorded (build/layers.txt: KIND TARGET FOLDER SOURCES..
 and checks that
   - every module's files (headers included) include only headers of the module itself and of
     the modules it links, directly or through them;
-  - a test links its own module and sewer3d_testing only, plus sewer3d_sim when all its files
-    are named *_sim_test.cpp (tests against rendered images), and includes accordingly;
+  - a test links its own module and sewer3d_testing only, plus the simulator (sewer3d_sim,
+    sewer3d_simio) when all its files are named *_sim_test.cpp (tests against rendered images
+    or simulated runs), and includes accordingly;
   - nothing but the simulator's own modules (sim, simio), the programs and simulator tests
     reaches sim/: a capture run is processed without the renderer;
   - only tests link sewer3d_testing; module dependencies have no cycle;
@@ -116,11 +117,11 @@ def check(layers_txt, root, injected=None):
             extra = [m for m in t["linked"] if m not in (folder, "testing")]
             sim_test = all(s.endswith("_sim_test.cpp") for s in t["sources"])
             for m in extra:
-                if not (m == "sim" and sim_test):
+                if not (m in SIMULATOR and sim_test):
                     errors.append(f"test {t['target']} links sewer3d_{m}: a test links its own "
-                                  "module and sewer3d_testing (and sewer3d_sim if it is a "
-                                  "*_sim_test.cpp)")
-            allowed = allowed_for([folder] + (["sim"] if "sim" in extra else [])) | {"testing"}
+                                  "module and sewer3d_testing (and sewer3d_sim or sewer3d_simio "
+                                  "if it is a *_sim_test.cpp)")
+            allowed = allowed_for([folder] + [m for m in extra if m in SIMULATOR]) | {"testing"}
             for s in t["sources"]:
                 check_file(os.path.join(root, s), allowed, f"test {t['target']}")
         else:  # a program: its sources and the headers beside them
