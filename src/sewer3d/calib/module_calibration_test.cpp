@@ -11,6 +11,7 @@
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/board.hpp"
 
 namespace sewer3d {
@@ -56,8 +57,8 @@ TEST(ModuleCalibration, RecoversCameraProjectorAndExtrinsics) {
   EXPECT_NEAR(r.projector.cy, truth.projector.cy, 1.0);
   const double baseline = r.projector_from_camera.translation.norm();
   EXPECT_NEAR(baseline, truth.projector_from_camera.translation.norm(), 0.1);
-  EXPECT_LT(r.projector_from_camera.rotation.angularDistance(truth.projector_from_camera.rotation) *
-                180.0 / M_PI,
+  EXPECT_LT(RadToDeg(r.projector_from_camera.rotation.angularDistance(
+                truth.projector_from_camera.rotation)),
             0.05);
   EXPECT_GT(r.sigma[8], 0.0);
 }

@@ -2,10 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/material.hpp"
 
 namespace sewer3d {
@@ -66,9 +66,8 @@ std::vector<Rigid3d> RandomBoardPoses(const ModuleDescription& module, const Che
     const double depth = o.distance_min_mm + u(2) * (o.distance_max_mm - o.distance_min_mm);
     const Eigen::Vector3d target = Eigen::Vector3d(xy->x(), xy->y(), 1.0) * depth;
     // Facing the camera (board z away from it), tilted about a random in-plane axis, spun.
-    const double tilt =
-        std::acos(1.0 - u(3) * (1.0 - std::cos(o.max_tilt_deg * std::numbers::pi / 180.0)));
-    const double axis_angle = 2.0 * std::numbers::pi * u(4), spin = 2.0 * std::numbers::pi * u(5);
+    const double tilt = std::acos(1.0 - u(3) * (1.0 - std::cos(DegToRad(o.max_tilt_deg))));
+    const double axis_angle = kTwoPi * u(4), spin = kTwoPi * u(5);
     const Eigen::Quaterniond rotation =
         Eigen::AngleAxisd(tilt, Eigen::Vector3d(std::cos(axis_angle), std::sin(axis_angle), 0.0)) *
         Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ());

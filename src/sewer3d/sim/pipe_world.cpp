@@ -12,12 +12,10 @@
 namespace sewer3d {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kEdgeMm = 0.4;  // width of the smoothed edges of features
 
 // Into [−π, π]; cheaper than std::remainder for the small multiples of 2π met here.
 double WrapAngle(double a) {
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
   while (a > std::numbers::pi) a -= kTwoPi;
   while (a < -std::numbers::pi) a += kTwoPi;
   return a;
@@ -131,7 +129,7 @@ PipeGeometry::PipeGeometry(PipeWorld world) : world_(std::move(world)) {
     const Eigen::Vector3d shift = -j.offset_mm * ClockDirection(ClockHoursToRad(j.offset_clock_h));
     const Eigen::Vector3d turn_axis =
         Eigen::Vector3d::UnitZ().cross(ClockDirection(ClockHoursToRad(j.deflection_clock_h)));
-    const Eigen::Quaterniond turn(Eigen::AngleAxisd(j.deflection_deg * kDeg, turn_axis));
+    const Eigen::Quaterniond turn(Eigen::AngleAxisd(DegToRad(j.deflection_deg), turn_axis));
     start = end * Rigid3d(turn, shift);
     joint_point_.push_back(0.5 * (end.translation + start.translation));
     joint_normal_.push_back(
@@ -255,7 +253,7 @@ double PipeGeometry::Displacement(PipeLocation at, Material* material) const {
         if (std::abs(ds) > 0.5 * f.length_mm + f.width_mm &&
             std::abs(arc) > 0.5 * f.length_mm + f.width_mm)
           continue;
-        const double ca = std::cos(f.angle_deg * kDeg), sa = std::sin(f.angle_deg * kDeg);
+        const double ca = std::cos(DegToRad(f.angle_deg)), sa = std::sin(DegToRad(f.angle_deg));
         const double along = ds * ca + arc * sa, across = -ds * sa + arc * ca;
         if (std::abs(along) > 0.5 * f.length_mm) continue;
         const double q = std::abs(across) / (0.5 * f.width_mm);

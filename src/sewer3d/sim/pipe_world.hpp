@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/scene.hpp"
 
 namespace sewer3d {
@@ -119,6 +120,5 @@ class PipeGeometry {
 
 /// Direction of a clock position in a centreline frame (unit, z = 0).
 Eigen::Vector3d ClockDirection(double clock_rad);
-inline double ClockHoursToRad(double hours) { return hours * 3.14159265358979323846 / 6.0; }
 
 }  // namespace sewer3d

@@ -3,9 +3,9 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/material.hpp"
 
 namespace sewer3d {
@@ -229,8 +229,7 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
             const int kk = static_cast<int>(HashUniform(o.seed, pixel, 7) * n * n + k) % (n * n);
             const double radius = 0.5 * setup.camera_aperture_mm *
                                   std::sqrt((kk % n + HashUniform(o.seed, pixel, k, 4)) / n);
-            const double angle =
-                2.0 * std::numbers::pi * (kk / n + HashUniform(o.seed, pixel, k, 5)) / n;
+            const double angle = kTwoPi * (kk / n + HashUniform(o.seed, pixel, k, 5)) / n;
             const Eigen::Vector3d lens(radius * std::cos(angle), radius * std::sin(angle), 0.0);
             const Eigen::Vector3d focus = direction * o.camera_focus_mm;
             origin += lens;

@@ -2,17 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/pipe_world.hpp"
 
 namespace sewer3d {
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-}  // namespace
 
 void RigOptions::Check() const {
   SEWER3D_CHECK(modules >= 1 && modules <= 12, "modules " << modules);
@@ -102,8 +97,7 @@ WallCoverage ModuleCoverage(const Rig& rig, int index, double diameter,
         }
       }
       const PipeLocation at = pipe.Locate(hit->point);
-      const double clock =
-          (nominal + std::remainder(at.clock_rad - nominal, 2.0 * std::numbers::pi)) / kDeg;
+      const double clock = RadToDeg(nominal + std::remainder(at.clock_rad - nominal, kTwoPi));
       c.any = true;
       c.clock_from_deg = std::min(c.clock_from_deg, clock);
       c.clock_to_deg = std::max(c.clock_to_deg, clock);
@@ -130,7 +124,7 @@ std::vector<NeighbourOverlap> NeighbourOverlaps(const Rig& rig, double diameter,
       while (cover[next].clock_from_deg + shift < cover[k].clock_from_deg) shift += 360.0;
       o.overlap_deg = cover[k].clock_to_deg - (cover[next].clock_from_deg + shift);
     }
-    o.overlap_mm = o.overlap_deg * kDeg * 0.5 * diameter;
+    o.overlap_mm = DegToRad(o.overlap_deg) * 0.5 * diameter;
     out.push_back(o);
   }
   return out;

@@ -3,15 +3,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/root.hpp"
 
 namespace sewer3d {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Orthonormal frame of a cylinder: e1 = camera z made perpendicular to the axis (clock 0),
 // e2 = axis x e1 ... chosen so that clock increases toward camera +x.
@@ -54,17 +52,17 @@ void ToCylinder(const CylinderFrame& f, const Eigen::Vector3d& x, double& clock,
   clock = std::atan2(radial.dot(f.e2), radial.dot(f.e1));
 }
 
-double WrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
+double WrapAngle(double a) { return std::remainder(a, kTwoPi); }
 
 double FeatureDisplacement(const WallFeature& ft, double radius, double clock, double station) {
   const double ds = station - ft.station_mm;
-  const double arc = WrapAngle(clock - ft.clock_deg * kDeg) * radius;
+  const double arc = WrapAngle(clock - DegToRad(ft.clock_deg)) * radius;
   switch (ft.type) {
     case WallFeature::Type::kJoint: {
       // Next section (station beyond the joint) displaced laterally by offset toward clock;
       // an open gap of the given width and depth at the joint.
       double d = 0.0;
-      if (ds > 0.5 * ft.gap_mm) d += ft.offset_mm * std::cos(clock - ft.clock_deg * kDeg);
+      if (ds > 0.5 * ft.gap_mm) d += ft.offset_mm * std::cos(clock - DegToRad(ft.clock_deg));
       if (std::abs(ds) <= 0.5 * ft.gap_mm) d -= ft.height_mm;
       return d;
     }
@@ -77,7 +75,7 @@ double FeatureDisplacement(const WallFeature& ft, double radius, double clock, d
       return q < 1.0 ? -ft.height_mm * (1.0 - q) : 0.0;
     }
     case WallFeature::Type::kCrack: {
-      const double ca = std::cos(ft.angle_deg * kDeg), sa = std::sin(ft.angle_deg * kDeg);
+      const double ca = std::cos(DegToRad(ft.angle_deg)), sa = std::sin(DegToRad(ft.angle_deg));
       const double along = ds * ca + arc * sa, across = -ds * sa + arc * ca;
       if (std::abs(along) > 0.5 * ft.length_mm) return 0.0;
       const double q = std::abs(across) / (0.5 * ft.width_mm);
@@ -90,7 +88,7 @@ double FeatureDisplacement(const WallFeature& ft, double radius, double clock, d
 std::optional<SurfaceHit> IntersectPlane(const Scene& s, const Eigen::Vector3d& o,
                                          const Eigen::Vector3d& d) {
   const Eigen::Vector3d n =
-      Eigen::AngleAxisd(s.tilt_deg * kDeg, Eigen::Vector3d::UnitX()) * Eigen::Vector3d(0, 0, -1);
+      Eigen::AngleAxisd(DegToRad(s.tilt_deg), Eigen::Vector3d::UnitX()) * Eigen::Vector3d(0, 0, -1);
   const Eigen::Vector3d p0(0.0, 0.0, s.distance_mm);
   const double denom = d.dot(n);
   if (std::abs(denom) < 1e-15) return std::nullopt;
@@ -140,8 +138,9 @@ double WallDisplacementMm(const Scene& scene, double clock_rad, double station_m
 
 double DistanceToSurfaceMm(const Scene& scene, const Eigen::Vector3d& point) {
   if (scene.type == Scene::Type::kPlane) {
-    const Eigen::Vector3d n = Eigen::AngleAxisd(scene.tilt_deg * kDeg, Eigen::Vector3d::UnitX()) *
-                              Eigen::Vector3d(0, 0, -1);
+    const Eigen::Vector3d n =
+        Eigen::AngleAxisd(DegToRad(scene.tilt_deg), Eigen::Vector3d::UnitX()) *
+        Eigen::Vector3d(0, 0, -1);
     return std::abs(n.dot(point - Eigen::Vector3d(0.0, 0.0, scene.distance_mm)));
   }
   const CylinderFrame f = FrameOf(scene);

@@ -3,12 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
+
+#include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 TEST(Scene, TiltedPlaneMatchesClosedForm) {
   Scene s;
@@ -18,7 +17,7 @@ TEST(Scene, TiltedPlaneMatchesClosedForm) {
     const auto hit = Intersect(s, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, y, 1.0));
     ASSERT_TRUE(hit.has_value());
     // Plane z = d + y_world tan(tilt): along the ray t = d / (1 − y tan(tilt)).
-    EXPECT_NEAR(hit->point.z(), 90.0 / (1.0 - y * std::tan(20.0 * kDeg)), 1e-9);
+    EXPECT_NEAR(hit->point.z(), 90.0 / (1.0 - y * std::tan(DegToRad(20.0))), 1e-9);
     EXPECT_NEAR(hit->normal.norm(), 1.0, 1e-12);
     EXPECT_LT(hit->normal.z(), 0.0);  // faces the camera
   }

@@ -3,16 +3,14 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/material.hpp"
 
 namespace sewer3d {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kSpeedPeriodS = 2.3;
 
 }  // namespace
@@ -54,9 +52,9 @@ Rigid3d Trajectory::WorldFromCarrier(double t) const {
       o.offset_mm.x() + o.wander_mm * std::sin(kTwoPi * t / 3.1 + phase_[1]),
       o.offset_mm.y() + o.wander_mm * std::sin(kTwoPi * t / 4.3 + phase_[2]), 0.0);
   const double roll =
-      (o.roll_deg + o.roll_amplitude_deg * std::sin(kTwoPi * t / 5.7 + phase_[3])) * kDeg;
-  const double pitch = o.wobble_deg * std::sin(kTwoPi * t / 0.9 + phase_[4]) * kDeg;
-  const double yaw = o.wobble_deg * std::sin(kTwoPi * t / 1.3 + phase_[5]) * kDeg;
+      DegToRad(o.roll_deg + o.roll_amplitude_deg * std::sin(kTwoPi * t / 5.7 + phase_[3]));
+  const double pitch = DegToRad(o.wobble_deg * std::sin(kTwoPi * t / 0.9 + phase_[4]));
+  const double yaw = DegToRad(o.wobble_deg * std::sin(kTwoPi * t / 1.3 + phase_[5]));
   const Eigen::Quaterniond attitude = Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()) *
                                       Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
                                       Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY());
