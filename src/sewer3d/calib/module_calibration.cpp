@@ -94,8 +94,8 @@ ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>
                                         const std::vector<Eigen::Vector3d>& board, int camera_width,
                                         int camera_height, int projector_width,
                                         int projector_height) {
-  SEWER3D_CHECK(views.size() >= 3,
-                "module calibration needs at least 3 views, got " << views.size());
+  SEWER3D_VALIDATE(views.size() >= 3, "",
+                   "module calibration needs at least 3 views, got " << views.size());
   // Each device alone first (Zhang + refinement), then both together.
   std::vector<CalibrationView> camera_views, projector_views;
   for (const auto& v : views) {

@@ -34,12 +34,17 @@ Derived Derive(const DefaultModuleOptions& o) {
 }  // namespace
 
 void DefaultModuleOptions::Check() const {
-  SEWER3D_CHECK(camera_width >= 16 && camera_height >= 16,
-                "camera size " << camera_width << "x" << camera_height);
-  SEWER3D_CHECK(horizontal_fov_deg > 1.0 && horizontal_fov_deg < 160.0, horizontal_fov_deg);
-  SEWER3D_CHECK(stereo_angle_deg > 0.0 && stereo_angle_deg < 90.0, stereo_angle_deg);
-  SEWER3D_CHECK(meeting_distance_mm > 0.0, meeting_distance_mm);
-  SEWER3D_CHECK(pitch_px > 0.0 && spot_diameter_px > 0.0 && spot_diameter_px <= pitch_px);
+  SEWER3D_VALIDATE(camera_width >= 16 && camera_height >= 16, "camera_size",
+                   "must be at least 16x16, got " << camera_width << "x" << camera_height);
+  SEWER3D_VALIDATE(horizontal_fov_deg > 1.0 && horizontal_fov_deg < 160.0, "horizontal_fov_deg",
+                   "must be > 1 and < 160, got " << horizontal_fov_deg);
+  SEWER3D_VALIDATE(stereo_angle_deg > 0.0 && stereo_angle_deg < 90.0, "stereo_angle_deg",
+                   "must be > 0 and < 90, got " << stereo_angle_deg);
+  ValidatePositive("meeting_distance_mm", meeting_distance_mm);
+  ValidatePositive("pitch_px", pitch_px);
+  SEWER3D_VALIDATE(
+      spot_diameter_px > 0.0 && spot_diameter_px <= pitch_px, "spot_diameter_px",
+      "must be > 0 and at most pitch_px (" << pitch_px << "), got " << spot_diameter_px);
 }
 
 DefaultModuleGeometry DescribeDefaultModule(const DefaultModuleOptions& o) {

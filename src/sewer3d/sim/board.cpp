@@ -11,7 +11,10 @@
 namespace sewer3d {
 
 void Checkerboard::Check() const {
-  SEWER3D_CHECK(cols >= 2 && rows >= 2 && square_mm > 0.0 && margin_mm >= 0.0, "checkerboard");
+  SEWER3D_VALIDATE(cols >= 2 && rows >= 2, "board",
+                   "needs at least 2x2 inner corners, got " << cols << "x" << rows);
+  ValidatePositive("square_mm", square_mm);
+  ValidateNotNegative("margin_mm", margin_mm);
 }
 
 std::optional<SurfaceHit> BoardSurface::Intersect(const Eigen::Vector3d& origin,
@@ -47,7 +50,7 @@ std::vector<Rigid3d> RandomBoardPoses(const ModuleDescription& module, const Che
                                       int count, std::uint64_t seed, const BoardPoseOptions& o) {
   board.Check();
   module.Check();
-  SEWER3D_CHECK(count >= 1, "pose count");
+  SEWER3D_VALIDATE(count >= 1, "poses", "must be at least 1, got " << count);
   const CameraModel camera(module.camera), projector(module.projector);
   const Eigen::Vector3d centre(0.5 * (board.cols - 1) * board.square_mm,
                                0.5 * (board.rows - 1) * board.square_mm, 0.0);
@@ -57,7 +60,9 @@ std::vector<Rigid3d> RandomBoardPoses(const ModuleDescription& module, const Che
   };
   std::vector<Rigid3d> poses;
   for (std::uint64_t attempt = 0; static_cast<int>(poses.size()) < count; ++attempt) {
-    SEWER3D_CHECK(attempt < 200000, "no board pose shows the whole board to camera and projector");
+    SEWER3D_VALIDATE(attempt < 200000, "board",
+                     "no pose shows the whole board to both camera and projector (try fewer or "
+                     "smaller squares)");
     auto u = [&](int k) { return HashUniform(seed, attempt, k); };
     // Board centre on a random camera ray through the image, at a random depth.
     const auto xy =

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/sim/material.hpp"
@@ -55,50 +56,69 @@ Eigen::Vector3d ClockDirection(double clock_rad) {
 }
 
 void PipeWorld::Check() const {
-  SEWER3D_CHECK(!sections.empty(), "the pipe has no sections");
-  SEWER3D_CHECK(joints.size() + 1 == sections.size(),
-                "need one joint between each pair of sections: " << sections.size() << " sections, "
-                                                                 << joints.size() << " joints");
+  // Field names as in the scenario file's "pipe" member (docs/formats.md).
+  SEWER3D_VALIDATE(!sections.empty(), "sections", "the pipe needs at least one section");
+  auto joints_text = [](size_t n) { return std::to_string(n) + (n == 1 ? " joint" : " joints"); };
+  SEWER3D_VALIDATE(joints.size() + 1 == sections.size(), "joints",
+                   sections.size()
+                       << " sections need " << joints_text(sections.size() - 1)
+                       << " (one between each pair), got " << joints_text(joints.size()));
   for (size_t i = 0; i < sections.size(); ++i) {
     const PipeSection& s = sections[i];
-    SEWER3D_CHECK(s.length_mm > 0.0, "section " << i << ": length " << s.length_mm);
-    SEWER3D_CHECK(s.diameter_mm >= 50.0 && s.diameter_mm <= 5000.0,
-                  "section " << i << ": diameter " << s.diameter_mm);
-    SEWER3D_CHECK(s.ovality_pct >= 0.0 && s.ovality_pct < 30.0,
-                  "section " << i << ": ovality " << s.ovality_pct << " %");
-    SEWER3D_CHECK(s.bend_radius_mm == 0.0 || s.bend_radius_mm >= 10.0 * s.diameter_mm,
-                  "section " << i << ": bend radius " << s.bend_radius_mm
-                             << " mm (0, or at least 10 diameters)");
+    const std::string field = "sections[" + std::to_string(i) + "].";
+    ValidatePositive(field + "length_mm", s.length_mm);
+    SEWER3D_VALIDATE(s.diameter_mm >= 50.0 && s.diameter_mm <= 5000.0, field + "diameter_mm",
+                     "must be 50..5000, got " << s.diameter_mm);
+    SEWER3D_VALIDATE(s.ovality_pct >= 0.0 && s.ovality_pct < 30.0, field + "ovality_pct",
+                     "must be >= 0 and < 30, got " << s.ovality_pct);
+    SEWER3D_VALIDATE(s.bend_radius_mm == 0.0 || s.bend_radius_mm >= 10.0 * s.diameter_mm,
+                     field + "bend_radius_mm",
+                     "must be 0 (straight) or at least 10 diameters ("
+                         << 10.0 * s.diameter_mm << "), got " << s.bend_radius_mm);
   }
   for (size_t i = 0; i < joints.size(); ++i) {
     const PipeJoint& j = joints[i];
-    SEWER3D_CHECK(j.gap_mm >= 0.0 && j.gap_depth_mm >= 0.0 && j.offset_mm >= 0.0,
-                  "joint " << j.id << ": gap, depth and offset must not be negative");
-    SEWER3D_CHECK(j.gap_mm < 0.5 * std::min(sections[i].length_mm, sections[i + 1].length_mm),
-                  "joint " << j.id << ": gap " << j.gap_mm << " mm");
-    SEWER3D_CHECK(j.offset_mm < 0.2 * sections[i].diameter_mm,
-                  "joint " << j.id << ": offset " << j.offset_mm);
-    SEWER3D_CHECK(std::abs(j.deflection_deg) <= 10.0,
-                  "joint " << j.id << ": deflection " << j.deflection_deg << "°");
+    const std::string field = "joints[" + std::to_string(i) + "].";
+    ValidateNotNegative(field + "gap_mm", j.gap_mm);
+    ValidateNotNegative(field + "gap_depth_mm", j.gap_depth_mm);
+    ValidateNotNegative(field + "offset_mm", j.offset_mm);
+    const double max_gap = 0.5 * std::min(sections[i].length_mm, sections[i + 1].length_mm);
+    SEWER3D_VALIDATE(j.gap_mm < max_gap, field + "gap_mm",
+                     "must be less than half the shorter neighbouring section ("
+                         << max_gap << "), got " << j.gap_mm);
+    SEWER3D_VALIDATE(j.offset_mm < 0.2 * sections[i].diameter_mm, field + "offset_mm",
+                     "must be less than 20 % of the section's diameter ("
+                         << 0.2 * sections[i].diameter_mm << "), got " << j.offset_mm);
+    SEWER3D_VALIDATE(std::abs(j.deflection_deg) <= 10.0, field + "deflection_deg",
+                     "must be within ±10, got " << j.deflection_deg);
   }
-  for (const PipeFeature& f : features) {
+  for (size_t i = 0; i < features.size(); ++i) {
+    const PipeFeature& f = features[i];
+    const std::string field = "features[" + std::to_string(i) + "].";
     using T = PipeFeature::Type;
-    SEWER3D_CHECK(
-        f.type != T::kConnection ||
-            (f.diameter_mm > 0.0 && f.wall_mm >= 0.0 && f.intrusion_mm >= 0.0),
-        "feature " << f.id << ": connection needs diameter_mm > 0, wall_mm and intrusion_mm >= 0");
-    SEWER3D_CHECK(
-        f.type != T::kSpalling || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
-        "feature " << f.id << ": spalling needs length_mm, width_mm and depth_mm > 0");
-    SEWER3D_CHECK(
-        f.type != T::kCrack || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
-        "feature " << f.id << ": crack needs length_mm, width_mm and depth_mm > 0");
-    SEWER3D_CHECK(f.type != T::kDeposit || (f.length_mm > 0.0 && f.height_mm > 0.0),
-                  "feature " << f.id << ": deposit needs length_mm and height_mm > 0");
+    if (f.type == T::kConnection) {
+      ValidatePositive(field + "diameter_mm", f.diameter_mm);
+      ValidateNotNegative(field + "wall_mm", f.wall_mm);
+      ValidateNotNegative(field + "intrusion_mm", f.intrusion_mm);
+    }
+    if (f.type == T::kSpalling || f.type == T::kCrack) {
+      ValidatePositive(field + "length_mm", f.length_mm);
+      ValidatePositive(field + "width_mm", f.width_mm);
+      ValidatePositive(field + "depth_mm", f.depth_mm);
+    }
+    if (f.type == T::kDeposit) {
+      ValidatePositive(field + "length_mm", f.length_mm);
+      ValidatePositive(field + "height_mm", f.height_mm);
+    }
     for (const PipeSection& s : sections) {
-      SEWER3D_CHECK(f.intrusion_mm < 0.4 * s.diameter_mm && f.height_mm < 0.5 * s.diameter_mm,
-                    "feature " << f.id << ": intrusion or deposit too large for a Ø"
-                               << s.diameter_mm << " section");
+      SEWER3D_VALIDATE(f.intrusion_mm < 0.4 * s.diameter_mm, field + "intrusion_mm",
+                       "must be less than 40 % of every section's diameter (Ø"
+                           << s.diameter_mm << ": " << 0.4 * s.diameter_mm << "), got "
+                           << f.intrusion_mm);
+      SEWER3D_VALIDATE(f.height_mm < 0.5 * s.diameter_mm, field + "height_mm",
+                       "must be less than half of every section's diameter (Ø"
+                           << s.diameter_mm << ": " << 0.5 * s.diameter_mm << "), got "
+                           << f.height_mm);
     }
   }
 }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
@@ -10,21 +12,28 @@
 namespace sewer3d {
 
 void RigOptions::Check() const {
-  SEWER3D_CHECK(modules >= 1 && modules <= 12, "modules " << modules);
-  SEWER3D_CHECK(stagger_mm >= 0.0, "stagger " << stagger_mm);
-  SEWER3D_CHECK(carrier_diameter_mm > 0.0 && carrier_length_mm > 0.0, "carrier size");
+  SEWER3D_VALIDATE(modules >= 1 && modules <= 12, "modules", "must be 1..12, got " << modules);
+  ValidateNotNegative("stagger_mm", stagger_mm);
+  ValidatePositive("carrier_diameter_mm", carrier_diameter_mm);
+  ValidatePositive("carrier_length_mm", carrier_length_mm);
 }
 
 void Rig::Check() const {
-  SEWER3D_CHECK(!modules.empty(), "rig without modules");
-  SEWER3D_CHECK(carrier_diameter_mm > 0.0 && carrier_length_mm > 0.0, "carrier size");
-  for (const RigModule& m : modules) {
-    m.module.Check();
+  // Field names as in rig.json.
+  SEWER3D_VALIDATE(!modules.empty(), "modules", "must list at least one module");
+  ValidatePositive("carrier.diameter_mm", carrier_diameter_mm);
+  ValidatePositive("carrier.length_mm", carrier_length_mm);
+  for (size_t i = 0; i < modules.size(); ++i) {
+    const RigModule& m = modules[i];
+    const std::string field = "modules[" + std::to_string(i) + "].";
+    CheckWithin(field + "module.", [&] { m.module.Check(); });
     for (const Eigen::Vector3d& c :
          {m.carrier_from_camera.translation, ProjectorCentreInCarrier(m)}) {
-      SEWER3D_CHECK(std::abs(c.z()) <= 0.5 * carrier_length_mm + 1e-6 &&
-                        std::hypot(c.x(), c.y()) <= 0.5 * carrier_diameter_mm + 1e-6,
-                    "module " << m.name << ": camera or projector outside the carrier");
+      SEWER3D_VALIDATE(
+          std::abs(c.z()) <= 0.5 * carrier_length_mm + 1e-6 &&
+              std::hypot(c.x(), c.y()) <= 0.5 * carrier_diameter_mm + 1e-6,
+          field + "carrier_from_camera",
+          "puts the camera or projector of module " << m.name << " outside the carrier");
     }
   }
 }
@@ -59,7 +68,15 @@ Rig MakeRig(const ModuleDescription& module, const RigOptions& o) {
     m.carrier_from_camera = Rigid3d(r, Eigen::Vector3d(0.0, 0.0, camera_z));
     rig.modules.push_back(m);
   }
-  rig.Check();
+  // In the options' terms: the stagger (with the module's baseline) sets what fits.
+  try {
+    rig.Check();
+  } catch (const InvalidValue& e) {
+    std::ostringstream problem;
+    problem << "the " << o.modules << " modules at " << o.stagger_mm << " mm do not fit in the "
+            << o.carrier_length_mm << " mm carrier (" << e.what() << ")";
+    throw InvalidValue("stagger_mm", problem.str());
+  }
   return rig;
 }
 

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
@@ -108,23 +109,31 @@ std::optional<SurfaceHit> IntersectPlane(const Scene& s, const Eigen::Vector3d& 
 }  // namespace
 
 void Scene::Check() const {
-  SEWER3D_CHECK(type != Type::kPlane || distance_mm > 0.0, "plane distance " << distance_mm);
-  SEWER3D_CHECK(std::abs(tilt_deg) < 89.0, "tilt " << tilt_deg);
-  SEWER3D_CHECK(type == Type::kPlane || diameter_mm > 0.0, "diameter " << diameter_mm);
-  SEWER3D_CHECK(axis.norm() > 0.0 && axis.allFinite(), "axis");
-  SEWER3D_CHECK(type == Type::kPlane || std::abs(axis.normalized().z()) < 0.99,
-                "cylinder axis nearly along the optical axis");
+  // Field names as in scene files (docs/simulator.md).
+  if (type == Type::kPlane) ValidatePositive("distance_mm", distance_mm);
+  SEWER3D_VALIDATE(std::abs(tilt_deg) < 89.0, "tilt_deg",
+                   "must be within ±89 (exclusive), got " << tilt_deg);
+  if (type != Type::kPlane) ValidatePositive("diameter_mm", diameter_mm);
+  SEWER3D_VALIDATE(axis.norm() > 0.0 && axis.allFinite(), "axis", "must be a non-zero direction");
+  SEWER3D_VALIDATE(type == Type::kPlane || std::abs(axis.normalized().z()) < 0.99, "axis",
+                   "must not run (nearly) along the camera's optical axis");
   if (type != Type::kPlane) {
     const CylinderFrame f = FrameOf(*this);
     const Eigen::Vector3d w = -f.c;
     const double rho = (w - w.dot(f.a) * f.a).norm();
-    SEWER3D_CHECK(rho < f.radius, "camera outside the cylinder (decentring " << rho << " mm)");
+    SEWER3D_VALIDATE(rho < f.radius, "axis_point_mm",
+                     "puts the camera outside the cylinder (decentring " << rho << " mm, radius "
+                                                                         << f.radius << " mm)");
   }
-  for (const auto& ft : features) {
-    SEWER3D_CHECK(ft.gap_mm >= 0.0 && ft.width_mm >= 0.0 && ft.length_mm >= 0.0, "feature size");
-    SEWER3D_CHECK(ft.type != WallFeature::Type::kBump || ft.radius_mm > 0.0, "bump radius");
-    SEWER3D_CHECK(ft.type != WallFeature::Type::kPit || ft.radius_mm > 0.0, "pit radius");
-    SEWER3D_CHECK(ft.type != WallFeature::Type::kCrack || ft.width_mm > 0.0, "crack width");
+  for (size_t i = 0; i < features.size(); ++i) {
+    const WallFeature& ft = features[i];
+    const std::string field = "features[" + std::to_string(i) + "].";
+    ValidateNotNegative(field + "gap_mm", ft.gap_mm);
+    ValidateNotNegative(field + "width_mm", ft.width_mm);
+    ValidateNotNegative(field + "length_mm", ft.length_mm);
+    if (ft.type == WallFeature::Type::kBump || ft.type == WallFeature::Type::kPit)
+      ValidatePositive(field + "radius_mm", ft.radius_mm);
+    if (ft.type == WallFeature::Type::kCrack) ValidatePositive(field + "width_mm", ft.width_mm);
   }
 }
 
