@@ -4,11 +4,14 @@
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/scenario_io.hpp"
 #include "sewer3d/io/scene_io.hpp"
@@ -46,6 +49,22 @@ std::vector<WallFeature> PipeWallPreset() {
   f[3].length_mm = 60.0;
   f[3].angle_deg = 70.0;
   return f;
+}
+
+// Checks a scene built from the options, naming the option where the scene names its field.
+void CheckSceneOptions(const Scene& scene) {
+  try {
+    scene.Check();
+  } catch (const InvalidValue& e) {
+    static const std::map<std::string, std::string> kOption{{"distance_mm", "--distance-mm"},
+                                                            {"tilt_deg", "--tilt-deg"},
+                                                            {"diameter_mm", "--diameter-mm"},
+                                                            {"axis_point_mm", "--decentre-mm"},
+                                                            {"axis", "--axis"}};
+    const auto it = kOption.find(e.field());
+    if (it == kOption.end()) throw;
+    throw InvalidValue(it->second, e.problem());
+  }
 }
 
 struct RunArgs {
@@ -109,7 +128,14 @@ int RunRun(const RunArgs& a) {
                  total, seconds, seconds / done * (total - done));
     if (done == total) std::fprintf(stderr, "\n");
   };
-  const SimulatedRun r = SimulateRun(s, module, pattern, a.out, progress);
+  // What only the simulation can check (the rig's fit, the capture plan) is still the scenario
+  // file's error.
+  SimulatedRun r;
+  auto simulate = [&] { r = SimulateRun(s, module, pattern, a.out, progress); };
+  if (a.scenario.empty())
+    simulate();
+  else
+    ValidateFileContents(a.scenario, simulate);
   fmt::print("run '{}': {} acquisitions x {} modules x 3 images = {} images of {}x{} px\n", s.name,
              r.plan.acquisitions, s.rig.modules, r.images, module.camera.width,
              module.camera.height);
@@ -206,7 +232,7 @@ Command AddSimulateCommand(CLI::App& app) {
           scene.axis_point_mm = {args->decentre[0], 0.0, args->decentre[1]};
           scene.axis = {args->axis[0], args->axis[1], args->axis[2]};
           if (scene.type == Scene::Type::kPipeWall) scene.features = PipeWallPreset();
-          scene.Check();
+          CheckSceneOptions(scene);
         } else {
           scene = ReadScene(args->scene);
         }

@@ -152,6 +152,7 @@ LoadedRig ReadRig(const std::filesystem::path& path) {
     out.patterns.push_back(ReadPatternMatrix(matrix));
     out.rig.modules.push_back(rm);
   }
+  ValidateFileContents(path, [&] { out.rig.Check(); });
   return out;
 }
 

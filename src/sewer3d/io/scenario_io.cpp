@@ -292,11 +292,7 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
     s.truth_depth = TruthDepth::kNone;
   else
     in.Fail("truth_depth", "must be all, pattern or none, got '" + truth + "'");
-  try {
-    s.Check();
-  } catch (const std::invalid_argument& e) {
-    throw FileError(path, std::string("inconsistent scenario: ") + e.what());
-  }
+  ValidateFileContents(path, [&] { s.Check(); });
   return s;
 }
 

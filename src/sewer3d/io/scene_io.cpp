@@ -93,11 +93,7 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
       s.features.push_back(ft);
     }
   }
-  try {
-    s.Check();
-  } catch (const std::invalid_argument& e) {
-    throw FileError(path, std::string("inconsistent scene: ") + e.what());
-  }
+  ValidateFileContents(path, [&] { s.Check(); });
   return s;
 }
 
