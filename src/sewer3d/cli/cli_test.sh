@@ -86,6 +86,14 @@ JSON
 expect_ok "$bin" simulate frame --module "$tmp/m/module.json" --scene "$tmp/s/wall.json" \
   --out "$tmp/s/wall" --supersampling 1 --bits 10
 grep -q vitrified_clay "$tmp/s/wall/scene.json" || fail "scene file not used"
+# The pipe-wall preset survives its own scene.json: re-rendered from it, the images are identical.
+expect_ok "$bin" simulate frame --module "$tmp/m/module.json" --scene pipe-wall --out "$tmp/s/pw" \
+  --supersampling 1
+expect_ok "$bin" simulate frame --module "$tmp/m/module.json" --scene "$tmp/s/pw/scene.json" \
+  --out "$tmp/s/pw2" --supersampling 1
+for f in pattern.png texture.png truth_depth.tiff; do
+  cmp -s "$tmp/s/pw/$f" "$tmp/s/pw2/$f" || fail "pipe-wall $f differs when rendered from its scene.json"
+done
 echo '{"type": "torus"}' >"$tmp/s/bad.json"
 expect_error "'type'" "$bin" simulate frame --module "$tmp/m/module.json" --scene "$tmp/s/bad.json" --out "$tmp/s/x"
 echo '{"type": "cylinder", "diameter_mm": 100, "axis_point_mm": [0, 0, 80]}' >"$tmp/s/outside.json"

@@ -24,31 +24,32 @@ namespace {
 
 // The pipe-wall preset: a DN300 wall with a displaced open joint, an intrusion, a pit and a
 // crack, all inside the default module's field of view.
-std::vector<WallFeature> PipeWallPreset() {
-  std::vector<WallFeature> f(4);
-  f[0].type = WallFeature::Type::kJoint;
-  f[0].station_mm = 45.0;
-  f[0].gap_mm = 6.0;
-  f[0].height_mm = 4.0;
-  f[0].offset_mm = 5.0;
-  f[1].type = WallFeature::Type::kBump;
-  f[1].station_mm = 10.0;
-  f[1].clock_deg = -18.0;
-  f[1].height_mm = 6.0;
-  f[1].radius_mm = 6.0;
-  f[2].type = WallFeature::Type::kPit;
-  f[2].station_mm = 0.0;
-  f[2].clock_deg = 15.0;
-  f[2].height_mm = 4.0;
-  f[2].radius_mm = 10.0;
-  f[3].type = WallFeature::Type::kCrack;
-  f[3].station_mm = 90.0;
-  f[3].clock_deg = -5.0;
-  f[3].height_mm = 2.0;
-  f[3].width_mm = 1.0;
-  f[3].length_mm = 60.0;
-  f[3].angle_deg = 70.0;
-  return f;
+std::vector<PipeFeature> PipeWallPreset() {
+  using T = PipeFeature::Type;
+  // Clock positions in hours, 12 h = 360° (so −18° is −18 / 30 h) from the view direction.
+  return {{.type = T::kJointStep,
+           .station_mm = 45.0,
+           .clock_h = 0.0,
+           .depth_mm = 4.0,
+           .gap_mm = 6.0,
+           .offset_mm = 5.0},
+          {.type = T::kBump,
+           .station_mm = 10.0,
+           .clock_h = -18.0 / 30.0,
+           .height_mm = 6.0,
+           .radius_mm = 6.0},
+          {.type = T::kPit,
+           .station_mm = 0.0,
+           .clock_h = 15.0 / 30.0,
+           .depth_mm = 4.0,
+           .radius_mm = 10.0},
+          {.type = T::kCrack,
+           .station_mm = 90.0,
+           .clock_h = -5.0 / 30.0,
+           .length_mm = 60.0,
+           .width_mm = 1.0,
+           .depth_mm = 2.0,
+           .angle_deg = 70.0}};
 }
 
 // Checks a scene built from the options, naming the option where the scene names its field.

@@ -13,21 +13,6 @@
 namespace sewer3d {
 namespace {
 
-constexpr double kEdgeMm = 0.4;  // width of the smoothed edges of features
-
-// Into [−π, π]; cheaper than std::remainder for the small multiples of 2π met here.
-double WrapAngle(double a) {
-  while (a > std::numbers::pi) a -= kTwoPi;
-  while (a < -std::numbers::pi) a += kTwoPi;
-  return a;
-}
-
-// 0 below −½, 1 above ½, smooth in between.
-double Step(double x) {
-  const double u = std::clamp(x + 0.5, 0.0, 1.0);
-  return u * u * (3.0 - 2.0 * u);
-}
-
 // Centreline frame of a section in its own start frame at arc length u.
 Rigid3d LocalFrame(const PipeSection& s, double u) {
   if (s.bend_radius_mm <= 0.0) return {Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, u)};
@@ -96,20 +81,14 @@ void PipeWorld::Check() const {
     const PipeFeature& f = features[i];
     const std::string field = "features[" + std::to_string(i) + "].";
     using T = PipeFeature::Type;
-    if (f.type == T::kConnection) {
-      ValidatePositive(field + "diameter_mm", f.diameter_mm);
-      ValidateNotNegative(field + "wall_mm", f.wall_mm);
-      ValidateNotNegative(field + "intrusion_mm", f.intrusion_mm);
-    }
-    if (f.type == T::kSpalling || f.type == T::kCrack) {
-      ValidatePositive(field + "length_mm", f.length_mm);
-      ValidatePositive(field + "width_mm", f.width_mm);
-      ValidatePositive(field + "depth_mm", f.depth_mm);
-    }
-    if (f.type == T::kDeposit) {
-      ValidatePositive(field + "length_mm", f.length_mm);
-      ValidatePositive(field + "height_mm", f.height_mm);
-    }
+    SEWER3D_VALIDATE(f.type == T::kConnection || f.type == T::kSpalling || f.type == T::kCrack ||
+                         f.type == T::kDeposit,
+                     field + "type",
+                     "must be connection, spalling, crack or deposit, got "
+                         << PipeFeatureTypeName(f.type)
+                         << " (bump, pit and joint belong to pipe-wall scenes; a pipe's joints "
+                            "go in \"joints\")");
+    CheckWithin(field, [&] { f.Check(); });
     for (const PipeSection& s : sections) {
       SEWER3D_VALIDATE(f.intrusion_mm < 0.4 * s.diameter_mm, field + "intrusion_mm",
                        "must be less than 40 % of every section's diameter (Ø"
@@ -171,11 +150,11 @@ Rigid3d PipeGeometry::PathFrame(double station_mm, double blend_mm) const {
   const Rigid3d here = SectionFrame(i, station_mm - start_station_[i]);
   const double end = start_station_[i] + world_.sections[i].length_mm;
   if (i + 1 < n && station_mm > end - blend_mm) {
-    const double w = Step((station_mm - end) / (2.0 * blend_mm));
+    const double w = SmoothStep((station_mm - end) / (2.0 * blend_mm));
     return Blend(here, SectionFrame(i + 1, station_mm - start_station_[i + 1]), w);
   }
   if (i > 0 && station_mm < start_station_[i] + blend_mm) {
-    const double w = Step((start_station_[i] - station_mm) / (2.0 * blend_mm));
+    const double w = SmoothStep((start_station_[i] - station_mm) / (2.0 * blend_mm));
     return Blend(here, SectionFrame(i - 1, station_mm - start_station_[i - 1]), w);
   }
   return here;
@@ -220,87 +199,27 @@ PipeLocation PipeGeometry::LocateAt(const Eigen::Vector3d& p, bool with_clock) c
 double PipeGeometry::Displacement(PipeLocation at, Material* material) const {
   const PipeSection& s = world_.sections[at.section];
   const double radius = 0.5 * s.diameter_mm;
-  double d = 0.0, strongest = 0.0;
+  double d = 0.0;
   // Open gaps at the joints before and after this section.
   if (at.section > 0) {
     const PipeJoint& j = world_.joints[at.section - 1];
     if (j.gap_depth_mm > 0.0)
-      d -= j.gap_depth_mm * (1.0 - Step((at.local_mm - 0.5 * j.gap_mm) / kEdgeMm));
+      d -= j.gap_depth_mm * (1.0 - SmoothStep((at.local_mm - 0.5 * j.gap_mm) / kFeatureEdgeMm));
   }
   if (at.section + 1 < static_cast<int>(world_.sections.size())) {
     const PipeJoint& j = world_.joints[at.section];
     if (j.gap_depth_mm > 0.0) {
-      d -= j.gap_depth_mm * (1.0 - Step((s.length_mm - 0.5 * j.gap_mm - at.local_mm) / kEdgeMm));
+      d -= j.gap_depth_mm *
+           (1.0 - SmoothStep((s.length_mm - 0.5 * j.gap_mm - at.local_mm) / kFeatureEdgeMm));
     }
   }
-  for (size_t k = 0; k < world_.features.size(); ++k) {
-    const PipeFeature& f = world_.features[k];
-    const double ds = at.station_mm - f.station_mm;
-    const double reach =
-        f.type == PipeFeature::Type::kConnection ? 0.5 * f.diameter_mm + f.wall_mm + kEdgeMm
-        : f.type == PipeFeature::Type::kDeposit  ? f.length_mm
-                                                 : 0.5 * f.length_mm + f.width_mm + kEdgeMm;
-    if (std::abs(ds) > reach) continue;
-    EnsureClock(at);
-    const double dclock = WrapAngle(at.clock_rad - ClockHoursToRad(f.clock_h));
-    const double arc = dclock * radius;
-    double fd = 0.0;
-    Material m = s.material;
-    switch (f.type) {
-      case PipeFeature::Type::kConnection: {
-        const double r_in = 0.5 * f.diameter_mm, r_out = r_in + f.wall_mm;
-        if (std::abs(ds) > r_out + kEdgeMm || std::abs(arc) > r_out + kEdgeMm) continue;
-        const double r = std::sqrt(ds * ds + arc * arc);
-        const double bore = std::min(60.0, r_in);  // how deep the lateral's bore is modelled
-        fd = f.intrusion_mm * (1.0 - Step((r - r_out) / kEdgeMm)) -
-             (bore + f.intrusion_mm) * (1.0 - Step((r - r_in) / kEdgeMm));
-        m = Material::kVitrifiedClay;
-        break;
-      }
-      case PipeFeature::Type::kSpalling: {
-        if (std::abs(ds) > 0.5 * f.length_mm + kEdgeMm ||
-            std::abs(arc) > 0.5 * f.width_mm + kEdgeMm)
-          continue;
-        // Rounded rectangle (superellipse) with a rough bottom.
-        const double u = 2.0 * ds / f.length_mm, v = 2.0 * arc / f.width_mm;
-        const double q = std::pow(std::pow(u, 4) + std::pow(v, 4), 0.25);
-        const double edge = (q - 1.0) * 0.5 * std::min(f.length_mm, f.width_mm) / kEdgeMm;
-        const double rough = SmoothNoise(world_.material_seed + 17 + k, ds / 4.0, arc / 4.0, 3);
-        fd = -f.depth_mm * (0.6 + 0.8 * rough) * (1.0 - Step(edge));
-        break;
-      }
-      case PipeFeature::Type::kCrack: {
-        if (std::abs(ds) > 0.5 * f.length_mm + f.width_mm &&
-            std::abs(arc) > 0.5 * f.length_mm + f.width_mm)
-          continue;
-        const double ca = std::cos(DegToRad(f.angle_deg)), sa = std::sin(DegToRad(f.angle_deg));
-        const double along = ds * ca + arc * sa, across = -ds * sa + arc * ca;
-        if (std::abs(along) > 0.5 * f.length_mm) continue;
-        const double q = std::abs(across) / (0.5 * f.width_mm);
-        fd = q < 1.0 ? -f.depth_mm * (1.0 - q) : 0.0;
-        break;
-      }
-      case PipeFeature::Type::kDeposit: {
-        if (ds < 0.0 || ds > f.length_mm) continue;
-        const double ramp = std::min(30.0, 0.25 * f.length_mm);
-        const double h =
-            f.height_mm * std::min(Step(ds / ramp - 0.5), Step((f.length_mm - ds) / ramp - 0.5));
-        const double c = std::cos(dclock);
-        if (c <= 0.0) continue;
-        const double grit =
-            0.3 * (SmoothNoise(world_.material_seed + 29 + k, ds / 3.0, arc / 3.0, 2) - 0.5);
-        fd = std::max(0.0, radius - (radius - h - grit) / c);
-        m = Material::kSediment;
-        break;
-      }
-    }
-    d += fd;
-    if (material && fd > strongest) {
-      strongest = fd;
-      *material = m;
-    }
-  }
-  return d;
+  return AddPipeFeatures(
+      d, world_.features, world_.material_seed, radius, at.station_mm,
+      [&at] {
+        EnsureClock(at);
+        return at.clock_rad;
+      },
+      material);
 }
 
 double PipeGeometry::WallRadiusMm(const PipeLocation& at) const {
@@ -308,8 +227,8 @@ double PipeGeometry::WallRadiusMm(const PipeLocation& at) const {
   double radius = 0.5 * s.diameter_mm;
   if (s.ovality_pct > 0.0) {
     const double ramp = std::min(100.0, 0.25 * s.length_mm);
-    const double w =
-        std::min(Step(at.local_mm / ramp - 0.5), Step((s.length_mm - at.local_mm) / ramp - 0.5));
+    const double w = std::min(SmoothStep(at.local_mm / ramp - 0.5),
+                              SmoothStep((s.length_mm - at.local_mm) / ramp - 0.5));
     PipeLocation with_clock = at;
     EnsureClock(with_clock);
     radius *= 1.0 - 0.01 * s.ovality_pct * w *

@@ -53,39 +53,6 @@ void ToCylinder(const CylinderFrame& f, const Eigen::Vector3d& x, double& clock,
   clock = std::atan2(radial.dot(f.e2), radial.dot(f.e1));
 }
 
-double WrapAngle(double a) { return std::remainder(a, kTwoPi); }
-
-double FeatureDisplacement(const WallFeature& ft, double radius, double clock, double station) {
-  const double ds = station - ft.station_mm;
-  const double arc = WrapAngle(clock - DegToRad(ft.clock_deg)) * radius;
-  switch (ft.type) {
-    case WallFeature::Type::kJoint: {
-      // Next section (station beyond the joint) displaced laterally by offset toward clock;
-      // an open gap of the given width and depth at the joint.
-      double d = 0.0;
-      if (ds > 0.5 * ft.gap_mm) d += ft.offset_mm * std::cos(clock - DegToRad(ft.clock_deg));
-      if (std::abs(ds) <= 0.5 * ft.gap_mm) d -= ft.height_mm;
-      return d;
-    }
-    case WallFeature::Type::kBump: {
-      const double r2 = ds * ds + arc * arc;
-      return ft.height_mm * std::exp(-0.5 * r2 / (ft.radius_mm * ft.radius_mm));
-    }
-    case WallFeature::Type::kPit: {
-      const double q = (ds * ds + arc * arc) / (ft.radius_mm * ft.radius_mm);
-      return q < 1.0 ? -ft.height_mm * (1.0 - q) : 0.0;
-    }
-    case WallFeature::Type::kCrack: {
-      const double ca = std::cos(DegToRad(ft.angle_deg)), sa = std::sin(DegToRad(ft.angle_deg));
-      const double along = ds * ca + arc * sa, across = -ds * sa + arc * ca;
-      if (std::abs(along) > 0.5 * ft.length_mm) return 0.0;
-      const double q = std::abs(across) / (0.5 * ft.width_mm);
-      return q < 1.0 ? -ft.height_mm * (1.0 - q) : 0.0;
-    }
-  }
-  return 0.0;
-}
-
 std::optional<SurfaceHit> IntersectPlane(const Scene& s, const Eigen::Vector3d& o,
                                          const Eigen::Vector3d& d) {
   const Eigen::Vector3d n =
@@ -126,23 +93,24 @@ void Scene::Check() const {
                                                                          << f.radius << " mm)");
   }
   for (size_t i = 0; i < features.size(); ++i) {
-    const WallFeature& ft = features[i];
+    using T = PipeFeature::Type;
+    const PipeFeature& ft = features[i];
     const std::string field = "features[" + std::to_string(i) + "].";
-    ValidateNotNegative(field + "gap_mm", ft.gap_mm);
-    ValidateNotNegative(field + "width_mm", ft.width_mm);
-    ValidateNotNegative(field + "length_mm", ft.length_mm);
-    if (ft.type == WallFeature::Type::kBump || ft.type == WallFeature::Type::kPit)
-      ValidatePositive(field + "radius_mm", ft.radius_mm);
-    if (ft.type == WallFeature::Type::kCrack) ValidatePositive(field + "width_mm", ft.width_mm);
+    SEWER3D_VALIDATE(
+        ft.type == T::kJointStep || ft.type == T::kBump || ft.type == T::kPit ||
+            ft.type == T::kCrack,
+        field + "type",
+        "must be joint, bump, pit or crack, got "
+            << PipeFeatureTypeName(ft.type)
+            << " (connections, spalling and deposits need a pipe world: simulate run)");
+    CheckWithin(field, [&] { ft.Check(); });
   }
 }
 
 double WallDisplacementMm(const Scene& scene, double clock_rad, double station_mm) {
-  double d = 0.0;
-  for (const auto& ft : scene.features) {
-    d += FeatureDisplacement(ft, 0.5 * scene.diameter_mm, clock_rad, station_mm);
-  }
-  return d;
+  return AddPipeFeatures(
+      0.0, scene.features, scene.material_seed, 0.5 * scene.diameter_mm, station_mm,
+      [clock_rad] { return clock_rad; }, nullptr);
 }
 
 double DistanceToSurfaceMm(const Scene& scene, const Eigen::Vector3d& point) {
@@ -194,8 +162,9 @@ std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o
     // refine g(t) = ρ(t) − radius(t) by the Illinois variant of regula falsi.
     double max_in = 0.0, max_out = 0.0;
     for (const auto& ft : scene.features) {
-      max_in += std::max({ft.height_mm, std::abs(ft.offset_mm), 0.0});
-      max_out += std::max(ft.height_mm, 0.0) + std::abs(ft.offset_mm);
+      const double h = ft.type == PipeFeature::Type::kBump ? ft.height_mm : ft.depth_mm;
+      max_in += std::max({h, std::abs(ft.offset_mm), 0.0});
+      max_out += std::max(h, 0.0) + std::abs(ft.offset_mm);
     }
     auto g = [&](double t) {
       double clock, station, rho;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
@@ -43,18 +44,17 @@ TEST(Scene, PipeWallFollowsItsDisplacementField) {
   Scene s;
   s.type = Scene::Type::kPipeWall;
   s.diameter_mm = 300.0;
-  WallFeature joint;
-  joint.type = WallFeature::Type::kJoint;
-  joint.station_mm = 0.0;
-  joint.gap_mm = 4.0;
-  joint.height_mm = 3.0;
-  joint.offset_mm = 5.0;
-  WallFeature bump;
-  bump.type = WallFeature::Type::kBump;
-  bump.station_mm = -40.0;
-  bump.height_mm = 8.0;
-  bump.radius_mm = 6.0;
-  s.features = {joint, bump};
+  s.features = {{.type = PipeFeature::Type::kJointStep,
+                 .station_mm = 0.0,
+                 .clock_h = 0.0,
+                 .depth_mm = 3.0,
+                 .gap_mm = 4.0,
+                 .offset_mm = 5.0},
+                {.type = PipeFeature::Type::kBump,
+                 .station_mm = -40.0,
+                 .clock_h = 0.0,
+                 .height_mm = 8.0,
+                 .radius_mm = 6.0}};
   // Beyond the joint at clock 0 the wall is 5 mm closer; in the gap 3 mm deeper; on the bump
   // top 8 mm closer.
   auto radius_at = [&](double y) {
@@ -75,6 +75,27 @@ TEST(Scene, RejectsCameraOutsideCylinder) {
   s.diameter_mm = 100.0;
   s.axis_point_mm = {0.0, 0.0, 80.0};
   EXPECT_THROW(s.Check(), std::invalid_argument);
+}
+
+TEST(Scene, TakesTheWallFeaturesItCanRender) {
+  Scene s;
+  s.type = Scene::Type::kPipeWall;
+  s.features = {{.type = PipeFeature::Type::kCrack, .length_mm = 20.0, .width_mm = 1.0}};
+  try {
+    s.Check();
+    FAIL() << "a crack without depth passed";
+  } catch (const InvalidValue& e) {
+    EXPECT_EQ(e.field(), "features[0].depth_mm");
+  }
+  s.features[0].depth_mm = 1.0;
+  EXPECT_NO_THROW(s.Check());
+  s.features.push_back({.type = PipeFeature::Type::kDeposit, .length_mm = 50.0, .height_mm = 5.0});
+  try {
+    s.Check();
+    FAIL() << "a deposit passed";
+  } catch (const InvalidValue& e) {
+    EXPECT_EQ(e.field(), "features[1].type");
+  }
 }
 
 }  // namespace
