@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/material.hpp"
 #include "sewer3d/sim/renderer.hpp"
@@ -52,8 +53,7 @@ void BM_PipeWorldIntersect(benchmark::State& state) {
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> rays;
   for (int i = 0; i < 4096; ++i) {
     const Rigid3d pose = trajectory.WorldFromCarrier(trajectory.DurationS() * (i % 64) / 64.0);
-    const double a = 2.0 * 3.14159265358979 * HashUniform(5, i, 1),
-                 b = 1.2 * (HashUniform(5, i, 2) - 0.5);
+    const double a = kTwoPi * HashUniform(5, i, 1), b = 1.2 * (HashUniform(5, i, 2) - 0.5);
     rays.emplace_back(pose.translation,
                       pose.rotation * Eigen::Vector3d(std::sin(a), -std::cos(a), std::tan(b)));
   }

@@ -13,8 +13,9 @@
 namespace sewer3d {
 
 std::vector<Eigen::Vector3d> BoardCorners(int cols, int rows, double square_mm) {
-  SEWER3D_CHECK(cols >= 2 && rows >= 2 && square_mm > 0.0,
-                "board " << cols << "x" << rows << ", square " << square_mm);
+  SEWER3D_VALIDATE(cols >= 2 && rows >= 2, "board",
+                   "needs at least 2x2 inner corners, got " << cols << "x" << rows);
+  ValidatePositive("square_mm", square_mm);
   std::vector<Eigen::Vector3d> corners;
   for (int i = 0; i < rows; ++i) {
     for (int j = 0; j < cols; ++j) corners.emplace_back(j * square_mm, i * square_mm, 0.0);
@@ -25,7 +26,8 @@ std::vector<Eigen::Vector3d> BoardCorners(int cols, int rows, double square_mm) 
 CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views,
                                   const std::vector<Eigen::Vector3d>& board, int width, int height,
                                   const CalibrationOptions& options) {
-  SEWER3D_CHECK(views.size() >= 3, "calibration needs at least 3 views, got " << views.size());
+  SEWER3D_VALIDATE(views.size() >= 3, "",
+                   "calibration needs at least 3 views, got " << views.size());
   SEWER3D_CHECK(width > 0 && height > 0, "image size");
   for (const CalibrationView& v : views)
     SEWER3D_CHECK(v.corners_px.size() == board.size(), "view without all corners");

@@ -14,7 +14,8 @@ std::optional<std::vector<Eigen::Vector2d>> DetectChessboard(const cv::Mat& grey
                                                              int rows) {
   SEWER3D_CHECK(grey.channels() == 1 && grey.depth() == CV_8U,
                 "checkerboard detection needs an 8-bit grey image");
-  SEWER3D_CHECK(cols >= 2 && rows >= 2, "board " << cols << "x" << rows);
+  SEWER3D_VALIDATE(cols >= 2 && rows >= 2, "board",
+                   "needs at least 2x2 inner corners, got " << cols << "x" << rows);
   std::vector<cv::Point2f> corners;
   if (!cv::findChessboardCorners(grey, cv::Size(cols, rows), corners,
                                  cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) {

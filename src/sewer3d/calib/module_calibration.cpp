@@ -12,6 +12,7 @@
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/reprojection.hpp"
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
 
@@ -93,8 +94,8 @@ ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>
                                         const std::vector<Eigen::Vector3d>& board, int camera_width,
                                         int camera_height, int projector_width,
                                         int projector_height) {
-  SEWER3D_CHECK(views.size() >= 3,
-                "module calibration needs at least 3 views, got " << views.size());
+  SEWER3D_VALIDATE(views.size() >= 3, "",
+                   "module calibration needs at least 3 views, got " << views.size());
   // Each device alone first (Zhang + refinement), then both together.
   std::vector<CalibrationView> camera_views, projector_views;
   for (const auto& v : views) {
@@ -180,8 +181,7 @@ ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>
     const Eigen::Vector3d t(extrinsic[3], extrinsic[4], extrinsic[5]);
     const Eigen::Matrix3d st = Eigen::Map<const Eigen::Matrix3d>(tr) * variance;
     r.sigma[8] = std::sqrt(std::max(0.0, t.dot(st * t))) / std::max(1e-12, t.norm());
-    r.sigma[9] = std::sqrt(std::max({rot[0], rot[4], rot[8], 0.0}) * variance) * 180.0 /
-                 3.14159265358979323846;
+    r.sigma[9] = RadToDeg(std::sqrt(std::max({rot[0], rot[4], rot[8], 0.0}) * variance));
   }
   return r;
 }

@@ -9,6 +9,7 @@
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/module_calibration.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/board.hpp"
 #include "sewer3d/testing/small_module.hpp"
 
@@ -48,8 +49,8 @@ TEST(ModuleCalibration, RecoversCameraProjectorAndExtrinsics) {
   EXPECT_NEAR(r.projector.cy, truth.projector.cy, 1.0);
   const double baseline = r.projector_from_camera.translation.norm();
   EXPECT_NEAR(baseline, truth.projector_from_camera.translation.norm(), 0.1);
-  EXPECT_LT(r.projector_from_camera.rotation.angularDistance(truth.projector_from_camera.rotation) *
-                180.0 / M_PI,
+  EXPECT_LT(RadToDeg(r.projector_from_camera.rotation.angularDistance(
+                truth.projector_from_camera.rotation)),
             0.05);
   EXPECT_GT(r.sigma[8], 0.0);
 }

@@ -39,11 +39,14 @@ double FindFoldRadius(const std::array<double, 3>& k) {
 }  // namespace
 
 void CameraIntrinsics::Check() const {
-  SEWER3D_CHECK(width > 0 && height > 0, "image size " << width << "x" << height);
-  SEWER3D_CHECK(std::isfinite(fx) && std::isfinite(fy) && fx > 0.0 && fy > 0.0,
-                "focal lengths " << fx << ", " << fy);
-  SEWER3D_CHECK(std::isfinite(cx) && std::isfinite(cy), "principal point");
-  for (double ki : k) SEWER3D_CHECK(std::isfinite(ki), "distortion coefficient");
+  // Field names as in module.json.
+  SEWER3D_VALIDATE(width > 0, "width", "must be > 0, got " << width);
+  SEWER3D_VALIDATE(height > 0, "height", "must be > 0, got " << height);
+  SEWER3D_VALIDATE(std::isfinite(fx) && fx > 0.0, "fx", "must be finite and > 0, got " << fx);
+  SEWER3D_VALIDATE(std::isfinite(fy) && fy > 0.0, "fy", "must be finite and > 0, got " << fy);
+  SEWER3D_VALIDATE(std::isfinite(cx), "cx", "must be finite");
+  SEWER3D_VALIDATE(std::isfinite(cy), "cy", "must be finite");
+  for (double ki : k) SEWER3D_VALIDATE(std::isfinite(ki), "k", "must hold finite numbers");
 }
 
 CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intrinsics) {

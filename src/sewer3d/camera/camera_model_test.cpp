@@ -3,9 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <opencv2/calib3d.hpp>
 #include <random>
+
+#include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
 namespace {
@@ -15,7 +16,7 @@ CameraIntrinsics WideCamera(std::array<double, 3> k) {
   CameraIntrinsics c;
   c.width = 2592;
   c.height = 1944;
-  const double x_edge = std::tan(38.0 * std::numbers::pi / 180.0);
+  const double x_edge = std::tan(DegToRad(38.0));
   const double r2 = x_edge * x_edge;
   const double xd_edge = x_edge * (1 + r2 * (k[0] + r2 * (k[1] + r2 * k[2])));
   c.fx = c.fy = 1296.0 / xd_edge;

@@ -1,14 +1,12 @@
 #include "sewer3d/camera/default_module.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // Radial map of the lens applied to a radius.
 double DistortRadius(const std::array<double, 3>& k, double r) {
@@ -23,10 +21,10 @@ struct Derived {
 Derived Derive(const DefaultModuleOptions& o) {
   Derived d;
   // The image edge (half a pixel beyond the outer pixel centres) sees half the field.
-  const double x_edge = std::tan(0.5 * o.horizontal_fov_deg * kDegToRad);
+  const double x_edge = std::tan(DegToRad(0.5 * o.horizontal_fov_deg));
   d.focal_px = 0.5 * o.camera_width / DistortRadius(o.k, x_edge);
   // Field centres, tilted by half the stereo angle each, cross at the meeting distance.
-  d.tilt_rad = 0.5 * o.stereo_angle_deg * kDegToRad;
+  d.tilt_rad = DegToRad(0.5 * o.stereo_angle_deg);
   d.baseline_mm = 2.0 * o.meeting_distance_mm * std::tan(d.tilt_rad);
   // Sensor shift: the image centre pixel looks along the tilted field centre.
   d.shift_px = d.focal_px * DistortRadius(o.k, std::tan(d.tilt_rad));
@@ -36,12 +34,17 @@ Derived Derive(const DefaultModuleOptions& o) {
 }  // namespace
 
 void DefaultModuleOptions::Check() const {
-  SEWER3D_CHECK(camera_width >= 16 && camera_height >= 16,
-                "camera size " << camera_width << "x" << camera_height);
-  SEWER3D_CHECK(horizontal_fov_deg > 1.0 && horizontal_fov_deg < 160.0, horizontal_fov_deg);
-  SEWER3D_CHECK(stereo_angle_deg > 0.0 && stereo_angle_deg < 90.0, stereo_angle_deg);
-  SEWER3D_CHECK(meeting_distance_mm > 0.0, meeting_distance_mm);
-  SEWER3D_CHECK(pitch_px > 0.0 && spot_diameter_px > 0.0 && spot_diameter_px <= pitch_px);
+  SEWER3D_VALIDATE(camera_width >= 16 && camera_height >= 16, "camera_size",
+                   "must be at least 16x16, got " << camera_width << "x" << camera_height);
+  SEWER3D_VALIDATE(horizontal_fov_deg > 1.0 && horizontal_fov_deg < 160.0, "horizontal_fov_deg",
+                   "must be > 1 and < 160, got " << horizontal_fov_deg);
+  SEWER3D_VALIDATE(stereo_angle_deg > 0.0 && stereo_angle_deg < 90.0, "stereo_angle_deg",
+                   "must be > 0 and < 90, got " << stereo_angle_deg);
+  ValidatePositive("meeting_distance_mm", meeting_distance_mm);
+  ValidatePositive("pitch_px", pitch_px);
+  SEWER3D_VALIDATE(
+      spot_diameter_px > 0.0 && spot_diameter_px <= pitch_px, "spot_diameter_px",
+      "must be > 0 and at most pitch_px (" << pitch_px << "), got " << spot_diameter_px);
 }
 
 DefaultModuleGeometry DescribeDefaultModule(const DefaultModuleOptions& o) {
@@ -49,16 +52,16 @@ DefaultModuleGeometry DescribeDefaultModule(const DefaultModuleOptions& o) {
   const Derived d = Derive(o);
   DefaultModuleGeometry g;
   g.focal_px = d.focal_px;
-  g.field_tilt_deg = d.tilt_rad / kDegToRad;
+  g.field_tilt_deg = RadToDeg(d.tilt_rad);
   g.baseline_mm = d.baseline_mm;
   const ModuleDescription m = MakeDefaultModule(o);
   const CameraModel camera(m.camera);
   const auto half = camera.Undistort({0.0, 0.5 * o.camera_height / d.focal_px});
   const auto top = camera.Unproject({m.camera.cx, -0.5});
   const auto bottom = camera.Unproject({m.camera.cx, m.camera.height - 0.5});
-  if (half) g.lens_vertical_fov_deg = 2.0 * std::atan(half->y()) / kDegToRad;
-  if (top) g.field_top_deg = std::atan(top->y()) / kDegToRad;
-  if (bottom) g.field_bottom_deg = std::atan(bottom->y()) / kDegToRad;
+  if (half) g.lens_vertical_fov_deg = RadToDeg(2.0 * std::atan(half->y()));
+  if (top) g.field_top_deg = RadToDeg(std::atan(top->y()));
+  if (bottom) g.field_bottom_deg = RadToDeg(std::atan(bottom->y()));
   return g;
 }
 

@@ -3,12 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
+
+#include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 TEST(DefaultModule, FieldCentresMeetAtMidRangeWithTheStereoAngle) {
   const DefaultModuleOptions options;
@@ -24,8 +23,8 @@ TEST(DefaultModule, FieldCentresMeetAtMidRangeWithTheStereoAngle) {
   // Angle between the two rays at the point: the paper's stereo angle.
   const Eigen::Vector3d projector_centre = m.projector_from_camera.Inverse().translation;
   const double angle = std::acos(ray.dot((point - projector_centre).normalized()));
-  EXPECT_NEAR(angle / kDeg, 29.0, 1e-9);
-  EXPECT_NEAR(projector_centre.y(), 2.0 * 150.0 * std::tan(14.5 * kDeg), 1e-9);  // 77.58 mm
+  EXPECT_NEAR(RadToDeg(angle), 29.0, 1e-9);
+  EXPECT_NEAR(projector_centre.y(), 2.0 * 150.0 * std::tan(DegToRad(14.5)), 1e-9);  // 77.58 mm
   EXPECT_NEAR(projector_centre.x(), 0.0, 1e-12);
   EXPECT_NEAR(projector_centre.z(), 0.0, 1e-12);
 }
@@ -36,13 +35,13 @@ TEST(DefaultModule, HorizontalFieldIs76DegreesAndLensVerticalAbout61) {
   ASSERT_TRUE(camera.WholeImageInvertible());
   const auto left = camera.Unproject({-0.5, m.camera.cy});
   const auto right = camera.Unproject({m.camera.width - 0.5, m.camera.cy});
-  EXPECT_NEAR((std::atan(right->x()) - std::atan(left->x())) / kDeg, 76.0, 1e-9);
+  EXPECT_NEAR(RadToDeg(std::atan(right->x()) - std::atan(left->x())), 76.0, 1e-9);
   const DefaultModuleGeometry g = DescribeDefaultModule({});
   // The paper's 76° x 61° lens; barrel distortion trims the vertical field a little.
   EXPECT_NEAR(g.lens_vertical_fov_deg, 61.0, 1.5);
   // Sensor shift: the field is tilted by 14.5° toward the projector (+y).
   const Eigen::Vector3d centre = *camera.Ray({m.camera.cx, (m.camera.height - 1) / 2.0});
-  EXPECT_NEAR(std::atan2(centre.y(), centre.z()) / kDeg, 14.5, 1e-9);
+  EXPECT_NEAR(RadToDeg(std::atan2(centre.y(), centre.z())), 14.5, 1e-9);
   EXPECT_LT(g.field_top_deg, 0.0);
   EXPECT_GT(g.field_bottom_deg, 14.5);
   EXPECT_TRUE(CameraModel(m.projector).WholeImageInvertible());
@@ -58,7 +57,7 @@ TEST(DefaultModule, EpipolarLinesAreProjectorRowsWithoutDistortion) {
       MakeDefaultModule(options), kWorkingDistanceMinMm, kWorkingDistanceMaxMm, 8);
   EXPECT_LT(ideal.max_dv_px, 1e-9);
   const double f = MakeDefaultModule(options).camera.fx;
-  const double b = 2.0 * 150.0 * std::tan(14.5 * kDeg);
+  const double b = 2.0 * 150.0 * std::tan(DegToRad(14.5));
   EXPECT_NEAR(ideal.max_du_px, f * b * (1.0 / 75.0 - 1.0 / 225.0), 1e-6);
 }
 

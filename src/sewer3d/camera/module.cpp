@@ -8,20 +8,25 @@
 namespace sewer3d {
 
 void PatternLayout::Check() const {
-  SEWER3D_CHECK(!matrix_path.empty(), "pattern matrix path is empty");
-  SEWER3D_CHECK(std::isfinite(pitch_px) && pitch_px > 0.0, "pitch_px " << pitch_px);
-  SEWER3D_CHECK(
+  // Field names as in module.json's "pattern".
+  SEWER3D_VALIDATE(!matrix_path.empty(), "matrix", "must name the pattern's PNG");
+  SEWER3D_VALIDATE(std::isfinite(pitch_px) && pitch_px > 0.0, "pitch_px",
+                   "must be finite and > 0, got " << pitch_px);
+  SEWER3D_VALIDATE(
       std::isfinite(spot_diameter_px) && spot_diameter_px > 0.0 && spot_diameter_px <= pitch_px,
-      "spot_diameter_px " << spot_diameter_px << " with pitch " << pitch_px);
-  SEWER3D_CHECK(offset_px.allFinite(), "offset_px");
+      "spot_diameter_px",
+      "must be > 0 and at most pitch_px (" << pitch_px << "), got " << spot_diameter_px);
+  SEWER3D_VALIDATE(offset_px.allFinite(), "offset_px", "must be finite");
 }
 
 void ModuleDescription::Check() const {
-  camera.Check();
-  projector.Check();
-  pattern.Check();
-  SEWER3D_CHECK(projector_from_camera.translation.allFinite(), "translation");
-  SEWER3D_CHECK(std::abs(projector_from_camera.rotation.norm() - 1.0) < 1e-9, "rotation");
+  CheckWithin("camera.", [&] { camera.Check(); });
+  CheckWithin("projector.", [&] { projector.Check(); });
+  CheckWithin("pattern.", [&] { pattern.Check(); });
+  SEWER3D_VALIDATE(projector_from_camera.translation.allFinite(),
+                   "projector_from_camera.translation_mm", "must be finite");
+  SEWER3D_VALIDATE(std::abs(projector_from_camera.rotation.norm() - 1.0) < 1e-9,
+                   "projector_from_camera.rotation", "must be a rotation");
 }
 
 DisparityRange ComputeDisparityRange(const ModuleDescription& module, double z_min_mm,

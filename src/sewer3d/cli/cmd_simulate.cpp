@@ -4,11 +4,14 @@
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/renderer.hpp"
@@ -21,31 +24,48 @@ namespace {
 
 // The pipe-wall preset: a DN300 wall with a displaced open joint, an intrusion, a pit and a
 // crack, all inside the default module's field of view.
-std::vector<WallFeature> PipeWallPreset() {
-  std::vector<WallFeature> f(4);
-  f[0].type = WallFeature::Type::kJoint;
-  f[0].station_mm = 45.0;
-  f[0].gap_mm = 6.0;
-  f[0].height_mm = 4.0;
-  f[0].offset_mm = 5.0;
-  f[1].type = WallFeature::Type::kBump;
-  f[1].station_mm = 10.0;
-  f[1].clock_deg = -18.0;
-  f[1].height_mm = 6.0;
-  f[1].radius_mm = 6.0;
-  f[2].type = WallFeature::Type::kPit;
-  f[2].station_mm = 0.0;
-  f[2].clock_deg = 15.0;
-  f[2].height_mm = 4.0;
-  f[2].radius_mm = 10.0;
-  f[3].type = WallFeature::Type::kCrack;
-  f[3].station_mm = 90.0;
-  f[3].clock_deg = -5.0;
-  f[3].height_mm = 2.0;
-  f[3].width_mm = 1.0;
-  f[3].length_mm = 60.0;
-  f[3].angle_deg = 70.0;
-  return f;
+std::vector<PipeFeature> PipeWallPreset() {
+  using T = PipeFeature::Type;
+  // Clock positions in hours, 12 h = 360° (so −18° is −18 / 30 h) from the view direction.
+  return {{.type = T::kJointStep,
+           .station_mm = 45.0,
+           .clock_h = 0.0,
+           .depth_mm = 4.0,
+           .gap_mm = 6.0,
+           .offset_mm = 5.0},
+          {.type = T::kBump,
+           .station_mm = 10.0,
+           .clock_h = -18.0 / 30.0,
+           .height_mm = 6.0,
+           .radius_mm = 6.0},
+          {.type = T::kPit,
+           .station_mm = 0.0,
+           .clock_h = 15.0 / 30.0,
+           .depth_mm = 4.0,
+           .radius_mm = 10.0},
+          {.type = T::kCrack,
+           .station_mm = 90.0,
+           .clock_h = -5.0 / 30.0,
+           .length_mm = 60.0,
+           .width_mm = 1.0,
+           .depth_mm = 2.0,
+           .angle_deg = 70.0}};
+}
+
+// Checks a scene built from the options, naming the option where the scene names its field.
+void CheckSceneOptions(const Scene& scene) {
+  try {
+    scene.Check();
+  } catch (const InvalidValue& e) {
+    static const std::map<std::string, std::string> kOption{{"distance_mm", "--distance-mm"},
+                                                            {"tilt_deg", "--tilt-deg"},
+                                                            {"diameter_mm", "--diameter-mm"},
+                                                            {"axis_point_mm", "--decentre-mm"},
+                                                            {"axis", "--axis"}};
+    const auto it = kOption.find(e.field());
+    if (it == kOption.end()) throw;
+    throw InvalidValue(it->second, e.problem());
+  }
 }
 
 struct RunArgs {
@@ -109,7 +129,14 @@ int RunRun(const RunArgs& a) {
                  total, seconds, seconds / done * (total - done));
     if (done == total) std::fprintf(stderr, "\n");
   };
-  const SimulatedRun r = SimulateRun(s, module, pattern, a.out, progress);
+  // What only the simulation can check (the rig's fit, the capture plan) is still the scenario
+  // file's error.
+  SimulatedRun r;
+  auto simulate = [&] { r = SimulateRun(s, module, pattern, a.out, progress); };
+  if (a.scenario.empty())
+    simulate();
+  else
+    ValidateFileContents(a.scenario, simulate);
   fmt::print("run '{}': {} acquisitions x {} modules x 3 images = {} images of {}x{} px\n", s.name,
              r.plan.acquisitions, s.rig.modules, r.images, module.camera.width,
              module.camera.height);
@@ -206,7 +233,7 @@ Command AddSimulateCommand(CLI::App& app) {
           scene.axis_point_mm = {args->decentre[0], 0.0, args->decentre[1]};
           scene.axis = {args->axis[0], args->axis[1], args->axis[2]};
           if (scene.type == Scene::Type::kPipeWall) scene.features = PipeWallPreset();
-          scene.Check();
+          CheckSceneOptions(scene);
         } else {
           scene = ReadScene(args->scene);
         }

@@ -1,5 +1,5 @@
 // sewer3d: one binary, one subcommand per task (DESIGN.md, command-line contract).
-// Errors end here: one line on stderr and a non-zero exit status.
+// Errors end here: one line on stderr and the exit status of cli/exit_code.hpp (README's table).
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -8,13 +8,15 @@
 #include <vector>
 
 #include "sewer3d/cli/command.hpp"
-#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/cli/exit_code.hpp"
 
 namespace {
 
-constexpr int kExitUsage = 2;
-constexpr int kExitFile = 3;
-constexpr int kExitInternal = 4;
+int ReportError(std::exception_ptr error) {
+  const sewer3d::cli::ErrorExit exit = sewer3d::cli::ExitForError(error);
+  std::cerr << "sewer3d: error: " << exit.message << "\n";
+  return exit.code;
+}
 
 }  // namespace
 
@@ -50,23 +52,15 @@ int main(int argc, char** argv) {
       std::cout << app.help();
       return 0;
     }
-    std::cerr << "sewer3d: error: " << e.what() << " (see sewer3d --help)\n";
-    return kExitUsage;
+    return ReportError(std::current_exception());
   }
   try {
     for (const auto& c : commands) {
       if (c.app->parsed()) return c.run();
     }
     std::cerr << "sewer3d: error: no subcommand\n";
-    return kExitUsage;
-  } catch (const sewer3d::FileError& e) {
-    std::cerr << "sewer3d: error: " << e.what() << "\n";
-    return kExitFile;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "sewer3d: error: invalid value: " << e.what() << "\n";
-    return kExitUsage;
-  } catch (const std::exception& e) {
-    std::cerr << "sewer3d: error: " << e.what() << "\n";
-    return kExitInternal;
+    return sewer3d::cli::kExitUsage;
+  } catch (...) {
+    return ReportError(std::current_exception());
   }
 }

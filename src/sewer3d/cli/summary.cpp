@@ -3,15 +3,13 @@
 #include <fmt/core.h>
 
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/pattern/constraints.hpp"
 
 namespace sewer3d::cli {
 namespace {
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 // Full field of view (deg) along x or y through the principal point.
 double FieldOfView(const CameraModel& model, bool horizontal) {
@@ -20,8 +18,8 @@ double FieldOfView(const CameraModel& model, bool horizontal) {
   const auto b =
       horizontal ? model.Unproject({c.width - 0.5, c.cy}) : model.Unproject({c.cx, c.height - 0.5});
   if (!a || !b) return std::nan("");
-  return horizontal ? (std::atan(b->x()) - std::atan(a->x())) * kRadToDeg
-                    : (std::atan(b->y()) - std::atan(a->y())) * kRadToDeg;
+  return RadToDeg(horizontal ? std::atan(b->x()) - std::atan(a->x())
+                             : std::atan(b->y()) - std::atan(a->y()));
 }
 
 }  // namespace

@@ -4,8 +4,6 @@
 
 #include <random>
 
-#include "sewer3d/core/check.hpp"
-
 namespace sewer3d {
 namespace {
 
@@ -25,18 +23,6 @@ TEST(Rigid3, InverseAndCompositionLaws) {
     EXPECT_LT(((a * b) * p - a * (b * p)).norm(), 1e-9);
     EXPECT_NEAR(a.rotation.norm(), 1.0, 1e-12);
   }
-}
-
-TEST(Check, ThrowsWithConditionAndMessage) {
-  try {
-    const int n = -1;
-    SEWER3D_CHECK(n > 0, "n = " << n);
-    FAIL() << "no throw";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("n > 0"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("n = -1"), std::string::npos);
-  }
-  EXPECT_NO_THROW(SEWER3D_CHECK(true));
 }
 
 }  // namespace

@@ -72,8 +72,9 @@ LatticeSteps Decoder::PredictSteps(const Eigen::Vector2d& pixel) const {
 }
 
 DecodeResult Decoder::Decode(const cv::Mat& image) {
-  SEWER3D_CHECK(image.cols == module_.camera.width && image.rows == module_.camera.height,
-                "image " << image.cols << "x" << image.rows << " but the module's camera is "
+  SEWER3D_VALIDATE(image.cols == module_.camera.width && image.rows == module_.camera.height,
+                   "image",
+                   "is " << image.cols << "x" << image.rows << " but the module's camera is "
                          << module_.camera.width << "x" << module_.camera.height);
   DecodeResult result;
   auto t = Clock::now();

@@ -53,8 +53,9 @@ LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
 }  // namespace
 
 void LatticeOptions::Check() const {
-  SEWER3D_CHECK(max_neighbour_px > 0.0, "max_neighbour_px");
-  SEWER3D_CHECK(max_residual > 0.0 && max_residual < 0.5, "max_residual " << max_residual);
+  ValidatePositive("max_neighbour_px", max_neighbour_px);
+  SEWER3D_VALIDATE(max_residual > 0.0 && max_residual < 0.5, "max_residual",
+                   "must be > 0 and < 0.5, got " << max_residual);
 }
 
 LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,

@@ -9,9 +9,10 @@
 namespace sewer3d {
 
 void NiblackOptions::Check() const {
-  SEWER3D_CHECK(window >= 3 && window % 2 == 1, "window " << window << " must be odd and >= 3");
-  SEWER3D_CHECK(std::isfinite(k), "k");
-  SEWER3D_CHECK(min_contrast >= 0.0, "min_contrast " << min_contrast);
+  SEWER3D_VALIDATE(window >= 3 && window % 2 == 1, "window",
+                   "must be odd and >= 3, got " << window);
+  SEWER3D_VALIDATE(std::isfinite(k), "k", "must be finite");
+  ValidateNotNegative("min_contrast", min_contrast);
 }
 
 NiblackBinariser::NiblackBinariser(const NiblackOptions& options) : options_(options) {

@@ -10,8 +10,10 @@
 namespace sewer3d {
 
 void SpotOptions::Check() const {
-  SEWER3D_CHECK(min_area_px >= 1 && max_area_px >= min_area_px, "spot area range");
-  SEWER3D_CHECK(max_aspect >= 1.0, "max_aspect");
+  SEWER3D_VALIDATE(min_area_px >= 1, "min_area_px", "must be >= 1, got " << min_area_px);
+  SEWER3D_VALIDATE(max_area_px >= min_area_px, "max_area_px",
+                   "must be >= min_area_px (" << min_area_px << "), got " << max_area_px);
+  SEWER3D_VALIDATE(max_aspect >= 1.0, "max_aspect", "must be >= 1, got " << max_aspect);
 }
 
 namespace {

@@ -53,6 +53,7 @@ ModuleDescription ParseModule(const std::string& text, const std::filesystem::pa
   const auto offset = in.Numbers(pattern, "offset_px", "pattern.", 2);
   m.pattern.offset_px = {offset[0], offset[1]};
   m.source_json = text;
+  ValidateFileContents(path, [&] { m.Check(); });
   return m;
 }
 

@@ -79,11 +79,7 @@ LoadedRig ReadRig(const fs::path& path) {
     out.patterns.push_back(ReadPatternMatrix(matrix));
     out.rig.modules.push_back(rm);
   }
-  try {
-    out.rig.Check();
-  } catch (const std::invalid_argument& e) {
-    throw FileError(path, e.what());
-  }
+  ValidateFileContents(path, [&] { out.rig.Check(); });
   return out;
 }
 

@@ -103,7 +103,8 @@ std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& point
 
 std::vector<Eigen::Vector3d> InnerPoints(const std::vector<Eigen::Vector3d>& points,
                                          double fraction) {
-  SEWER3D_CHECK(fraction > 0.0 && fraction <= 1.0, "fraction " << fraction);
+  SEWER3D_VALIDATE(fraction > 0.0 && fraction <= 1.0, "inner_fraction",
+                   "must be > 0 and <= 1, got " << fraction);
   double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
   for (const auto& p : points) {
     if (!(p.z() > 0)) continue;

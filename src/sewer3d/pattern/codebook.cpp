@@ -11,14 +11,18 @@ Codebook::Codebook(const BinaryArray& array, const PatternConstraints& constrain
   const int n = constraints.window;
   const int win_rows = constraints.torus ? array.rows : array.rows - n + 1;
   const int win_cols = constraints.torus ? array.cols : array.cols - n + 1;
-  SEWER3D_CHECK(win_rows > 0 && win_cols > 0, "array smaller than the window");
+  SEWER3D_VALIDATE(win_rows > 0 && win_cols > 0, "",
+                   "the pattern (" << array.rows << "x" << array.cols
+                                   << ") is smaller than its window (" << n << "x" << n << ")");
   table_.reserve(static_cast<std::size_t>(win_rows) * win_cols);
   for (int r = 0; r < win_rows; ++r) {
     for (int c = 0; c < win_cols; ++c) {
       const auto [it, inserted] =
           table_.emplace(TiledWindowCode(array, r, c, n), ArrayPosition{r, c});
-      SEWER3D_CHECK(inserted, "window at (" << r << ", " << c << ") repeats the one at ("
-                                            << it->second.row << ", " << it->second.col << ")");
+      SEWER3D_VALIDATE(inserted, "",
+                       "the pattern's window at (" << r << ", " << c << ") repeats the one at ("
+                                                   << it->second.row << ", " << it->second.col
+                                                   << ")");
       const int weight = std::popcount(it->first);
       min_weight_ = std::min(min_weight_, weight);
       max_weight_ = std::max(max_weight_, weight);
@@ -33,11 +37,12 @@ std::optional<ArrayPosition> Codebook::Find(std::uint64_t code) const {
 }
 
 std::optional<CodewordMatch> Codebook::Decode(std::uint64_t code, int max_corrected_bits) const {
-  SEWER3D_CHECK(max_corrected_bits >= 0 && max_corrected_bits <= 1,
-                "only single-bit correction is supported, asked " << max_corrected_bits);
-  SEWER3D_CHECK(2 * max_corrected_bits < min_hamming_, "correcting " << max_corrected_bits
-                                                                     << " bits needs min Hamming > "
-                                                                     << 2 * max_corrected_bits);
+  SEWER3D_VALIDATE(max_corrected_bits >= 0 && max_corrected_bits <= 1, "max_corrected_bits",
+                   "must be 0 or 1 (single-bit correction), got " << max_corrected_bits);
+  SEWER3D_VALIDATE(2 * max_corrected_bits < min_hamming_, "max_corrected_bits",
+                   "correcting " << max_corrected_bits
+                                 << " bit(s) needs a minimum Hamming distance > "
+                                 << 2 * max_corrected_bits << ", the pattern has " << min_hamming_);
   // No codeword within reach of a word whose weight is too far from theirs: skips the 36
   // flipped lookups for most words that cannot decode (empty or crowded windows).
   const int weight = std::popcount(code);

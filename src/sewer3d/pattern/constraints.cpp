@@ -8,9 +8,11 @@
 namespace sewer3d {
 
 void PatternConstraints::Check() const {
-  SEWER3D_CHECK(window >= 2 && window <= 8, "window " << window << " (2..8)");
-  SEWER3D_CHECK(min_hamming >= 1 && min_hamming <= window * window, "min_hamming " << min_hamming);
-  SEWER3D_CHECK(min_weight >= 0 && min_weight <= window * window, "min_weight " << min_weight);
+  SEWER3D_VALIDATE(window >= 2 && window <= 8, "window", "must be 2..8, got " << window);
+  SEWER3D_VALIDATE(min_hamming >= 1 && min_hamming <= window * window, "min_hamming",
+                   "must be 1.." << window * window << ", got " << min_hamming);
+  SEWER3D_VALIDATE(min_weight >= 0 && min_weight <= window * window, "min_weight",
+                   "must be 0.." << window * window << ", got " << min_weight);
 }
 
 int WindowCount(int rows, int cols, const PatternConstraints& constraints) {
@@ -75,8 +77,8 @@ PatternConstraints InferConstraints(const BinaryArray& array, int window) {
     c.torus = false;
     report = VerifyPattern(array, c);
   }
-  SEWER3D_CHECK(report.windows > 0 && report.duplicate_pairs == 0,
-                "the pattern's " << window << "x" << window << " windows are not unique");
+  SEWER3D_VALIDATE(report.windows > 0 && report.duplicate_pairs == 0, "",
+                   "the pattern's " << window << "x" << window << " windows are not unique");
   c.min_hamming = report.min_hamming_found;
   c.min_weight = report.min_weight_found;
   c.isolated = report.adjacent_spot_pairs == 0;

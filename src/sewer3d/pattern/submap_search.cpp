@@ -256,13 +256,17 @@ class SearchState {
 void SubmapSearchOptions::Check() const {
   constraints.Check();
   const int n = constraints.window;
-  SEWER3D_CHECK(rows >= n && cols >= n,
-                "array " << rows << "x" << cols << " smaller than the window " << n);
-  SEWER3D_CHECK(rows * cols <= 4'000'000, "array " << rows << "x" << cols << " too large");
-  SEWER3D_CHECK(max_moves > 0, "max_moves " << max_moves);
-  SEWER3D_CHECK(noise >= 0.0 && noise <= 1.0, "noise " << noise);
-  SEWER3D_CHECK(tabu_tenure >= 0, "tabu_tenure " << tabu_tenure);
-  SEWER3D_CHECK(progress_interval_moves > 0);
+  SEWER3D_VALIDATE(rows >= n && cols >= n, "rows",
+                   "the array (" << rows << "x" << cols << ") must be at least the window (" << n
+                                 << "x" << n << ")");
+  SEWER3D_VALIDATE(
+      rows * cols <= 4'000'000, "cols",
+      "the array (" << rows << "x" << cols << ") must have at most 4 000 000 elements");
+  SEWER3D_VALIDATE(max_moves > 0, "max_moves", "must be > 0, got " << max_moves);
+  SEWER3D_VALIDATE(noise >= 0.0 && noise <= 1.0, "noise", "must be 0..1, got " << noise);
+  SEWER3D_VALIDATE(tabu_tenure >= 0, "tabu_tenure", "must not be negative, got " << tabu_tenure);
+  SEWER3D_VALIDATE(progress_interval_moves > 0, "progress_interval_moves",
+                   "must be > 0, got " << progress_interval_moves);
 }
 
 SubmapSearchResult SearchPerfectSubmap(const SubmapSearchOptions& options) {

@@ -174,10 +174,12 @@ PoseGraph RoundedGraph(const PoseGraph& graph, const RotationForm& form,
 }  // namespace
 
 void CertificateOptions::Check() const {
-  SEWER3D_CHECK(max_rank >= 3, "max_rank " << max_rank);
-  SEWER3D_CHECK(max_iterations > 0 && max_cg_iterations > 0, "iteration limits");
-  SEWER3D_CHECK(relative_gradient_tolerance > 0.0, "relative_gradient_tolerance");
-  SEWER3D_CHECK(relative_eigenvalue_tolerance > 0.0, "relative_eigenvalue_tolerance");
+  SEWER3D_VALIDATE(max_rank >= 3, "max_rank", "must be >= 3, got " << max_rank);
+  SEWER3D_VALIDATE(max_iterations > 0, "max_iterations", "must be > 0, got " << max_iterations);
+  SEWER3D_VALIDATE(max_cg_iterations > 0, "max_cg_iterations",
+                   "must be > 0, got " << max_cg_iterations);
+  ValidatePositive("relative_gradient_tolerance", relative_gradient_tolerance);
+  ValidatePositive("relative_eigenvalue_tolerance", relative_eigenvalue_tolerance);
 }
 
 namespace {

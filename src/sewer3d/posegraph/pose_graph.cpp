@@ -14,21 +14,22 @@ bool IsSymmetricPositiveDefinite(const Matrix6d& m) {
 }
 
 void PoseGraph::AddEdge(const PoseEdge& edge) {
-  SEWER3D_CHECK(HasNode(edge.from) && HasNode(edge.to),
-                "edge " << edge.from << " -> " << edge.to << " names a missing node");
-  SEWER3D_CHECK(edge.from != edge.to, "self-loop on node " << edge.from);
-  SEWER3D_CHECK(IsSymmetricPositiveDefinite(edge.information),
-                "information of edge " << edge.from << " -> " << edge.to
-                                       << " is not symmetric positive definite");
-  SEWER3D_CHECK(
-      edge.a_from_b.translation.allFinite() && edge.a_from_b.rotation.coeffs().allFinite(),
+  SEWER3D_VALIDATE(HasNode(edge.from) && HasNode(edge.to), "",
+                   "edge " << edge.from << " -> " << edge.to << " names a missing node");
+  SEWER3D_VALIDATE(edge.from != edge.to, "", "self-loop on node " << edge.from);
+  SEWER3D_VALIDATE(IsSymmetricPositiveDefinite(edge.information), "",
+                   "information of edge " << edge.from << " -> " << edge.to
+                                          << " is not symmetric positive definite");
+  SEWER3D_VALIDATE(
+      edge.a_from_b.translation.allFinite() && edge.a_from_b.rotation.coeffs().allFinite(), "",
       "edge " << edge.from << " -> " << edge.to << " has non-finite values");
   edges_.push_back(edge);
 }
 
 void PoseGraph::AddRegularisationEdge(int a, int b, const Rigid3d& a_from_b,
                                       const Matrix6d& covariance) {
-  SEWER3D_CHECK(IsSymmetricPositiveDefinite(covariance), "covariance not positive definite");
+  SEWER3D_VALIDATE(IsSymmetricPositiveDefinite(covariance), "",
+                   "covariance of edge " << a << " -> " << b << " is not positive definite");
   PoseEdge edge;
   edge.from = a;
   edge.to = b;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <random>
 
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/posegraph/edge_cost.hpp"
 #include "sewer3d/posegraph/solver.hpp"
 #include "sewer3d/testing/test_graphs.hpp"
@@ -54,7 +55,7 @@ TEST(Optimise, ConvergesFromLargePerturbationsToTheOptimumNearTheTruth) {
   std::mt19937 rng(3);
   std::vector<Rigid3d> truth;
   for (int i = 0; i < 40; ++i) {
-    const double angle = 2.0 * M_PI * i / 40;
+    const double angle = kTwoPi * i / 40;
     truth.push_back({Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())),
                      Eigen::Vector3d(500.0 * std::cos(angle), 500.0 * std::sin(angle), 0.0)});
   }

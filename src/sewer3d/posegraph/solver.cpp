@@ -95,9 +95,9 @@ Matrix6d SqrtInformation(const Matrix6d& information) {
 }
 
 void PoseGraphOptions::Check() const {
-  SEWER3D_CHECK(max_iterations > 0, "max_iterations " << max_iterations);
-  SEWER3D_CHECK(num_threads > 0, "num_threads " << num_threads);
-  SEWER3D_CHECK(std::isfinite(huber_delta), "huber_delta");
+  SEWER3D_VALIDATE(max_iterations > 0, "max_iterations", "must be > 0, got " << max_iterations);
+  SEWER3D_VALIDATE(num_threads > 0, "num_threads", "must be > 0, got " << num_threads);
+  SEWER3D_VALIDATE(std::isfinite(huber_delta), "huber_delta", "must be finite");
 }
 
 bool ChordalInitialisation(PoseGraph& graph) {

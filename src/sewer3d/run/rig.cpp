@@ -1,21 +1,28 @@
 #include "sewer3d/run/rig.hpp"
 
 #include <cmath>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
 
 namespace sewer3d {
 
 void Rig::Check() const {
-  SEWER3D_CHECK(!modules.empty(), "rig without modules");
-  SEWER3D_CHECK(carrier_diameter_mm > 0.0 && carrier_length_mm > 0.0, "carrier size");
-  for (const RigModule& m : modules) {
-    m.module.Check();
+  // Field names as in rig.json.
+  SEWER3D_VALIDATE(!modules.empty(), "modules", "must list at least one module");
+  ValidatePositive("carrier.diameter_mm", carrier_diameter_mm);
+  ValidatePositive("carrier.length_mm", carrier_length_mm);
+  for (size_t i = 0; i < modules.size(); ++i) {
+    const RigModule& m = modules[i];
+    const std::string field = "modules[" + std::to_string(i) + "].";
+    CheckWithin(field + "module.", [&] { m.module.Check(); });
     for (const Eigen::Vector3d& c :
          {m.carrier_from_camera.translation, ProjectorCentreInCarrier(m)}) {
-      SEWER3D_CHECK(std::abs(c.z()) <= 0.5 * carrier_length_mm + 1e-6 &&
-                        std::hypot(c.x(), c.y()) <= 0.5 * carrier_diameter_mm + 1e-6,
-                    "module " << m.name << ": camera or projector outside the carrier");
+      SEWER3D_VALIDATE(
+          std::abs(c.z()) <= 0.5 * carrier_length_mm + 1e-6 &&
+              std::hypot(c.x(), c.y()) <= 0.5 * carrier_diameter_mm + 1e-6,
+          field + "carrier_from_camera",
+          "puts the camera or projector of module " << m.name << " outside the carrier");
     }
   }
 }

@@ -2,16 +2,19 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/material.hpp"
 
 namespace sewer3d {
 
 void Checkerboard::Check() const {
-  SEWER3D_CHECK(cols >= 2 && rows >= 2 && square_mm > 0.0 && margin_mm >= 0.0, "checkerboard");
+  SEWER3D_VALIDATE(cols >= 2 && rows >= 2, "board",
+                   "needs at least 2x2 inner corners, got " << cols << "x" << rows);
+  ValidatePositive("square_mm", square_mm);
+  ValidateNotNegative("margin_mm", margin_mm);
 }
 
 std::optional<SurfaceHit> BoardSurface::Intersect(const Eigen::Vector3d& origin,
@@ -47,7 +50,7 @@ std::vector<Rigid3d> RandomBoardPoses(const ModuleDescription& module, const Che
                                       int count, std::uint64_t seed, const BoardPoseOptions& o) {
   board.Check();
   module.Check();
-  SEWER3D_CHECK(count >= 1, "pose count");
+  SEWER3D_VALIDATE(count >= 1, "poses", "must be at least 1, got " << count);
   const CameraModel camera(module.camera), projector(module.projector);
   const Eigen::Vector3d centre(0.5 * (board.cols - 1) * board.square_mm,
                                0.5 * (board.rows - 1) * board.square_mm, 0.0);
@@ -57,7 +60,9 @@ std::vector<Rigid3d> RandomBoardPoses(const ModuleDescription& module, const Che
   };
   std::vector<Rigid3d> poses;
   for (std::uint64_t attempt = 0; static_cast<int>(poses.size()) < count; ++attempt) {
-    SEWER3D_CHECK(attempt < 200000, "no board pose shows the whole board to camera and projector");
+    SEWER3D_VALIDATE(attempt < 200000, "board",
+                     "no pose shows the whole board to both camera and projector (try fewer or "
+                     "smaller squares)");
     auto u = [&](int k) { return HashUniform(seed, attempt, k); };
     // Board centre on a random camera ray through the image, at a random depth.
     const auto xy =
@@ -66,9 +71,8 @@ std::vector<Rigid3d> RandomBoardPoses(const ModuleDescription& module, const Che
     const double depth = o.distance_min_mm + u(2) * (o.distance_max_mm - o.distance_min_mm);
     const Eigen::Vector3d target = Eigen::Vector3d(xy->x(), xy->y(), 1.0) * depth;
     // Facing the camera (board z away from it), tilted about a random in-plane axis, spun.
-    const double tilt =
-        std::acos(1.0 - u(3) * (1.0 - std::cos(o.max_tilt_deg * std::numbers::pi / 180.0)));
-    const double axis_angle = 2.0 * std::numbers::pi * u(4), spin = 2.0 * std::numbers::pi * u(5);
+    const double tilt = std::acos(1.0 - u(3) * (1.0 - std::cos(DegToRad(o.max_tilt_deg))));
+    const double axis_angle = kTwoPi * u(4), spin = kTwoPi * u(5);
     const Eigen::Quaterniond rotation =
         Eigen::AngleAxisd(tilt, Eigen::Vector3d(std::cos(axis_angle), std::sin(axis_angle), 0.0)) *
         Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ());

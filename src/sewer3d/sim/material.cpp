@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
 namespace {
@@ -80,7 +81,7 @@ double SmoothNoise(std::uint64_t seed, double x, double y, int octaves) {
 double HashNormal(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
   const double u1 = std::max(HashUniform(a, b, c, 11), 1e-300);
   const double u2 = HashUniform(a, b, c, 12);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
 }
 
 double HashUniform(std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d) {

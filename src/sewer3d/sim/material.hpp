@@ -6,9 +6,9 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-#include "sewer3d/sim/scene.hpp"
-
 namespace sewer3d {
+
+enum class Material { kConcrete, kVitrifiedClay, kPlastic, kSediment };
 
 /// Albedo at surface coordinates `p_mm`:
 /// - concrete: grey cement (~0.45) with multi-scale mottling, aggregate grains 1–8 mm of

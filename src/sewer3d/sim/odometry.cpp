@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/sim/material.hpp"
@@ -9,11 +10,16 @@
 namespace sewer3d {
 
 void OdometryOptions::Check() const {
-  SEWER3D_CHECK(rate_hz > 0.0 && rate_hz <= 1000.0, "odometry rate " << rate_hz << " Hz");
-  SEWER3D_CHECK(std::abs(scale_error) < 0.2 && noise_mm >= 0.0, "odometry scale error / noise");
-  for (const OdometrySlip& s : slips) {
-    SEWER3D_CHECK(s.length_mm >= 0.0 && s.fraction >= 0.0 && s.fraction <= 1.0,
-                  "slip at " << s.station_mm << " mm: length and fraction 0..1");
+  SEWER3D_VALIDATE(rate_hz > 0.0 && rate_hz <= 1000.0, "rate_hz",
+                   "must be > 0 and <= 1000, got " << rate_hz);
+  SEWER3D_VALIDATE(std::abs(scale_error) < 0.2, "scale_error",
+                   "must be within ±0.2, got " << scale_error);
+  ValidateNotNegative("noise_mm", noise_mm);
+  for (size_t i = 0; i < slips.size(); ++i) {
+    const std::string field = "slips[" + std::to_string(i) + "].";
+    ValidateNotNegative(field + "length_mm", slips[i].length_mm);
+    SEWER3D_VALIDATE(slips[i].fraction >= 0.0 && slips[i].fraction <= 1.0, field + "fraction",
+                     "must be 0..1, got " << slips[i].fraction);
   }
 }
 

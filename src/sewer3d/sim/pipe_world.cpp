@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/sim/material.hpp"
@@ -11,23 +12,6 @@
 
 namespace sewer3d {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kEdgeMm = 0.4;  // width of the smoothed edges of features
-
-// Into [−π, π]; cheaper than std::remainder for the small multiples of 2π met here.
-double WrapAngle(double a) {
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
-  while (a > std::numbers::pi) a -= kTwoPi;
-  while (a < -std::numbers::pi) a += kTwoPi;
-  return a;
-}
-
-// 0 below −½, 1 above ½, smooth in between.
-double Step(double x) {
-  const double u = std::clamp(x + 0.5, 0.0, 1.0);
-  return u * u * (3.0 - 2.0 * u);
-}
 
 // Centreline frame of a section in its own start frame at arc length u.
 Rigid3d LocalFrame(const PipeSection& s, double u) {
@@ -57,50 +41,63 @@ Eigen::Vector3d ClockDirection(double clock_rad) {
 }
 
 void PipeWorld::Check() const {
-  SEWER3D_CHECK(!sections.empty(), "the pipe has no sections");
-  SEWER3D_CHECK(joints.size() + 1 == sections.size(),
-                "need one joint between each pair of sections: " << sections.size() << " sections, "
-                                                                 << joints.size() << " joints");
+  // Field names as in the scenario file's "pipe" member (docs/formats.md).
+  SEWER3D_VALIDATE(!sections.empty(), "sections", "the pipe needs at least one section");
+  auto joints_text = [](size_t n) { return std::to_string(n) + (n == 1 ? " joint" : " joints"); };
+  SEWER3D_VALIDATE(joints.size() + 1 == sections.size(), "joints",
+                   sections.size()
+                       << " sections need " << joints_text(sections.size() - 1)
+                       << " (one between each pair), got " << joints_text(joints.size()));
   for (size_t i = 0; i < sections.size(); ++i) {
     const PipeSection& s = sections[i];
-    SEWER3D_CHECK(s.length_mm > 0.0, "section " << i << ": length " << s.length_mm);
-    SEWER3D_CHECK(s.diameter_mm >= 50.0 && s.diameter_mm <= 5000.0,
-                  "section " << i << ": diameter " << s.diameter_mm);
-    SEWER3D_CHECK(s.ovality_pct >= 0.0 && s.ovality_pct < 30.0,
-                  "section " << i << ": ovality " << s.ovality_pct << " %");
-    SEWER3D_CHECK(s.bend_radius_mm == 0.0 || s.bend_radius_mm >= 10.0 * s.diameter_mm,
-                  "section " << i << ": bend radius " << s.bend_radius_mm
-                             << " mm (0, or at least 10 diameters)");
+    const std::string field = "sections[" + std::to_string(i) + "].";
+    ValidatePositive(field + "length_mm", s.length_mm);
+    SEWER3D_VALIDATE(s.diameter_mm >= 50.0 && s.diameter_mm <= 5000.0, field + "diameter_mm",
+                     "must be 50..5000, got " << s.diameter_mm);
+    SEWER3D_VALIDATE(s.ovality_pct >= 0.0 && s.ovality_pct < 30.0, field + "ovality_pct",
+                     "must be >= 0 and < 30, got " << s.ovality_pct);
+    SEWER3D_VALIDATE(s.bend_radius_mm == 0.0 || s.bend_radius_mm >= 10.0 * s.diameter_mm,
+                     field + "bend_radius_mm",
+                     "must be 0 (straight) or at least 10 diameters ("
+                         << 10.0 * s.diameter_mm << "), got " << s.bend_radius_mm);
   }
   for (size_t i = 0; i < joints.size(); ++i) {
     const PipeJoint& j = joints[i];
-    SEWER3D_CHECK(j.gap_mm >= 0.0 && j.gap_depth_mm >= 0.0 && j.offset_mm >= 0.0,
-                  "joint " << j.id << ": gap, depth and offset must not be negative");
-    SEWER3D_CHECK(j.gap_mm < 0.5 * std::min(sections[i].length_mm, sections[i + 1].length_mm),
-                  "joint " << j.id << ": gap " << j.gap_mm << " mm");
-    SEWER3D_CHECK(j.offset_mm < 0.2 * sections[i].diameter_mm,
-                  "joint " << j.id << ": offset " << j.offset_mm);
-    SEWER3D_CHECK(std::abs(j.deflection_deg) <= 10.0,
-                  "joint " << j.id << ": deflection " << j.deflection_deg << "°");
+    const std::string field = "joints[" + std::to_string(i) + "].";
+    ValidateNotNegative(field + "gap_mm", j.gap_mm);
+    ValidateNotNegative(field + "gap_depth_mm", j.gap_depth_mm);
+    ValidateNotNegative(field + "offset_mm", j.offset_mm);
+    const double max_gap = 0.5 * std::min(sections[i].length_mm, sections[i + 1].length_mm);
+    SEWER3D_VALIDATE(j.gap_mm < max_gap, field + "gap_mm",
+                     "must be less than half the shorter neighbouring section ("
+                         << max_gap << "), got " << j.gap_mm);
+    SEWER3D_VALIDATE(j.offset_mm < 0.2 * sections[i].diameter_mm, field + "offset_mm",
+                     "must be less than 20 % of the section's diameter ("
+                         << 0.2 * sections[i].diameter_mm << "), got " << j.offset_mm);
+    SEWER3D_VALIDATE(std::abs(j.deflection_deg) <= 10.0, field + "deflection_deg",
+                     "must be within ±10, got " << j.deflection_deg);
   }
-  for (const PipeFeature& f : features) {
+  for (size_t i = 0; i < features.size(); ++i) {
+    const PipeFeature& f = features[i];
+    const std::string field = "features[" + std::to_string(i) + "].";
     using T = PipeFeature::Type;
-    SEWER3D_CHECK(
-        f.type != T::kConnection ||
-            (f.diameter_mm > 0.0 && f.wall_mm >= 0.0 && f.intrusion_mm >= 0.0),
-        "feature " << f.id << ": connection needs diameter_mm > 0, wall_mm and intrusion_mm >= 0");
-    SEWER3D_CHECK(
-        f.type != T::kSpalling || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
-        "feature " << f.id << ": spalling needs length_mm, width_mm and depth_mm > 0");
-    SEWER3D_CHECK(
-        f.type != T::kCrack || (f.length_mm > 0.0 && f.width_mm > 0.0 && f.depth_mm > 0.0),
-        "feature " << f.id << ": crack needs length_mm, width_mm and depth_mm > 0");
-    SEWER3D_CHECK(f.type != T::kDeposit || (f.length_mm > 0.0 && f.height_mm > 0.0),
-                  "feature " << f.id << ": deposit needs length_mm and height_mm > 0");
+    SEWER3D_VALIDATE(f.type == T::kConnection || f.type == T::kSpalling || f.type == T::kCrack ||
+                         f.type == T::kDeposit,
+                     field + "type",
+                     "must be connection, spalling, crack or deposit, got "
+                         << PipeFeatureTypeName(f.type)
+                         << " (bump, pit and joint belong to pipe-wall scenes; a pipe's joints "
+                            "go in \"joints\")");
+    CheckWithin(field, [&] { f.Check(); });
     for (const PipeSection& s : sections) {
-      SEWER3D_CHECK(f.intrusion_mm < 0.4 * s.diameter_mm && f.height_mm < 0.5 * s.diameter_mm,
-                    "feature " << f.id << ": intrusion or deposit too large for a Ø"
-                               << s.diameter_mm << " section");
+      SEWER3D_VALIDATE(f.intrusion_mm < 0.4 * s.diameter_mm, field + "intrusion_mm",
+                       "must be less than 40 % of every section's diameter (Ø"
+                           << s.diameter_mm << ": " << 0.4 * s.diameter_mm << "), got "
+                           << f.intrusion_mm);
+      SEWER3D_VALIDATE(f.height_mm < 0.5 * s.diameter_mm, field + "height_mm",
+                       "must be less than half of every section's diameter (Ø"
+                           << s.diameter_mm << ": " << 0.5 * s.diameter_mm << "), got "
+                           << f.height_mm);
     }
   }
 }
@@ -131,7 +128,7 @@ PipeGeometry::PipeGeometry(PipeWorld world) : world_(std::move(world)) {
     const Eigen::Vector3d shift = -j.offset_mm * ClockDirection(ClockHoursToRad(j.offset_clock_h));
     const Eigen::Vector3d turn_axis =
         Eigen::Vector3d::UnitZ().cross(ClockDirection(ClockHoursToRad(j.deflection_clock_h)));
-    const Eigen::Quaterniond turn(Eigen::AngleAxisd(j.deflection_deg * kDeg, turn_axis));
+    const Eigen::Quaterniond turn(Eigen::AngleAxisd(DegToRad(j.deflection_deg), turn_axis));
     start = end * Rigid3d(turn, shift);
     joint_point_.push_back(0.5 * (end.translation + start.translation));
     joint_normal_.push_back(
@@ -153,11 +150,11 @@ Rigid3d PipeGeometry::PathFrame(double station_mm, double blend_mm) const {
   const Rigid3d here = SectionFrame(i, station_mm - start_station_[i]);
   const double end = start_station_[i] + world_.sections[i].length_mm;
   if (i + 1 < n && station_mm > end - blend_mm) {
-    const double w = Step((station_mm - end) / (2.0 * blend_mm));
+    const double w = SmoothStep((station_mm - end) / (2.0 * blend_mm));
     return Blend(here, SectionFrame(i + 1, station_mm - start_station_[i + 1]), w);
   }
   if (i > 0 && station_mm < start_station_[i] + blend_mm) {
-    const double w = Step((start_station_[i] - station_mm) / (2.0 * blend_mm));
+    const double w = SmoothStep((start_station_[i] - station_mm) / (2.0 * blend_mm));
     return Blend(here, SectionFrame(i - 1, station_mm - start_station_[i - 1]), w);
   }
   return here;
@@ -202,87 +199,27 @@ PipeLocation PipeGeometry::LocateAt(const Eigen::Vector3d& p, bool with_clock) c
 double PipeGeometry::Displacement(PipeLocation at, Material* material) const {
   const PipeSection& s = world_.sections[at.section];
   const double radius = 0.5 * s.diameter_mm;
-  double d = 0.0, strongest = 0.0;
+  double d = 0.0;
   // Open gaps at the joints before and after this section.
   if (at.section > 0) {
     const PipeJoint& j = world_.joints[at.section - 1];
     if (j.gap_depth_mm > 0.0)
-      d -= j.gap_depth_mm * (1.0 - Step((at.local_mm - 0.5 * j.gap_mm) / kEdgeMm));
+      d -= j.gap_depth_mm * (1.0 - SmoothStep((at.local_mm - 0.5 * j.gap_mm) / kFeatureEdgeMm));
   }
   if (at.section + 1 < static_cast<int>(world_.sections.size())) {
     const PipeJoint& j = world_.joints[at.section];
     if (j.gap_depth_mm > 0.0) {
-      d -= j.gap_depth_mm * (1.0 - Step((s.length_mm - 0.5 * j.gap_mm - at.local_mm) / kEdgeMm));
+      d -= j.gap_depth_mm *
+           (1.0 - SmoothStep((s.length_mm - 0.5 * j.gap_mm - at.local_mm) / kFeatureEdgeMm));
     }
   }
-  for (size_t k = 0; k < world_.features.size(); ++k) {
-    const PipeFeature& f = world_.features[k];
-    const double ds = at.station_mm - f.station_mm;
-    const double reach =
-        f.type == PipeFeature::Type::kConnection ? 0.5 * f.diameter_mm + f.wall_mm + kEdgeMm
-        : f.type == PipeFeature::Type::kDeposit  ? f.length_mm
-                                                 : 0.5 * f.length_mm + f.width_mm + kEdgeMm;
-    if (std::abs(ds) > reach) continue;
-    EnsureClock(at);
-    const double dclock = WrapAngle(at.clock_rad - ClockHoursToRad(f.clock_h));
-    const double arc = dclock * radius;
-    double fd = 0.0;
-    Material m = s.material;
-    switch (f.type) {
-      case PipeFeature::Type::kConnection: {
-        const double r_in = 0.5 * f.diameter_mm, r_out = r_in + f.wall_mm;
-        if (std::abs(ds) > r_out + kEdgeMm || std::abs(arc) > r_out + kEdgeMm) continue;
-        const double r = std::sqrt(ds * ds + arc * arc);
-        const double bore = std::min(60.0, r_in);  // how deep the lateral's bore is modelled
-        fd = f.intrusion_mm * (1.0 - Step((r - r_out) / kEdgeMm)) -
-             (bore + f.intrusion_mm) * (1.0 - Step((r - r_in) / kEdgeMm));
-        m = Material::kVitrifiedClay;
-        break;
-      }
-      case PipeFeature::Type::kSpalling: {
-        if (std::abs(ds) > 0.5 * f.length_mm + kEdgeMm ||
-            std::abs(arc) > 0.5 * f.width_mm + kEdgeMm)
-          continue;
-        // Rounded rectangle (superellipse) with a rough bottom.
-        const double u = 2.0 * ds / f.length_mm, v = 2.0 * arc / f.width_mm;
-        const double q = std::pow(std::pow(u, 4) + std::pow(v, 4), 0.25);
-        const double edge = (q - 1.0) * 0.5 * std::min(f.length_mm, f.width_mm) / kEdgeMm;
-        const double rough = SmoothNoise(world_.material_seed + 17 + k, ds / 4.0, arc / 4.0, 3);
-        fd = -f.depth_mm * (0.6 + 0.8 * rough) * (1.0 - Step(edge));
-        break;
-      }
-      case PipeFeature::Type::kCrack: {
-        if (std::abs(ds) > 0.5 * f.length_mm + f.width_mm &&
-            std::abs(arc) > 0.5 * f.length_mm + f.width_mm)
-          continue;
-        const double ca = std::cos(f.angle_deg * kDeg), sa = std::sin(f.angle_deg * kDeg);
-        const double along = ds * ca + arc * sa, across = -ds * sa + arc * ca;
-        if (std::abs(along) > 0.5 * f.length_mm) continue;
-        const double q = std::abs(across) / (0.5 * f.width_mm);
-        fd = q < 1.0 ? -f.depth_mm * (1.0 - q) : 0.0;
-        break;
-      }
-      case PipeFeature::Type::kDeposit: {
-        if (ds < 0.0 || ds > f.length_mm) continue;
-        const double ramp = std::min(30.0, 0.25 * f.length_mm);
-        const double h =
-            f.height_mm * std::min(Step(ds / ramp - 0.5), Step((f.length_mm - ds) / ramp - 0.5));
-        const double c = std::cos(dclock);
-        if (c <= 0.0) continue;
-        const double grit =
-            0.3 * (SmoothNoise(world_.material_seed + 29 + k, ds / 3.0, arc / 3.0, 2) - 0.5);
-        fd = std::max(0.0, radius - (radius - h - grit) / c);
-        m = Material::kSediment;
-        break;
-      }
-    }
-    d += fd;
-    if (material && fd > strongest) {
-      strongest = fd;
-      *material = m;
-    }
-  }
-  return d;
+  return AddPipeFeatures(
+      d, world_.features, world_.material_seed, radius, at.station_mm,
+      [&at] {
+        EnsureClock(at);
+        return at.clock_rad;
+      },
+      material);
 }
 
 double PipeGeometry::WallRadiusMm(const PipeLocation& at) const {
@@ -290,8 +227,8 @@ double PipeGeometry::WallRadiusMm(const PipeLocation& at) const {
   double radius = 0.5 * s.diameter_mm;
   if (s.ovality_pct > 0.0) {
     const double ramp = std::min(100.0, 0.25 * s.length_mm);
-    const double w =
-        std::min(Step(at.local_mm / ramp - 0.5), Step((s.length_mm - at.local_mm) / ramp - 0.5));
+    const double w = std::min(SmoothStep(at.local_mm / ramp - 0.5),
+                              SmoothStep((s.length_mm - at.local_mm) / ramp - 0.5));
     PipeLocation with_clock = at;
     EnsureClock(with_clock);
     radius *= 1.0 - 0.01 * s.ovality_pct * w *

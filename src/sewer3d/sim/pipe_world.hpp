@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/core/units.hpp"
+#include "sewer3d/sim/pipe_feature.hpp"
 #include "sewer3d/sim/scene.hpp"
 
 namespace sewer3d {
@@ -43,29 +45,15 @@ struct PipeJoint {
   double deflection_clock_h = 3.0;
 };
 
-struct PipeFeature {
-  enum class Type { kConnection, kSpalling, kCrack, kDeposit };
-  Type type = Type::kConnection;
-  std::string id;
-  double station_mm = 0.0;    ///< centre (deposit: start)
-  double clock_h = 12.0;      ///< centre (deposit: lowest point, normally 6)
-  double diameter_mm = 0.0;   ///< connection: inner diameter of the lateral pipe
-  double wall_mm = 0.0;       ///< connection: wall thickness of the lateral pipe
-  double intrusion_mm = 0.0;  ///< connection: how far the lateral's end protrudes (BAG)
-  double length_mm = 0.0;     ///< spalling / crack / deposit: extent along the pipe
-  double width_mm = 0.0;      ///< spalling: extent around the pipe; crack: opening
-  double depth_mm = 0.0;      ///< spalling / crack: depth into the wall
-  double height_mm = 0.0;     ///< deposit: height above the invert (BBC)
-  double angle_deg = 0.0;     ///< crack: direction on the unrolled wall (0 = along the pipe)
-};
-
 struct PipeWorld {
   std::vector<PipeSection> sections;
   std::vector<PipeJoint> joints;  ///< sections.size() - 1
+  /// Wall features (sim/pipe_feature.hpp): connections, spalling, cracks and deposits.
   std::vector<PipeFeature> features;
   std::uint64_t material_seed = 1;
 
-  void Check() const;  ///< throws std::invalid_argument naming the inconsistent item
+  /// Throws InvalidValue naming the field as the scenario file's "pipe" does ("joints").
+  void Check() const;
   double LengthMm() const;
 };
 
@@ -119,6 +107,5 @@ class PipeGeometry {
 
 /// Direction of a clock position in a centreline frame (unit, z = 0).
 Eigen::Vector3d ClockDirection(double clock_rad);
-inline double ClockHoursToRad(double hours) { return hours * 3.14159265358979323846 / 6.0; }
 
 }  // namespace sewer3d

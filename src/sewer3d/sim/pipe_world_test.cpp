@@ -3,13 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+
+#include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 PipeWorld TwoSections(const PipeJoint& joint) {
   PipeWorld w;
@@ -67,10 +66,10 @@ TEST(PipeWorld, DeflectionTurnsTheAxis) {
   j.deflection_clock_h = 3.0;
   const PipeGeometry pipe(TwoSections(j));
   const Rigid3d f = pipe.SectionFrame(1, 800.0);
-  EXPECT_NEAR(f.translation.x(), 800.0 * std::sin(2.0 * kDeg), 1e-9);
-  EXPECT_NEAR(f.translation.z(), 1000.0 + 800.0 * std::cos(2.0 * kDeg), 1e-9);
+  EXPECT_NEAR(f.translation.x(), 800.0 * std::sin(DegToRad(2.0)), 1e-9);
+  EXPECT_NEAR(f.translation.z(), 1000.0 + 800.0 * std::cos(DegToRad(2.0)), 1e-9);
   const Eigen::Vector3d tangent = f.rotation * Eigen::Vector3d::UnitZ();
-  EXPECT_NEAR(std::acos(tangent.z()) / kDeg, 2.0, 1e-9);
+  EXPECT_NEAR(RadToDeg(std::acos(tangent.z())), 2.0, 1e-9);
   // The wall of the second section is a cylinder around its own axis.
   const Eigen::Vector3d p = f * (150.0 * ClockDirection(ClockHoursToRad(4.0)));
   EXPECT_NEAR(pipe.SignedDistanceMm(p), 0.0, 1e-9);
@@ -90,7 +89,7 @@ TEST(PipeWorld, GentleBendFollowsAnArc) {
   const PipeLocation at = pipe.Locate(p);
   EXPECT_NEAR(at.station_mm, 1500.0, 1e-9);
   EXPECT_NEAR(at.rho_mm, 120.0, 1e-9);
-  EXPECT_NEAR(at.clock_rad, ClockHoursToRad(7.0) - 2.0 * std::numbers::pi, 1e-9);
+  EXPECT_NEAR(at.clock_rad, ClockHoursToRad(7.0) - kTwoPi, 1e-9);
   // A ray along the local radial direction meets the wall at the nominal radius.
   const auto hit = pipe.Intersect(f.translation, f.rotation * ClockDirection(ClockHoursToRad(2.0)));
   ASSERT_TRUE(hit);
@@ -144,7 +143,7 @@ TEST(PipeWorld, FeaturesDisplaceTheWall) {
   const auto hit = pipe.Intersect({0.0, 0.0, 1250.0}, {0.0, 1.0, 0.0});
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->material, Material::kSediment);
-  EXPECT_NEAR(WallDistance(pipe, 1250.0, 6.0 + 1.0) * std::cos(30.0 * kDeg), invert,
+  EXPECT_NEAR(WallDistance(pipe, 1250.0, 6.0 + 1.0) * std::cos(DegToRad(30.0)), invert,
               0.3);  // a flat chord
   const double spall = WallDistance(pipe, 1700.0, 12.0);
   EXPECT_GT(spall, 150.0 + 0.6 * 5.0 - 1e-6);

@@ -3,9 +3,9 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/material.hpp"
 
 namespace sewer3d {
@@ -153,17 +153,25 @@ std::uint16_t Digitise(double signal, const SensorModel& sensor, std::uint64_t s
 }  // namespace
 
 void RenderOptions::Check() const {
-  SEWER3D_CHECK(supersampling >= 1 && supersampling <= 16, "supersampling " << supersampling);
-  SEWER3D_CHECK(sensor_width_mm > 0.0, "sensor width");
-  SEWER3D_CHECK(camera_f_number >= 0.0 && projector_f_number >= 0.0, "f-number");
-  SEWER3D_CHECK(camera_focus_mm > 0.0 && projector_focus_mm > 0.0, "focus distance");
-  SEWER3D_CHECK(projector_psf_px > 0.0, "projector_psf_px must be positive");
-  SEWER3D_CHECK(texture_level >= 0.0 && pattern_level >= 0.0 && ambient_level >= 0.0,
-                "light level");
-  SEWER3D_CHECK(speed_mm_s >= 0.0 && exposure_ms >= 0.0, "motion");
-  SEWER3D_CHECK(motion_direction.norm() > 0.0, "motion direction");
-  SEWER3D_CHECK(sensor.bits >= 8 && sensor.bits <= 12, "bits " << sensor.bits << " (8..12)");
-  SEWER3D_CHECK(sensor.full_well_e > 0.0 && sensor.read_noise_e >= 0.0, "sensor");
+  SEWER3D_VALIDATE(supersampling >= 1 && supersampling <= 16, "supersampling",
+                   "must be 1..16, got " << supersampling);
+  ValidatePositive("sensor_width_mm", sensor_width_mm);
+  ValidateNotNegative("camera_f_number", camera_f_number);
+  ValidateNotNegative("projector_f_number", projector_f_number);
+  ValidatePositive("camera_focus_mm", camera_focus_mm);
+  ValidatePositive("projector_focus_mm", projector_focus_mm);
+  ValidatePositive("projector_psf_px", projector_psf_px);
+  ValidateNotNegative("texture_level", texture_level);
+  ValidateNotNegative("pattern_level", pattern_level);
+  ValidateNotNegative("ambient_level", ambient_level);
+  ValidateNotNegative("speed_mm_s", speed_mm_s);
+  ValidateNotNegative("exposure_ms", exposure_ms);
+  SEWER3D_VALIDATE(motion_direction.norm() > 0.0, "motion_direction",
+                   "must be a non-zero direction");
+  SEWER3D_VALIDATE(sensor.bits >= 8 && sensor.bits <= 12, "bits",
+                   "must be 8..12, got " << sensor.bits);
+  ValidatePositive("full_well_e", sensor.full_well_e);
+  ValidateNotNegative("read_noise_e", sensor.read_noise_e);
 }
 
 RenderOptions RenderOptions::Ideal() {
@@ -229,8 +237,7 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
             const int kk = static_cast<int>(HashUniform(o.seed, pixel, 7) * n * n + k) % (n * n);
             const double radius = 0.5 * setup.camera_aperture_mm *
                                   std::sqrt((kk % n + HashUniform(o.seed, pixel, k, 4)) / n);
-            const double angle =
-                2.0 * std::numbers::pi * (kk / n + HashUniform(o.seed, pixel, k, 5)) / n;
+            const double angle = kTwoPi * (kk / n + HashUniform(o.seed, pixel, k, 5)) / n;
             const Eigen::Vector3d lens(radius * std::cos(angle), radius * std::sin(angle), 0.0);
             const Eigen::Vector3d focus = direction * o.camera_focus_mm;
             origin += lens;

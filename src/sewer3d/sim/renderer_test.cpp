@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/material.hpp"
 #include "sewer3d/sim/spot_truth.hpp"
@@ -80,7 +81,7 @@ TEST(Renderer, TruthDepthMatchesAnalyticSurfaces) {
   for (int v = 0; v < module.camera.height; v += 7) {
     for (int u = 0; u < module.camera.width; u += 7) {
       const Eigen::Vector2d xy = *camera.Unproject({double(u), double(v)});
-      const double tan_tilt = std::tan(-15.0 * M_PI / 180.0);
+      const double tan_tilt = std::tan(DegToRad(-15.0));
       worst_plane =
           std::max(worst_plane, std::abs(plane_depth(v, u) - 90.0 / (1.0 - xy.y() * tan_tilt)));
       // (z x − 5)² + (z − 15)² = 100², far root.

@@ -2,22 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <sstream>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/pipe_world.hpp"
 
 namespace sewer3d {
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-}  // namespace
 
 void RigOptions::Check() const {
-  SEWER3D_CHECK(modules >= 1 && modules <= 12, "modules " << modules);
-  SEWER3D_CHECK(stagger_mm >= 0.0, "stagger " << stagger_mm);
-  SEWER3D_CHECK(carrier_diameter_mm > 0.0 && carrier_length_mm > 0.0, "carrier size");
+  SEWER3D_VALIDATE(modules >= 1 && modules <= 12, "modules", "must be 1..12, got " << modules);
+  ValidateNotNegative("stagger_mm", stagger_mm);
+  ValidatePositive("carrier_diameter_mm", carrier_diameter_mm);
+  ValidatePositive("carrier_length_mm", carrier_length_mm);
 }
 
 Rig MakeRig(const ModuleDescription& module, const RigOptions& o) {
@@ -46,7 +44,15 @@ Rig MakeRig(const ModuleDescription& module, const RigOptions& o) {
     m.carrier_from_camera = Rigid3d(r, Eigen::Vector3d(0.0, 0.0, camera_z));
     rig.modules.push_back(m);
   }
-  rig.Check();
+  // In the options' terms: the stagger (with the module's baseline) sets what fits.
+  try {
+    rig.Check();
+  } catch (const InvalidValue& e) {
+    std::ostringstream problem;
+    problem << "the " << o.modules << " modules at " << o.stagger_mm << " mm do not fit in the "
+            << o.carrier_length_mm << " mm carrier (" << e.what() << ")";
+    throw InvalidValue("stagger_mm", problem.str());
+  }
   return rig;
 }
 
@@ -84,8 +90,7 @@ WallCoverage ModuleCoverage(const Rig& rig, int index, double diameter,
         }
       }
       const PipeLocation at = pipe.Locate(hit->point);
-      const double clock =
-          (nominal + std::remainder(at.clock_rad - nominal, 2.0 * std::numbers::pi)) / kDeg;
+      const double clock = RadToDeg(nominal + std::remainder(at.clock_rad - nominal, kTwoPi));
       c.any = true;
       c.clock_from_deg = std::min(c.clock_from_deg, clock);
       c.clock_to_deg = std::max(c.clock_to_deg, clock);
@@ -112,7 +117,7 @@ std::vector<NeighbourOverlap> NeighbourOverlaps(const Rig& rig, double diameter,
       while (cover[next].clock_from_deg + shift < cover[k].clock_from_deg) shift += 360.0;
       o.overlap_deg = cover[k].clock_to_deg - (cover[next].clock_from_deg + shift);
     }
-    o.overlap_mm = o.overlap_deg * kDeg * 0.5 * diameter;
+    o.overlap_mm = DegToRad(o.overlap_deg) * 0.5 * diameter;
     out.push_back(o);
   }
   return out;

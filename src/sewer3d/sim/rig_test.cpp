@@ -6,17 +6,15 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/odometry.hpp"
 #include "sewer3d/sim/scenario.hpp"
 #include "sewer3d/sim/trajectory.hpp"
 
 namespace sewer3d {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Rig DefaultRig() { return MakeRig(MakeDefaultModule({}), {}); }
 
@@ -29,7 +27,7 @@ TEST(Rig, SixModulesAroundTheAxisInsideTheCarrier) {
     EXPECT_NEAR((r.transpose() * r - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
     EXPECT_NEAR(r.determinant(), 1.0, 1e-12);
     // Looks radially at its clock position; camera y along the carrier axis.
-    EXPECT_NEAR((r.col(2) - ClockDirection(60.0 * k * kDeg)).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((r.col(2) - ClockDirection(DegToRad(60.0 * k))).norm(), 0.0, 1e-9);
     EXPECT_NEAR(r.col(1).z(), 1.0, 1e-12);
     // Camera and projector centres on the axis, within the carrier's length.
     const Eigen::Vector3d c = m.carrier_from_camera.translation, p = ProjectorCentreInCarrier(m);
@@ -115,9 +113,9 @@ TEST(Trajectory, FollowsThePipeWithOffsetRollAndWobble) {
     const double decentring = std::hypot(p.translation.x() - 0.0, p.translation.y() - 15.0);
     EXPECT_LE(decentring, std::sqrt(2.0) * o.wander_mm + 1e-9);
     const Eigen::Vector3d axis = p.rotation * Eigen::Vector3d::UnitZ();
-    EXPECT_LE(std::acos(std::min(1.0, axis.z())) / kDeg, std::sqrt(2.0) * o.wobble_deg + 1e-9);
+    EXPECT_LE(RadToDeg(std::acos(std::min(1.0, axis.z()))), std::sqrt(2.0) * o.wobble_deg + 1e-9);
     const Eigen::Vector3d down = p.rotation * Eigen::Vector3d::UnitY();
-    const double roll = std::atan2(-down.x(), down.y()) / kDeg;
+    const double roll = RadToDeg(std::atan2(-down.x(), down.y()));
     EXPECT_NEAR(roll, o.roll_deg, o.roll_amplitude_deg + 0.05);
     // Speed within ±5 % (finite differences).
     const double v = (tr.StationAt(t + 1e-4) - tr.StationAt(t - 1e-4)) / 2e-4;

@@ -1,6 +1,6 @@
 #include "sewer3d/sim/scenario.hpp"
 
-#include <stdexcept>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
 
@@ -163,23 +163,31 @@ Scenario Long() {
 }  // namespace
 
 void Scenario::Check() const {
-  SEWER3D_CHECK(!name.empty(), "scenario name");
-  SEWER3D_CHECK(camera_width >= 160 && camera_width <= 8192, "camera width " << camera_width);
-  rig.Check();
-  world.Check();
-  motion.Check();
-  capture.Check();
-  odometry.Check();
-  render.Check();
-  SEWER3D_CHECK(motion.start_station_mm - 0.5 * rig.carrier_length_mm >= -world.LengthMm() &&
-                    motion.start_station_mm + motion.travel_mm <= 2.0 * world.LengthMm(),
-                "the robot's travel lies far outside the pipe");
-  for (const PipeSection& s : world.sections) {
-    SEWER3D_CHECK(motion.offset_mm.norm() + motion.wander_mm + 0.5 * rig.carrier_diameter_mm <
-                      0.5 * s.diameter_mm,
-                  "the carrier (Ø" << rig.carrier_diameter_mm << ", offset "
-                                   << motion.offset_mm.norm() << " mm) does not fit in a Ø"
-                                   << s.diameter_mm << " section");
+  // Field names as in scenario files (docs/formats.md).
+  SEWER3D_VALIDATE(!name.empty(), "name", "must not be empty");
+  SEWER3D_VALIDATE(camera_width >= 160 && camera_width <= 8192, "camera_width",
+                   "must be 160..8192 px, got " << camera_width);
+  CheckWithin("rig.", [&] { rig.Check(); });
+  CheckWithin("pipe.", [&] { world.Check(); });
+  CheckWithin("motion.", [&] { motion.Check(); });
+  CheckWithin("capture.", [&] { capture.Check(); });
+  CheckWithin("odometry.", [&] { odometry.Check(); });
+  CheckWithin("render.", [&] { render.Check(); });
+  const double length = world.LengthMm();
+  SEWER3D_VALIDATE(motion.start_station_mm - 0.5 * rig.carrier_length_mm >= -length &&
+                       motion.start_station_mm + motion.travel_mm <= 2.0 * length,
+                   "motion.travel_mm",
+                   "the robot's travel from start_station_mm "
+                       << motion.start_station_mm << " over " << motion.travel_mm
+                       << " mm lies far outside the " << length << " mm pipe");
+  for (size_t i = 0; i < world.sections.size(); ++i) {
+    const double diameter = world.sections[i].diameter_mm;
+    SEWER3D_VALIDATE(
+        motion.offset_mm.norm() + motion.wander_mm + 0.5 * rig.carrier_diameter_mm < 0.5 * diameter,
+        "pipe.sections[" + std::to_string(i) + "].diameter_mm",
+        "the carrier (Ø" << rig.carrier_diameter_mm << ", offset " << motion.offset_mm.norm()
+                         << " mm, wander " << motion.wander_mm << " mm) does not fit in a Ø"
+                         << diameter << " section");
   }
 }
 
@@ -197,7 +205,7 @@ Scenario PresetScenario(const std::string& name) {
   else if (name == "long")
     s = Long();
   else
-    throw std::invalid_argument("unknown preset '" + name + "' (tiny, demo, long)");
+    throw InvalidValue("preset", "must be tiny, demo or long, got '" + name + "'");
   s.odometry.slips.push_back({.station_mm = s.motion.start_station_mm + 0.4 * s.motion.travel_mm,
                               .length_mm = 0.1 * s.motion.travel_mm,
                               .fraction = 0.2});

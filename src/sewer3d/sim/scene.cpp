@@ -3,15 +3,14 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/root.hpp"
 
 namespace sewer3d {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Orthonormal frame of a cylinder: e1 = camera z made perpendicular to the axis (clock 0),
 // e2 = axis x e1 ... chosen so that clock increases toward camera +x.
@@ -54,43 +53,10 @@ void ToCylinder(const CylinderFrame& f, const Eigen::Vector3d& x, double& clock,
   clock = std::atan2(radial.dot(f.e2), radial.dot(f.e1));
 }
 
-double WrapAngle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
-
-double FeatureDisplacement(const WallFeature& ft, double radius, double clock, double station) {
-  const double ds = station - ft.station_mm;
-  const double arc = WrapAngle(clock - ft.clock_deg * kDeg) * radius;
-  switch (ft.type) {
-    case WallFeature::Type::kJoint: {
-      // Next section (station beyond the joint) displaced laterally by offset toward clock;
-      // an open gap of the given width and depth at the joint.
-      double d = 0.0;
-      if (ds > 0.5 * ft.gap_mm) d += ft.offset_mm * std::cos(clock - ft.clock_deg * kDeg);
-      if (std::abs(ds) <= 0.5 * ft.gap_mm) d -= ft.height_mm;
-      return d;
-    }
-    case WallFeature::Type::kBump: {
-      const double r2 = ds * ds + arc * arc;
-      return ft.height_mm * std::exp(-0.5 * r2 / (ft.radius_mm * ft.radius_mm));
-    }
-    case WallFeature::Type::kPit: {
-      const double q = (ds * ds + arc * arc) / (ft.radius_mm * ft.radius_mm);
-      return q < 1.0 ? -ft.height_mm * (1.0 - q) : 0.0;
-    }
-    case WallFeature::Type::kCrack: {
-      const double ca = std::cos(ft.angle_deg * kDeg), sa = std::sin(ft.angle_deg * kDeg);
-      const double along = ds * ca + arc * sa, across = -ds * sa + arc * ca;
-      if (std::abs(along) > 0.5 * ft.length_mm) return 0.0;
-      const double q = std::abs(across) / (0.5 * ft.width_mm);
-      return q < 1.0 ? -ft.height_mm * (1.0 - q) : 0.0;
-    }
-  }
-  return 0.0;
-}
-
 std::optional<SurfaceHit> IntersectPlane(const Scene& s, const Eigen::Vector3d& o,
                                          const Eigen::Vector3d& d) {
   const Eigen::Vector3d n =
-      Eigen::AngleAxisd(s.tilt_deg * kDeg, Eigen::Vector3d::UnitX()) * Eigen::Vector3d(0, 0, -1);
+      Eigen::AngleAxisd(DegToRad(s.tilt_deg), Eigen::Vector3d::UnitX()) * Eigen::Vector3d(0, 0, -1);
   const Eigen::Vector3d p0(0.0, 0.0, s.distance_mm);
   const double denom = d.dot(n);
   if (std::abs(denom) < 1e-15) return std::nullopt;
@@ -110,38 +76,48 @@ std::optional<SurfaceHit> IntersectPlane(const Scene& s, const Eigen::Vector3d& 
 }  // namespace
 
 void Scene::Check() const {
-  SEWER3D_CHECK(type != Type::kPlane || distance_mm > 0.0, "plane distance " << distance_mm);
-  SEWER3D_CHECK(std::abs(tilt_deg) < 89.0, "tilt " << tilt_deg);
-  SEWER3D_CHECK(type == Type::kPlane || diameter_mm > 0.0, "diameter " << diameter_mm);
-  SEWER3D_CHECK(axis.norm() > 0.0 && axis.allFinite(), "axis");
-  SEWER3D_CHECK(type == Type::kPlane || std::abs(axis.normalized().z()) < 0.99,
-                "cylinder axis nearly along the optical axis");
+  // Field names as in scene files (docs/simulator.md).
+  if (type == Type::kPlane) ValidatePositive("distance_mm", distance_mm);
+  SEWER3D_VALIDATE(std::abs(tilt_deg) < 89.0, "tilt_deg",
+                   "must be within ±89 (exclusive), got " << tilt_deg);
+  if (type != Type::kPlane) ValidatePositive("diameter_mm", diameter_mm);
+  SEWER3D_VALIDATE(axis.norm() > 0.0 && axis.allFinite(), "axis", "must be a non-zero direction");
+  SEWER3D_VALIDATE(type == Type::kPlane || std::abs(axis.normalized().z()) < 0.99, "axis",
+                   "must not run (nearly) along the camera's optical axis");
   if (type != Type::kPlane) {
     const CylinderFrame f = FrameOf(*this);
     const Eigen::Vector3d w = -f.c;
     const double rho = (w - w.dot(f.a) * f.a).norm();
-    SEWER3D_CHECK(rho < f.radius, "camera outside the cylinder (decentring " << rho << " mm)");
+    SEWER3D_VALIDATE(rho < f.radius, "axis_point_mm",
+                     "puts the camera outside the cylinder (decentring " << rho << " mm, radius "
+                                                                         << f.radius << " mm)");
   }
-  for (const auto& ft : features) {
-    SEWER3D_CHECK(ft.gap_mm >= 0.0 && ft.width_mm >= 0.0 && ft.length_mm >= 0.0, "feature size");
-    SEWER3D_CHECK(ft.type != WallFeature::Type::kBump || ft.radius_mm > 0.0, "bump radius");
-    SEWER3D_CHECK(ft.type != WallFeature::Type::kPit || ft.radius_mm > 0.0, "pit radius");
-    SEWER3D_CHECK(ft.type != WallFeature::Type::kCrack || ft.width_mm > 0.0, "crack width");
+  for (size_t i = 0; i < features.size(); ++i) {
+    using T = PipeFeature::Type;
+    const PipeFeature& ft = features[i];
+    const std::string field = "features[" + std::to_string(i) + "].";
+    SEWER3D_VALIDATE(
+        ft.type == T::kJointStep || ft.type == T::kBump || ft.type == T::kPit ||
+            ft.type == T::kCrack,
+        field + "type",
+        "must be joint, bump, pit or crack, got "
+            << PipeFeatureTypeName(ft.type)
+            << " (connections, spalling and deposits need a pipe world: simulate run)");
+    CheckWithin(field, [&] { ft.Check(); });
   }
 }
 
 double WallDisplacementMm(const Scene& scene, double clock_rad, double station_mm) {
-  double d = 0.0;
-  for (const auto& ft : scene.features) {
-    d += FeatureDisplacement(ft, 0.5 * scene.diameter_mm, clock_rad, station_mm);
-  }
-  return d;
+  return AddPipeFeatures(
+      0.0, scene.features, scene.material_seed, 0.5 * scene.diameter_mm, station_mm,
+      [clock_rad] { return clock_rad; }, nullptr);
 }
 
 double DistanceToSurfaceMm(const Scene& scene, const Eigen::Vector3d& point) {
   if (scene.type == Scene::Type::kPlane) {
-    const Eigen::Vector3d n = Eigen::AngleAxisd(scene.tilt_deg * kDeg, Eigen::Vector3d::UnitX()) *
-                              Eigen::Vector3d(0, 0, -1);
+    const Eigen::Vector3d n =
+        Eigen::AngleAxisd(DegToRad(scene.tilt_deg), Eigen::Vector3d::UnitX()) *
+        Eigen::Vector3d(0, 0, -1);
     return std::abs(n.dot(point - Eigen::Vector3d(0.0, 0.0, scene.distance_mm)));
   }
   const CylinderFrame f = FrameOf(scene);
@@ -186,8 +162,9 @@ std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o
     // refine g(t) = ρ(t) − radius(t) by the Illinois variant of regula falsi.
     double max_in = 0.0, max_out = 0.0;
     for (const auto& ft : scene.features) {
-      max_in += std::max({ft.height_mm, std::abs(ft.offset_mm), 0.0});
-      max_out += std::max(ft.height_mm, 0.0) + std::abs(ft.offset_mm);
+      const double h = ft.type == PipeFeature::Type::kBump ? ft.height_mm : ft.depth_mm;
+      max_in += std::max({h, std::abs(ft.offset_mm), 0.0});
+      max_out += std::max(h, 0.0) + std::abs(ft.offset_mm);
     }
     auto g = [&](double t) {
       double clock, station, rho;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Virtual surfaces seen by one module (docs/simulator.md): a plane, the inside of a cylinder,
-/// and a pipe-wall patch (cylinder plus displacement features). All in the camera frame, mm.
+/// and a pipe-wall patch (cylinder plus wall features). All in the camera frame, mm.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -10,25 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "sewer3d/sim/material.hpp"
+#include "sewer3d/sim/pipe_feature.hpp"
+
 namespace sewer3d {
-
-enum class Material { kConcrete, kVitrifiedClay, kPlastic, kSediment };
-
-/// A displacement of the pipe wall. Positions: station along the axis (mm) and clock angle
-/// (deg, 0 = where the camera's optical axis meets the wall, increasing toward camera +x).
-struct WallFeature {
-  enum class Type { kJoint, kBump, kPit, kCrack };
-  Type type = Type::kJoint;
-  double station_mm = 0.0;
-  double clock_deg = 0.0;
-  double gap_mm = 0.0;     ///< joint: width of the open gap
-  double offset_mm = 0.0;  ///< joint: radial displacement of the next section, inward at clock
-  double height_mm = 0.0;  ///< bump: intrusion height; pit / crack / joint gap: depth
-  double radius_mm = 0.0;  ///< bump: Gaussian sigma; pit: radius
-  double width_mm = 0.0;   ///< crack: width
-  double length_mm = 0.0;  ///< crack: length
-  double angle_deg = 0.0;  ///< crack: direction on the unrolled wall (0 = along the axis)
-};
 
 struct Scene {
   enum class Type { kPlane, kCylinder, kPipeWall };
@@ -43,8 +28,13 @@ struct Scene {
   double diameter_mm = 300.0;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitY();
   Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();
-  std::vector<WallFeature> features;  ///< pipe wall only
+  /// Pipe wall only: its features, of the pipe world's type and formulas (sim/pipe_feature.hpp);
+  /// a pipe-wall scene takes joints (kJointStep), bumps, pits and cracks. Clock positions: 12 h
+  /// (= 0 h) is where the camera's optical axis meets the wall, increasing toward camera +x;
+  /// stations along the axis from the point nearest the camera.
+  std::vector<PipeFeature> features;
 
+  /// Throws InvalidValue naming the field as a scene file does ("features[2].radius_mm").
   void Check() const;
 };
 

@@ -3,12 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 TEST(Scene, TiltedPlaneMatchesClosedForm) {
   Scene s;
@@ -18,7 +18,7 @@ TEST(Scene, TiltedPlaneMatchesClosedForm) {
     const auto hit = Intersect(s, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.2, y, 1.0));
     ASSERT_TRUE(hit.has_value());
     // Plane z = d + y_world tan(tilt): along the ray t = d / (1 − y tan(tilt)).
-    EXPECT_NEAR(hit->point.z(), 90.0 / (1.0 - y * std::tan(20.0 * kDeg)), 1e-9);
+    EXPECT_NEAR(hit->point.z(), 90.0 / (1.0 - y * std::tan(DegToRad(20.0))), 1e-9);
     EXPECT_NEAR(hit->normal.norm(), 1.0, 1e-12);
     EXPECT_LT(hit->normal.z(), 0.0);  // faces the camera
   }
@@ -44,18 +44,17 @@ TEST(Scene, PipeWallFollowsItsDisplacementField) {
   Scene s;
   s.type = Scene::Type::kPipeWall;
   s.diameter_mm = 300.0;
-  WallFeature joint;
-  joint.type = WallFeature::Type::kJoint;
-  joint.station_mm = 0.0;
-  joint.gap_mm = 4.0;
-  joint.height_mm = 3.0;
-  joint.offset_mm = 5.0;
-  WallFeature bump;
-  bump.type = WallFeature::Type::kBump;
-  bump.station_mm = -40.0;
-  bump.height_mm = 8.0;
-  bump.radius_mm = 6.0;
-  s.features = {joint, bump};
+  s.features = {{.type = PipeFeature::Type::kJointStep,
+                 .station_mm = 0.0,
+                 .clock_h = 0.0,
+                 .depth_mm = 3.0,
+                 .gap_mm = 4.0,
+                 .offset_mm = 5.0},
+                {.type = PipeFeature::Type::kBump,
+                 .station_mm = -40.0,
+                 .clock_h = 0.0,
+                 .height_mm = 8.0,
+                 .radius_mm = 6.0}};
   // Beyond the joint at clock 0 the wall is 5 mm closer; in the gap 3 mm deeper; on the bump
   // top 8 mm closer.
   auto radius_at = [&](double y) {
@@ -76,6 +75,27 @@ TEST(Scene, RejectsCameraOutsideCylinder) {
   s.diameter_mm = 100.0;
   s.axis_point_mm = {0.0, 0.0, 80.0};
   EXPECT_THROW(s.Check(), std::invalid_argument);
+}
+
+TEST(Scene, TakesTheWallFeaturesItCanRender) {
+  Scene s;
+  s.type = Scene::Type::kPipeWall;
+  s.features = {{.type = PipeFeature::Type::kCrack, .length_mm = 20.0, .width_mm = 1.0}};
+  try {
+    s.Check();
+    FAIL() << "a crack without depth passed";
+  } catch (const InvalidValue& e) {
+    EXPECT_EQ(e.field(), "features[0].depth_mm");
+  }
+  s.features[0].depth_mm = 1.0;
+  EXPECT_NO_THROW(s.Check());
+  s.features.push_back({.type = PipeFeature::Type::kDeposit, .length_mm = 50.0, .height_mm = 5.0});
+  try {
+    s.Check();
+    FAIL() << "a deposit passed";
+  } catch (const InvalidValue& e) {
+    EXPECT_EQ(e.field(), "features[1].type");
+  }
 }
 
 }  // namespace

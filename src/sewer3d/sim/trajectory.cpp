@@ -3,29 +3,31 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/material.hpp"
 
 namespace sewer3d {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kSpeedPeriodS = 2.3;
 
 }  // namespace
 
 void MotionOptions::Check() const {
-  SEWER3D_CHECK(speed_mm_s > 0.0 && speed_mm_s <= 1000.0, "speed " << speed_mm_s << " mm/s");
-  SEWER3D_CHECK(speed_variation >= 0.0 && speed_variation < 0.5,
-                "speed variation " << speed_variation);
-  SEWER3D_CHECK(travel_mm > 0.0, "travel " << travel_mm << " mm");
-  SEWER3D_CHECK(offset_mm.allFinite() && wander_mm >= 0.0, "offset / wander");
-  SEWER3D_CHECK(std::abs(roll_deg) <= 180.0 && roll_amplitude_deg >= 0.0 && wobble_deg >= 0.0 &&
-                    wobble_deg < 10.0,
-                "roll / wobble");
+  SEWER3D_VALIDATE(speed_mm_s > 0.0 && speed_mm_s <= 1000.0, "speed_mm_s",
+                   "must be > 0 and <= 1000, got " << speed_mm_s);
+  SEWER3D_VALIDATE(speed_variation >= 0.0 && speed_variation < 0.5, "speed_variation",
+                   "must be >= 0 and < 0.5, got " << speed_variation);
+  ValidatePositive("travel_mm", travel_mm);
+  SEWER3D_VALIDATE(offset_mm.allFinite(), "offset_mm", "must be finite");
+  ValidateNotNegative("wander_mm", wander_mm);
+  SEWER3D_VALIDATE(std::abs(roll_deg) <= 180.0, "roll_deg",
+                   "must be within ±180, got " << roll_deg);
+  ValidateNotNegative("roll_amplitude_deg", roll_amplitude_deg);
+  SEWER3D_VALIDATE(wobble_deg >= 0.0 && wobble_deg < 10.0, "wobble_deg",
+                   "must be >= 0 and < 10, got " << wobble_deg);
 }
 
 Trajectory::Trajectory(const PipeGeometry& pipe, const MotionOptions& options, std::uint64_t seed)
@@ -54,9 +56,9 @@ Rigid3d Trajectory::WorldFromCarrier(double t) const {
       o.offset_mm.x() + o.wander_mm * std::sin(kTwoPi * t / 3.1 + phase_[1]),
       o.offset_mm.y() + o.wander_mm * std::sin(kTwoPi * t / 4.3 + phase_[2]), 0.0);
   const double roll =
-      (o.roll_deg + o.roll_amplitude_deg * std::sin(kTwoPi * t / 5.7 + phase_[3])) * kDeg;
-  const double pitch = o.wobble_deg * std::sin(kTwoPi * t / 0.9 + phase_[4]) * kDeg;
-  const double yaw = o.wobble_deg * std::sin(kTwoPi * t / 1.3 + phase_[5]) * kDeg;
+      DegToRad(o.roll_deg + o.roll_amplitude_deg * std::sin(kTwoPi * t / 5.7 + phase_[3]));
+  const double pitch = DegToRad(o.wobble_deg * std::sin(kTwoPi * t / 0.9 + phase_[4]));
+  const double yaw = DegToRad(o.wobble_deg * std::sin(kTwoPi * t / 1.3 + phase_[5]));
   const Eigen::Quaterniond attitude = Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()) *
                                       Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
                                       Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY());
@@ -64,12 +66,14 @@ Rigid3d Trajectory::WorldFromCarrier(double t) const {
 }
 
 void CaptureOptions::Check() const {
-  SEWER3D_CHECK(overlap >= 0.0 && overlap < 0.95, "overlap " << overlap);
-  SEWER3D_CHECK(triplet_interval_ms > 0.0 && group_delay_ms >= 0.0 && exposure_ms >= 0.0,
-                "capture timing");
-  SEWER3D_CHECK(exposure_ms < triplet_interval_ms,
-                "exposure " << exposure_ms << " ms longer than the triplet interval");
-  SEWER3D_CHECK(nominal_diameter_mm > 0.0, "nominal diameter");
+  SEWER3D_VALIDATE(overlap >= 0.0 && overlap < 0.95, "overlap",
+                   "must be >= 0 and < 0.95, got " << overlap);
+  ValidatePositive("triplet_interval_ms", triplet_interval_ms);
+  ValidateNotNegative("group_delay_ms", group_delay_ms);
+  SEWER3D_VALIDATE(exposure_ms >= 0.0 && exposure_ms < triplet_interval_ms, "exposure_ms",
+                   "must be >= 0 and shorter than triplet_interval_ms ("
+                       << triplet_interval_ms << "), got " << exposure_ms);
+  ValidatePositive("nominal_diameter_mm", nominal_diameter_mm);
 }
 
 CapturePlan PlanCaptures(const Rig& rig, const Trajectory& trajectory, const CaptureOptions& o) {
@@ -80,8 +84,9 @@ CapturePlan PlanCaptures(const Rig& rig, const Trajectory& trajectory, const Cap
   for (size_t k = 0; k < rig.modules.size(); ++k) {
     const WallCoverage c = ModuleCoverage(rig, static_cast<int>(k), o.nominal_diameter_mm,
                                           Eigen::Vector2d::Zero(), true, 16);
-    SEWER3D_CHECK(c.any, "module " << rig.modules[k].name << " measures nothing of a Ø"
-                                   << o.nominal_diameter_mm << " pipe");
+    SEWER3D_VALIDATE(c.any, "nominal_diameter_mm",
+                     "module " << rig.modules[k].name << " measures nothing of a Ø"
+                               << o.nominal_diameter_mm << " pipe");
     plan.footprint_mm = std::min(plan.footprint_mm, c.station_to_mm - c.station_from_mm);
   }
   plan.period_s = (1.0 - o.overlap) * plan.footprint_mm / trajectory.options().speed_mm_s;

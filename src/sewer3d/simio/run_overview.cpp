@@ -9,12 +9,11 @@
 #include <string>
 
 #include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/material.hpp"
 
 namespace sewer3d {
 namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 int SectionAt(const PipeGeometry& pipe, double station) {
   int i = 0;

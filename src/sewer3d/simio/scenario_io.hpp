@@ -18,6 +18,4 @@ std::string ScenarioToJson(const Scenario& scenario);
 /// The pipe world alone (the same form as the scenario's "pipe" member).
 std::string PipeWorldToJson(const PipeWorld& world);
 
-const char* FeatureTypeName(PipeFeature::Type type);
-
 }  // namespace sewer3d

@@ -28,19 +28,10 @@ const char* TypeName(Scene::Type t) {
   }
   return "plane";
 }
-const char* FeatureName(WallFeature::Type t) {
-  switch (t) {
-    case WallFeature::Type::kJoint:
-      return "joint";
-    case WallFeature::Type::kBump:
-      return "bump";
-    case WallFeature::Type::kPit:
-      return "pit";
-    case WallFeature::Type::kCrack:
-      return "crack";
-  }
-  return "joint";
-}
+// A scene file's clock angle (deg from where the optical axis meets the wall) in the clock hours
+// of PipeFeature (12 h = 360°), and back.
+double ClockDegToHours(double clock_deg) { return clock_deg / 30.0; }
+double ClockHoursToDeg(double clock_h) { return clock_h * 30.0; }
 
 }  // namespace
 
@@ -70,35 +61,29 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
       const json& f = (*it)[i];
       const std::string prefix = "features[" + std::to_string(i) + "].";
       if (!f.is_object()) in.Fail(prefix, "must be an object");
-      WallFeature ft;
+      PipeFeature ft;
       const std::string kind = in.Text(f, "type", prefix, "");
-      if (kind == "joint")
-        ft.type = WallFeature::Type::kJoint;
-      else if (kind == "bump")
-        ft.type = WallFeature::Type::kBump;
-      else if (kind == "pit")
-        ft.type = WallFeature::Type::kPit;
-      else if (kind == "crack")
-        ft.type = WallFeature::Type::kCrack;
-      else
-        in.Fail(prefix + "type", "must be joint, bump, pit or crack, got '" + kind + "'");
+      const auto type = PipeFeatureTypeFromName(kind);
+      if (!type) in.Fail(prefix + "type", "must be joint, bump, pit or crack, got '" + kind + "'");
+      ft.type = *type;  // Scene::Check rejects the kinds only a pipe world takes
       ft.station_mm = in.Number(f, "station_mm", prefix, 0.0);
-      ft.clock_deg = in.Number(f, "clock_deg", prefix, 0.0);
+      ft.clock_h = ClockDegToHours(in.Number(f, "clock_deg", prefix, 0.0));
       ft.gap_mm = in.Number(f, "gap_mm", prefix, 0.0);
       ft.offset_mm = in.Number(f, "offset_mm", prefix, 0.0);
-      ft.height_mm = in.Number(f, "height_mm", prefix, 0.0);
       ft.radius_mm = in.Number(f, "radius_mm", prefix, 0.0);
       ft.width_mm = in.Number(f, "width_mm", prefix, 0.0);
       ft.length_mm = in.Number(f, "length_mm", prefix, 0.0);
       ft.angle_deg = in.Number(f, "angle_deg", prefix, 0.0);
+      // A bump's height rises out of the wall; pits, cracks and joint gaps have a depth into it,
+      // which files before depth_mm gave as height_mm.
+      if (ft.type == PipeFeature::Type::kBump)
+        ft.height_mm = in.Number(f, "height_mm", prefix, 0.0);
+      else
+        ft.depth_mm = in.Number(f, "depth_mm", prefix, in.Number(f, "height_mm", prefix, 0.0));
       s.features.push_back(ft);
     }
   }
-  try {
-    s.Check();
-  } catch (const std::invalid_argument& e) {
-    throw FileError(path, std::string("inconsistent scene: ") + e.what());
-  }
+  ValidateFileContents(path, [&] { s.Check(); });
   return s;
 }
 
@@ -129,12 +114,13 @@ std::string SceneToJson(const Scene& s) {
     j["axis_point_mm"] = {s.axis_point_mm.x(), s.axis_point_mm.y(), s.axis_point_mm.z()};
     j["features"] = json::array();
     for (const auto& f : s.features) {
-      j["features"].push_back({{"type", FeatureName(f.type)},
+      j["features"].push_back({{"type", PipeFeatureTypeName(f.type)},
                                {"station_mm", f.station_mm},
-                               {"clock_deg", f.clock_deg},
+                               {"clock_deg", ClockHoursToDeg(f.clock_h)},
                                {"gap_mm", f.gap_mm},
                                {"offset_mm", f.offset_mm},
                                {"height_mm", f.height_mm},
+                               {"depth_mm", f.depth_mm},
                                {"radius_mm", f.radius_mm},
                                {"width_mm", f.width_mm},
                                {"length_mm", f.length_mm},

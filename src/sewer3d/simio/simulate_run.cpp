@@ -7,6 +7,7 @@
 #include <chrono>
 #include <mutex>
 
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/run_io.hpp"
@@ -54,11 +55,13 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
   scenario.Check();
   ModuleDescription module = module_in;
   module.pattern.matrix_path = "pattern.png";
-  const Rig rig = MakeRig(module, scenario.rig);
+  // Errors in the scenario file's terms: "rig.stagger_mm", "capture.nominal_diameter_mm".
+  Rig rig;
+  CheckWithin("rig.", [&] { rig = MakeRig(module, scenario.rig); });
   const PipeGeometry pipe(scenario.world);
   const Trajectory trajectory(pipe, scenario.motion, scenario.seed);
   SimulatedRun result;
-  result.plan = PlanCaptures(rig, trajectory, scenario.capture);
+  CheckWithin("capture.", [&] { result.plan = PlanCaptures(rig, trajectory, scenario.capture); });
   result.duration_s = trajectory.DurationS();
   result.overlap =
       NeighbourOverlaps(rig, scenario.capture.nominal_diameter_mm, Eigen::Vector2d::Zero(), true);

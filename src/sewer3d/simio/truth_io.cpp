@@ -118,6 +118,10 @@ void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pi
         o["cross_section_loss_pct"] = 100.0 * (theta - std::sin(theta)) / (2.0 * std::numbers::pi);
         break;
       }
+      case PipeFeature::Type::kBump:
+      case PipeFeature::Type::kPit:
+      case PipeFeature::Type::kJointStep:
+        break;  // pipe-wall scene kinds, which PipeWorld::Check keeps out of a pipe world
     }
     list.push_back(o);
   }

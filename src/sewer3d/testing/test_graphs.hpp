@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/posegraph/pose_graph.hpp"
 
 namespace sewer3d::test_graphs {
@@ -34,7 +35,7 @@ inline Matrix6d RandomInformation(std::mt19937& rng) {
 }
 
 inline double RotationErrorDeg(const Rigid3d& a, const Rigid3d& b) {
-  return a.rotation.angularDistance(b.rotation) * 180.0 / M_PI;
+  return RadToDeg(a.rotation.angularDistance(b.rotation));
 }
 
 /// Information diag(1, 1, 1, 400, 400, 400): 1 mm and about 3° standard deviations.

@@ -11,8 +11,10 @@
 namespace sewer3d {
 
 void TriangulationOptions::Check() const {
-  SEWER3D_CHECK(z_min_mm > 0.0 && z_max_mm > z_min_mm, "depth range");
-  SEWER3D_CHECK(max_reprojection_px > 0.0, "max_reprojection_px");
+  ValidatePositive("z_min_mm", z_min_mm);
+  SEWER3D_VALIDATE(z_max_mm > z_min_mm, "z_max_mm",
+                   "must be > z_min_mm (" << z_min_mm << "), got " << z_max_mm);
+  ValidatePositive("max_reprojection_px", max_reprojection_px);
 }
 
 Triangulator::Triangulator(const ModuleDescription& module, int array_rows, int array_cols,

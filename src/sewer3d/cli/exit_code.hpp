@@ -1,0 +1,33 @@
+#pragma once
+/// \file
+/// How an error that ends a `sewer3d` command becomes an exit status and a one-line message
+/// (the README's exit-code table).
+
+#include <exception>
+#include <string>
+
+namespace sewer3d::cli {
+
+/// Exit statuses of the `sewer3d` binary.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitTaskFailed = 1,   ///< the command ran but could not do its task (e.g. no pattern found)
+  kExitUsage = 2,        ///< bad command line, or an option value the library rejected
+  kExitBadFile = 3,      ///< an input file is missing, unreadable, malformed or inconsistent
+  kExitInternal = 4,     ///< a bug: a broken internal invariant or an unexpected exception
+  kExitOutOfMemory = 5,  ///< memory ran out
+};
+
+struct ErrorExit {
+  int code = kExitInternal;
+  std::string message;  ///< one line, to follow "sewer3d: error: "
+};
+
+/// Classifies the exception that ended a command: CLI parse errors and InvalidValue /
+/// std::invalid_argument (an option value a library rejected) → kExitUsage; FileError and
+/// std::filesystem::filesystem_error → kExitBadFile; std::bad_alloc → kExitOutOfMemory;
+/// InternalError, any other exception and non-std exceptions → kExitInternal with "internal
+/// error, please report: …". Line breaks in messages become spaces.
+ErrorExit ExitForError(std::exception_ptr error);
+
+}  // namespace sewer3d::cli

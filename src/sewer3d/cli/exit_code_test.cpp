@@ -1,0 +1,75 @@
+#include "sewer3d/cli/exit_code.hpp"
+
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/io/file_error.hpp"
+
+namespace sewer3d::cli {
+namespace {
+
+template <typename E>
+ErrorExit ExitFor(const E& error) {
+  return ExitForError(std::make_exception_ptr(error));
+}
+
+TEST(ExitCode, BadFileNamesTheFile) {
+  const ErrorExit e =
+      ExitFor(FileError("run/scenario.json", "pipe.joints: 2 sections need 1 joint"));
+  EXPECT_EQ(e.code, kExitBadFile);
+  EXPECT_EQ(e.message, "run/scenario.json: pipe.joints: 2 sections need 1 joint");
+  const std::filesystem::filesystem_error fs_error(
+      "cannot create directories", "out/x", std::make_error_code(std::errc::permission_denied));
+  EXPECT_EQ(ExitFor(fs_error).code, kExitBadFile);
+}
+
+TEST(ExitCode, RejectedValuesAreUsageErrors) {
+  const ErrorExit e = ExitFor(InvalidValue("supersampling", "must be 1..16, got 0"));
+  EXPECT_EQ(e.code, kExitUsage);
+  EXPECT_EQ(e.message, "invalid value: supersampling: must be 1..16, got 0");
+  EXPECT_EQ(ExitFor(std::invalid_argument("bad")).code, kExitUsage);
+  const ErrorExit parse = ExitFor(CLI::RequiredError("--out"));
+  EXPECT_EQ(parse.code, kExitUsage);
+  EXPECT_NE(parse.message.find("--out"), std::string::npos);
+}
+
+TEST(ExitCode, InternalErrorsAskForAReport) {
+  try {
+    SEWER3D_CHECK(1 + 1 == 3, "arithmetic");
+  } catch (...) {
+    const ErrorExit e = ExitForError(std::current_exception());
+    EXPECT_EQ(e.code, kExitInternal);
+    EXPECT_EQ(e.message.rfind("internal error, please report: check failed: 1 + 1 == 3", 0), 0u)
+        << e.message;
+    EXPECT_NE(e.message.find("exit_code_test.cpp:"), std::string::npos) << e.message;
+  }
+  // Exceptions no code path expects are bugs too.
+  EXPECT_EQ(ExitFor(std::out_of_range("vector")).code, kExitInternal);
+  EXPECT_EQ(ExitFor(std::runtime_error("?")).code, kExitInternal);
+  EXPECT_EQ(ExitFor(42).code, kExitInternal);
+  EXPECT_NE(kExitInternal, kExitUsage);
+  EXPECT_NE(kExitInternal, kExitBadFile);
+  EXPECT_NE(kExitInternal, kExitTaskFailed);
+}
+
+TEST(ExitCode, OutOfMemory) {
+  const ErrorExit e = ExitFor(std::bad_alloc());
+  EXPECT_EQ(e.code, kExitOutOfMemory);
+  EXPECT_EQ(e.message, "out of memory");
+}
+
+TEST(ExitCode, MessagesAreOneLine) {
+  const ErrorExit e = ExitFor(std::runtime_error("OpenCV(4.6) error:\nsomething\n"));
+  EXPECT_EQ(e.message.find('\n'), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("error: something"), std::string::npos) << e.message;
+}
+
+}  // namespace
+}  // namespace sewer3d::cli
