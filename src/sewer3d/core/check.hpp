@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The two kinds of checks (README, "Exit codes"):
+/// The two kinds of checks (the README's exit-code table says what the CLI makes of them):
 ///
 /// - **Validation** of values a caller supplies (every `Options::Check()`, scenes, scenarios,
 ///   pipe worlds, rigs, modules): SEWER3D_VALIDATE throws InvalidValue, a
@@ -49,7 +49,10 @@ void CheckWithin(const std::string& prefix, CheckFn&& check) {
   try {
     std::forward<CheckFn>(check)();
   } catch (const InvalidValue& e) {
-    throw InvalidValue(prefix + e.field(), e.problem());
+    // A problem of the whole member ("pipe.") is named by the member ("pipe").
+    const bool whole = e.field().empty() && !prefix.empty() && prefix.back() == '.';
+    throw InvalidValue(whole ? prefix.substr(0, prefix.size() - 1) : prefix + e.field(),
+                       e.problem());
   }
 }
 

@@ -58,6 +58,13 @@ TEST(Check, CheckWithinPrefixesTheField) {
   } catch (const InvalidValue& e) {
     EXPECT_EQ(e.field(), "pipe.sections[1].length_mm");
   }
+  // A problem of the whole member is named by the member.
+  try {
+    CheckWithin("pipe.", [] { throw InvalidValue("", "the pipe has no sections"); });
+    FAIL() << "no throw";
+  } catch (const InvalidValue& e) {
+    EXPECT_EQ(std::string(e.what()), "pipe: the pipe has no sections");
+  }
   // Internal errors pass through unchanged.
   EXPECT_THROW(CheckWithin("pipe.", [] { SEWER3D_CHECK(false); }), InternalError);
   EXPECT_NO_THROW(CheckWithin("pipe.", [] {}));
