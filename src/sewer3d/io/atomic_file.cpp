@@ -9,11 +9,10 @@
 #include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
-namespace {
 
 // Unique within the process (threads write different files at once) and across processes
 // (the pid): two writers never share a temporary.
-std::filesystem::path TemporaryFor(const std::filesystem::path& path) {
+std::filesystem::path TemporaryPathFor(const std::filesystem::path& path) {
   static std::atomic<unsigned long> next{0};
   std::string name = ".";
   name += path.filename().string();
@@ -22,14 +21,12 @@ std::filesystem::path TemporaryFor(const std::filesystem::path& path) {
   return path.parent_path() / name;
 }
 
-}  // namespace
-
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path&)>& write) {
   std::error_code ec;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
   if (ec) throw FileError(path.parent_path(), "cannot create folder: " + ec.message());
-  const std::filesystem::path temporary = TemporaryFor(path);
+  const std::filesystem::path temporary = TemporaryPathFor(path);
   try {
     write(temporary);
   } catch (...) {

@@ -19,6 +19,10 @@ namespace sewer3d {
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path&)>& write);
 
+/// A fresh name beside `path` for a temporary file or folder: `.<file name>.tmp-<pid>-<n>` +
+/// `path`'s extension; unique within and across processes. Nothing is created.
+std::filesystem::path TemporaryPathFor(const std::filesystem::path& path);
+
 /// WriteTextFile (text_file.hpp) through WriteFileAtomically.
 void WriteTextFileAtomically(const std::filesystem::path& path, const std::string& text);
 

@@ -4,19 +4,30 @@
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
-#include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/io/reconstruction_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
+namespace {
+
+void Rename(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::error_code ec;
+  std::filesystem::rename(from, to, ec);
+  if (ec) throw FileError(to, "cannot rename the finished temporary file over it: " + ec.message());
+}
+
+}  // namespace
 
 RgbdFiles RgbdAcquisitionFiles(const std::filesystem::path& rgbd_folder, int module, int counter) {
-  char stem[32];
+  char name[32], stem[32];
+  std::snprintf(name, sizeof name, "m%d", module);
   std::snprintf(stem, sizeof stem, "%06d_", counter);
-  const std::filesystem::path folder = rgbd_folder / ("m" + std::to_string(module));
+  const std::filesystem::path folder = rgbd_folder / name;
   const std::string s = stem;
-  return {folder / (s + "color.png"), folder / (s + "depth.tiff"), folder / (s + "cloud.ply"),
+  return {folder / (s + "color.png"), folder / (s + "depth.tiff"),
+          folder / (s + "depth_preview.png"), folder / (s + "cloud.ply"),
           folder / (s + "report.json")};
 }
 
@@ -25,23 +36,24 @@ bool RgbdAcquisitionDone(const RgbdFiles& files) { return IsRegularFile(files.re
 void WriteRgbdAcquisition(const RgbdFiles& files, const cv::Mat3b& color_bgr,
                           const FrameReconstruction& frame, const std::string& image,
                           const std::string& extra_json) {
-  std::vector<Eigen::Vector3d> xyz;
-  std::vector<std::array<std::uint8_t, 3>> colours;
-  xyz.reserve(frame.points.size());
-  for (const FramePoint& p : frame.points) {
-    xyz.push_back(p.point_mm);
-    if (frame.coloured) colours.push_back(p.rgb);
-  }
   WriteFileAtomically(files.color, [&](const auto& t) { WriteImage(t, color_bgr); });
-  WriteFileAtomically(files.depth, [&](const auto& t) { WriteImage(t, frame.depth_mm); });
-  WriteFileAtomically(files.cloud, [&](const auto& t) { WritePly(t, xyz, colours); });
-  // The frame report's own writer gives its fields; the acquisition's are merged over them.
-  WriteFileAtomically(files.report, [&](const std::filesystem::path& t) {
-    WriteFrameReport(t, frame.report, image);
-    nlohmann::json report = nlohmann::json::parse(ReadTextFile(t));
+  // The single-frame writer fills a temporary folder in the same file system; each file is
+  // renamed into place complete, the report last.
+  const std::filesystem::path temporary = TemporaryPathFor(files.report);
+  try {
+    WriteFrameReconstruction(temporary, frame, image);
+    Rename(temporary / "depth.tiff", files.depth);
+    Rename(temporary / "depth.png", files.depth_preview);
+    Rename(temporary / "cloud.ply", files.cloud);
+    nlohmann::json report = nlohmann::json::parse(ReadTextFile(temporary / "report.json"));
     report.merge_patch(nlohmann::json::parse(extra_json));
-    WriteTextFile(t, report.dump(2) + "\n");
-  });
+    WriteTextFileAtomically(files.report, report.dump(2) + "\n");
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove_all(temporary, ignored);
+    throw;
+  }
+  RemoveFolder(temporary);
 }
 
 }  // namespace sewer3d
