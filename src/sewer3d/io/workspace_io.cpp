@@ -51,7 +51,7 @@ WorkspaceRecord WorkspaceFromJson(const std::string& text, const std::filesystem
       stage.done_utc = reader.Text(s, "done_utc", prefix, "");
     stage.software_version = reader.Text(s, "software_version", prefix, "");
     for (const auto& [key, value] : reader.Object(s, "notes", prefix).items()) {
-      if (!value.is_string()) reader.Fail(prefix + "notes." + key, "must be a string");
+      if (!value.is_string()) reader.Fail(prefix + "notes." + std::string(key), "must be a string");
       stage.notes[key] = value.get<std::string>();
     }
     record.stages[name] = stage;

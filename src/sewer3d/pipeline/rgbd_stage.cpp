@@ -1,5 +1,6 @@
 #include "sewer3d/pipeline/rgbd_stage.hpp"
 
+#include <fmt/core.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -65,12 +66,10 @@ std::filesystem::path ImageFile(const CaptureRun& run, const Acquisition& a, Ima
 
 cv::Mat ReadSized(const std::filesystem::path& file, const CameraIntrinsics& camera, int module,
                   bool colour) {
-  const cv::Mat image = colour ? ReadImage(file, cv::IMREAD_COLOR) : ReadGreyImage(file);
+  cv::Mat image = colour ? ReadImage(file, cv::IMREAD_COLOR) : ReadGreyImage(file);
   if (image.cols != camera.width || image.rows != camera.height) {
-    throw FileError(file, "image is " + std::to_string(image.cols) + "x" +
-                              std::to_string(image.rows) + " but module m" +
-                              std::to_string(module) + "'s camera is " +
-                              std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    throw FileError(file, fmt::format("image is {}x{} but module m{}'s camera is {}x{}", image.cols,
+                                      image.rows, module, camera.width, camera.height));
   }
   return image;
 }

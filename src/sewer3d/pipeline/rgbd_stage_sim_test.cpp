@@ -54,7 +54,7 @@ class RgbdStageTiny : public ::testing::Test {
 
   // A copy of the finished workspace (the tests that change it leave the original alone).
   static fs::path CopyWorkspace(const std::string& name) {
-    const fs::path copy = dir_ / name;
+    fs::path copy = dir_ / name;
     fs::remove_all(copy);
     fs::copy(dir_ / "ws", copy, fs::copy_options::recursive);
     return copy;
