@@ -200,5 +200,37 @@ mkdir -p "$tmp/c/few" && cp -r "$tmp/c/sim/pose_00" "$tmp/c/few/"
 expect_error "at least 3" "$bin" calibrate module --captures "$tmp/c/few" --board 9x6 --out "$tmp/c/mod.json"
 expect_error "--captures" "$bin" calibrate module --captures "$tmp/c/none" --out "$tmp/c/mod.json"
 
+# rgbd: the RGB-D stage over a tiny run; a second run skips everything; bad images fail alone.
+expect_ok "$bin" rgbd --help
+grep -q -- "--threads" "$tmp/out" || fail "rgbd --help shows no --threads"
+expect_ok "$bin" simulate run --preset tiny --out "$tmp/rg/run" --quiet
+expect_ok "$bin" rgbd "$tmp/rg/run" --out "$tmp/rg/ws" --quiet
+for k in 0 1 2 3 4 5; do
+  for c in 000000 000001; do
+    for f in color.png depth.tiff cloud.ply report.json; do
+      [ -s "$tmp/rg/ws/rgbd/m$k/${c}_$f" ] || fail "rgbd did not write m$k/${c}_$f"
+    done
+  done
+done
+grep -q '"color": "texture_before, uncorrected"' "$tmp/rg/ws/workspace.json" ||
+  fail "workspace.json does not say where colour comes from"
+expect_ok "$bin" rgbd "$tmp/rg/run" --out "$tmp/rg/ws" --quiet
+grep -q "0 done, 12 skipped" "$tmp/out" || fail "rgbd run again did not skip everything: $(cat "$tmp/out")"
+expect_error "--force" "$bin" rgbd "$tmp/rg/run" --out "$tmp/rg/ws" --quiet --max-edge-steps 4
+[ -s "$tmp/rg/ws/rgbd/m0/000000_report.json" ] || fail "refused rgbd removed outputs"
+cut=$tmp/rg/run/images/m3/000001_pattern.png
+head -c 2000 "$cut" >"$tmp/rg/cut.png" && mv "$tmp/rg/cut.png" "$cut"
+expect_error "000001_pattern.png: cannot decode image: truncated PNG" \
+  "$bin" rgbd "$tmp/rg/run" --out "$tmp/rg/ws2" --quiet
+grep -q "1 of 12 acquisitions failed" "$tmp/err" || fail "rgbd error does not count failures: $(cat "$tmp/err")"
+"$bin" rgbd "$tmp/rg/run" --out "$tmp/rg/ws2" --quiet >/dev/null 2>&1
+[ $? -eq 1 ] || fail "rgbd with a truncated image did not exit 1"
+[ -s "$tmp/rg/ws2/rgbd/m3/000000_report.json" ] || fail "rgbd did not process the other acquisitions"
+[ -e "$tmp/rg/ws2/rgbd/m3/000001_report.json" ] && fail "rgbd wrote a report for the bad acquisition"
+grep -q "$cut" "$tmp/rg/ws2/rgbd/report.json" || fail "rgbd/report.json does not list the bad image"
+expect_error "no_run: is not a run folder" "$bin" rgbd "$tmp/rg/no_run" --out "$tmp/rg/ws4" --quiet
+"$bin" rgbd "$tmp/rg/no_run" --out "$tmp/rg/ws4" --quiet >/dev/null 2>&1
+[ $? -eq 3 ] || fail "rgbd on a folder that is no run did not exit 3"
+
 if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
 echo "all CLI checks passed"

@@ -1,0 +1,86 @@
+// `sewer3d rgbd RUN --out WS`: the RGB-D stage over a whole capture run (docs/rgbd.md).
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "sewer3d/cli/command.hpp"
+#include "sewer3d/io/run_io.hpp"
+#include "sewer3d/pipeline/rgbd_stage.hpp"
+#include "sewer3d/pipeline/workspace.hpp"
+
+namespace sewer3d::cli {
+
+Command AddRgbdCommand(CLI::App& app) {
+  struct Args {
+    std::string run, out;
+    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    double max_edge_steps = FrameReconstructionOptions{}.max_edge_steps;
+    bool quiet = false, force = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand(
+      "rgbd",
+      "Decode every pattern image of a run: WS/rgbd/m<k>/<counter>_color.png, _depth.tiff, "
+      "_cloud.ply, _report.json");
+  sub->add_option("RUN", args->run, "Capture run folder (docs/formats.md)")->required();
+  sub->add_option("--out", args->out, "Processing workspace folder WS")->required();
+  sub->add_option("--threads", args->threads, "Acquisitions processed at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  sub->add_option("--max-edge-steps", args->max_edge_steps,
+                  "Depth map: longest triangle edge, in pattern pitches")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 20.0));
+  sub->add_flag("--force", args->force,
+                "Redo the stage from scratch, also when it was run with other options");
+  sub->add_flag("--quiet", args->quiet, "No progress bar");
+  return {sub, [args] {
+            const CaptureRun run = LoadRun(args->run);
+            RgbdStageOptions options;
+            options.reconstruction.max_edge_steps = args->max_edge_steps;
+            options.threads = args->threads;
+            options.force = args->force;
+            const auto start = std::chrono::steady_clock::now();
+            auto progress = [&](int done, int total) {
+              if (args->quiet) return;
+              const double seconds =
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+              const int width = 30, filled = width * done / total;
+              std::fprintf(stderr, "\rrgbd: [%s%s] %d/%d acquisitions  %.0f s  ETA %.0f s ",
+                           std::string(filled, '#').c_str(),
+                           std::string(width - filled, '.').c_str(), done, total, seconds,
+                           seconds / done * (total - done));
+              if (done == total) std::fprintf(stderr, "\n");
+            };
+            RgbdStageReport report;
+            try {
+              Workspace workspace(args->out, run.folder);
+              report = RunRgbdStage(run, workspace, options, progress);
+            } catch (const WorkspaceConflict& e) {
+              fmt::print(stderr, "sewer3d: error: {}\n", e.what());
+              return 2;
+            }
+            const std::filesystem::path report_file =
+                std::filesystem::path(args->out) / "rgbd" / "report.json";
+            fmt::print(
+                "rgbd: {} acquisitions: {} done, {} skipped (done before), {} failed; {} points; "
+                "{:.2f} s per acquisition, {:.1f} s in all ({} threads); colour: {}\n",
+                report.acquisitions, report.done, report.skipped, report.failed, report.points,
+                report.seconds_per_acquisition, report.seconds, report.threads, kRgbdColorSource);
+            fmt::print("wrote {}\n", report_file.string());
+            if (const RgbdAcquisitionResult* first = report.FirstFailure()) {
+              fmt::print(stderr, "sewer3d: error: {}: {}; {} of {} acquisitions failed (see {})\n",
+                         first->file, first->reason, report.failed, report.acquisitions,
+                         report_file.string());
+              return 1;
+            }
+            return 0;
+          }};
+}
+
+}  // namespace sewer3d::cli

@@ -1,0 +1,59 @@
+#include "sewer3d/io/rgbd_io.hpp"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/reconstruction_io.hpp"
+#include "sewer3d/io/text_file.hpp"
+
+namespace sewer3d {
+namespace {
+
+void Rename(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::error_code ec;
+  std::filesystem::rename(from, to, ec);
+  if (ec) throw FileError(to, "cannot rename the finished temporary file over it: " + ec.message());
+}
+
+}  // namespace
+
+RgbdFiles RgbdAcquisitionFiles(const std::filesystem::path& rgbd_folder, int module, int counter) {
+  char name[32], stem[32];
+  std::snprintf(name, sizeof name, "m%d", module);
+  std::snprintf(stem, sizeof stem, "%06d_", counter);
+  const std::filesystem::path folder = rgbd_folder / name;
+  const std::string s = stem;
+  return {folder / (s + "color.png"), folder / (s + "depth.tiff"),
+          folder / (s + "depth_preview.png"), folder / (s + "cloud.ply"),
+          folder / (s + "report.json")};
+}
+
+bool RgbdAcquisitionDone(const RgbdFiles& files) { return IsRegularFile(files.report); }
+
+void WriteRgbdAcquisition(const RgbdFiles& files, const cv::Mat3b& color_bgr,
+                          const FrameReconstruction& frame, const std::string& image,
+                          const std::string& extra_json) {
+  WriteFileAtomically(files.color, [&](const auto& t) { WriteImage(t, color_bgr); });
+  // The single-frame writer fills a temporary folder in the same file system; each file is
+  // renamed into place complete, the report last.
+  const std::filesystem::path temporary = TemporaryPathFor(files.report);
+  try {
+    WriteFrameReconstruction(temporary, frame, image);
+    Rename(temporary / "depth.tiff", files.depth);
+    Rename(temporary / "depth.png", files.depth_preview);
+    Rename(temporary / "cloud.ply", files.cloud);
+    nlohmann::json report = nlohmann::json::parse(ReadTextFile(temporary / "report.json"));
+    report.merge_patch(nlohmann::json::parse(extra_json));
+    WriteTextFileAtomically(files.report, report.dump(2) + "\n");
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove_all(temporary, ignored);
+    throw;
+  }
+  RemoveFolder(temporary);
+}
+
+}  // namespace sewer3d

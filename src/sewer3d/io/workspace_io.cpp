@@ -1,0 +1,70 @@
+#include "sewer3d/io/workspace_io.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/json_reader.hpp"
+#include "sewer3d/io/text_file.hpp"
+
+namespace sewer3d {
+
+using nlohmann::json;
+
+std::string WorkspaceToJson(const WorkspaceRecord& record) {
+  json stages = json::object();
+  for (const auto& [name, s] : record.stages) {
+    json stage;
+    stage["options"] = json::parse(s.options_json);
+    stage["done"] = s.done;
+    stage["started_utc"] = s.started_utc;
+    stage["done_utc"] = s.done_utc.empty() ? json(nullptr) : json(s.done_utc);
+    stage["software_version"] = s.software_version;
+    stage["notes"] = s.notes;
+    stages[name] = stage;
+  }
+  const json j = {{"format", "sewer3d-workspace"},
+                  {"version", 1},
+                  {"run", record.run},
+                  {"software_version", record.software_version},
+                  {"stages", stages}};
+  return j.dump(2) + "\n";
+}
+
+WorkspaceRecord WorkspaceFromJson(const std::string& text, const std::filesystem::path& path) {
+  const JsonReader reader(path);
+  const json j = reader.ParseObject(text);
+  if (reader.Text(j, "format", "") != "sewer3d-workspace")
+    reader.Fail("format", "must be \"sewer3d-workspace\"");
+  if (reader.Integer(j, "version", "", 0) != 1) reader.Fail("version", "must be 1");
+  WorkspaceRecord record;
+  record.run = reader.Text(j, "run", "");
+  record.software_version = reader.Text(j, "software_version", "", "");
+  const json& stages = reader.Object(j, "stages", "");
+  for (const auto& [name, s] : stages.items()) {
+    const std::string prefix = "stages." + name + ".";
+    if (!s.is_object()) reader.Fail("stages." + name, "must be an object");
+    WorkspaceStage stage;
+    stage.options_json = reader.Object(s, "options", prefix).dump();
+    stage.done = reader.Bool(s, "done", prefix, false);
+    stage.started_utc = reader.Text(s, "started_utc", prefix, "");
+    if (s.contains("done_utc") && !s["done_utc"].is_null())
+      stage.done_utc = reader.Text(s, "done_utc", prefix, "");
+    stage.software_version = reader.Text(s, "software_version", prefix, "");
+    for (const auto& [key, value] : reader.Object(s, "notes", prefix).items()) {
+      if (!value.is_string()) reader.Fail(prefix + "notes." + std::string(key), "must be a string");
+      stage.notes[key] = value.get<std::string>();
+    }
+    record.stages[name] = stage;
+  }
+  return record;
+}
+
+void WriteWorkspaceRecord(const std::filesystem::path& path, const WorkspaceRecord& record) {
+  WriteTextFileAtomically(path, WorkspaceToJson(record));
+}
+
+WorkspaceRecord ReadWorkspaceRecord(const std::filesystem::path& path) {
+  return WorkspaceFromJson(ReadTextFile(path), path);
+}
+
+}  // namespace sewer3d

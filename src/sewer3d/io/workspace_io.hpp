@@ -1,0 +1,44 @@
+#pragma once
+/// \file
+/// `WS/workspace.json` of a processing workspace (DESIGN.md contract "processing workspace";
+/// docs/rgbd.md has the format): the run it belongs to, the software version, and per stage
+/// the options its outputs were made with and whether it finished. Written atomically; errors
+/// are FileError naming the file and field.
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace sewer3d {
+
+/// One stage's record ("rgbd", later "register", "model", "inspect").
+struct WorkspaceStage {
+  /// The options the stage's outputs were made with: a JSON object as compact text with sorted
+  /// keys (nlohmann's dump()), compared as text.
+  std::string options_json = "{}";
+  bool done = false;             ///< every acquisition (or item) finished without failure
+  std::string started_utc;       ///< ISO 8601, when the outputs now present were begun
+  std::string done_utc;          ///< ISO 8601; empty while not done
+  std::string software_version;  ///< the version that last ran the stage
+  std::map<std::string, std::string> notes;  ///< facts about the outputs, e.g. "color"
+};
+
+/// The whole workspace.json.
+struct WorkspaceRecord {
+  std::string run;               ///< the capture run's folder, absolute
+  std::string software_version;  ///< the version that last wrote the file
+  std::map<std::string, WorkspaceStage> stages;
+};
+
+/// The JSON text of workspace.json (format "sewer3d-workspace", version 1).
+std::string WorkspaceToJson(const WorkspaceRecord& record);
+/// Parses workspace.json's text; `path` names the file in errors. Unknown members are kept
+/// out of the record but allowed (later versions may add some).
+WorkspaceRecord WorkspaceFromJson(const std::string& text, const std::filesystem::path& path);
+
+/// Writes workspace.json atomically (atomic_file.hpp).
+void WriteWorkspaceRecord(const std::filesystem::path& path, const WorkspaceRecord& record);
+/// Reads workspace.json; FileError when missing or malformed.
+WorkspaceRecord ReadWorkspaceRecord(const std::filesystem::path& path);
+
+}  // namespace sewer3d

@@ -1,0 +1,78 @@
+#include "sewer3d/pipeline/workspace.hpp"
+
+#include <chrono>
+#include <ctime>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
+
+#ifndef SEWER3D_VERSION
+#error "SEWER3D_VERSION (CMake's PROJECT_VERSION) must be defined by the build"
+#endif
+
+namespace sewer3d {
+namespace {
+
+std::string UtcNow() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+// Absolute and normalised, so that "run", "./run/" and "/abs/run" name the same run.
+std::string RunName(const std::filesystem::path& run_folder) {
+  std::filesystem::path p = std::filesystem::absolute(run_folder).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();  // a trailing slash
+  return p.string();
+}
+
+}  // namespace
+
+std::string SoftwareVersion() { return SEWER3D_VERSION; }
+
+Workspace::Workspace(const std::filesystem::path& folder, const std::filesystem::path& run_folder)
+    : folder_(folder) {
+  const std::string run = RunName(run_folder);
+  if (IsRegularFile(RecordFile())) {
+    record_ = ReadWorkspaceRecord(RecordFile());
+    if (record_.run != run) {
+      throw WorkspaceConflict(RecordFile().string() + ": workspace of run " + record_.run +
+                              ", not of " + run + "; choose another --out");
+    }
+  }
+  record_.run = run;
+  record_.software_version = SoftwareVersion();
+}
+
+void Workspace::BeginStage(const std::string& stage, const std::string& options_json, bool force) {
+  const auto it = record_.stages.find(stage);
+  const bool recorded = it != record_.stages.end();
+  if (recorded && it->second.options_json != options_json && !force) {
+    throw WorkspaceConflict(RecordFile().string() + ": stage '" + stage + "' was run with " +
+                            it->second.options_json + ", now " + options_json +
+                            "; use --force to redo it (its outputs are removed)");
+  }
+  WorkspaceStage& s = record_.stages[stage];
+  if (force) RemoveFolder(StageFolder(stage));
+  if (force || !recorded || s.started_utc.empty()) s.started_utc = UtcNow();
+  s.options_json = options_json;
+  s.done = false;
+  s.done_utc.clear();
+  s.software_version = SoftwareVersion();
+  WriteWorkspaceRecord(RecordFile(), record_);
+}
+
+void Workspace::FinishStage(const std::string& stage, bool done,
+                            const std::map<std::string, std::string>& notes) {
+  const auto it = record_.stages.find(stage);
+  SEWER3D_CHECK(it != record_.stages.end(), "FinishStage without BeginStage: " + stage);
+  it->second.done = done;
+  it->second.done_utc = done ? UtcNow() : std::string();
+  it->second.notes = notes;
+  WriteWorkspaceRecord(RecordFile(), record_);
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,63 @@
+#pragma once
+/// \file
+/// A processing workspace (DESIGN.md contract "processing workspace"): the folder `WS` that the
+/// stages of `sewer3d process` (rgbd, register, model, inspect) write into, and its record
+/// `WS/workspace.json` (io/workspace_io.hpp): which run it belongs to, which software version
+/// wrote it, and per stage the options its outputs were made with and whether it is done.
+///
+/// Re-running a stage: with the options recorded, the stage resumes (work already on disk is
+/// kept and skipped); with other options it is refused (WorkspaceConflict) unless forced, and
+/// forcing removes the stage's folder and starts the stage afresh. A workspace never changes
+/// runs.
+
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "sewer3d/io/workspace_io.hpp"
+
+namespace sewer3d {
+
+/// The software version recorded in workspace.json: CMake's PROJECT_VERSION, e.g. "0.1.0".
+std::string SoftwareVersion();
+
+/// A stage cannot run in this workspace as asked (another run, other options without force).
+/// The message is one line, naming workspace.json and what to do.
+class WorkspaceConflict : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// One workspace folder, opened for one run. Not thread-safe: stages call it from the thread
+/// that runs them.
+class Workspace {
+ public:
+  /// Opens `folder` for the run at `run_folder`: reads `folder/workspace.json` when it exists
+  /// (FileError when it is malformed; WorkspaceConflict when it records another run), else
+  /// starts a new record, written by the first BeginStage.
+  Workspace(const std::filesystem::path& folder, const std::filesystem::path& run_folder);
+
+  const std::filesystem::path& folder() const { return folder_; }
+  /// `WS/<stage>`, where the stage writes its files.
+  std::filesystem::path StageFolder(const std::string& stage) const { return folder_ / stage; }
+  std::filesystem::path RecordFile() const { return folder_ / "workspace.json"; }
+  const WorkspaceRecord& record() const { return record_; }
+
+  /// Records that `stage` starts with `options_json` (a JSON object as compact text, sorted
+  /// keys) and marks it not done; writes workspace.json. When the stage was recorded with
+  /// other options: WorkspaceConflict, unless `force`. With `force` (whatever the options)
+  /// the stage's folder is removed first, so nothing made before is kept.
+  void BeginStage(const std::string& stage, const std::string& options_json, bool force);
+
+  /// Records the end of `stage` (begun before): `done` (every item finished without failure)
+  /// with the time, and `notes` about its outputs; writes workspace.json.
+  void FinishStage(const std::string& stage, bool done,
+                   const std::map<std::string, std::string>& notes);
+
+ private:
+  std::filesystem::path folder_;
+  WorkspaceRecord record_;
+};
+
+}  // namespace sewer3d

@@ -1,0 +1,88 @@
+// The workspace record: a new workspace, resuming with the same options, refusing other
+// options or another run, and --force removing the stage's outputs.
+
+#include "sewer3d/pipeline/workspace.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "sewer3d/io/text_file.hpp"
+#include "sewer3d/io/workspace_io.hpp"
+
+namespace sewer3d {
+namespace {
+
+namespace fs = std::filesystem;
+
+class WorkspaceTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / "sewer3d_workspace_test";
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(WorkspaceTest, RecordsRunVersionOptionsAndDone) {
+  Workspace ws(dir_ / "ws", dir_ / "run" / "");
+  EXPECT_FALSE(fs::exists(ws.RecordFile()));  // written by the first stage only
+  ws.BeginStage("rgbd", R"({"a":1})", false);
+  WorkspaceRecord r = ReadWorkspaceRecord(ws.RecordFile());
+  EXPECT_EQ(r.run, (fs::absolute(dir_) / "run").lexically_normal().string());
+  EXPECT_EQ(r.software_version, SoftwareVersion());
+  EXPECT_FALSE(SoftwareVersion().empty());
+  ASSERT_EQ(r.stages.count("rgbd"), 1u);
+  EXPECT_FALSE(r.stages["rgbd"].done);
+  EXPECT_FALSE(r.stages["rgbd"].started_utc.empty());
+  EXPECT_EQ(r.stages["rgbd"].options_json, R"({"a":1})");
+  ws.FinishStage("rgbd", true, {{"color", "texture_before, uncorrected"}});
+  r = ReadWorkspaceRecord(ws.RecordFile());
+  EXPECT_TRUE(r.stages["rgbd"].done);
+  EXPECT_EQ(r.stages["rgbd"].done_utc.size(), 20u);  // 2026-12-01T20:00:00Z
+  EXPECT_EQ(r.stages["rgbd"].notes["color"], "texture_before, uncorrected");
+}
+
+TEST_F(WorkspaceTest, SameOptionsResumeAndKeepOutputs) {
+  {
+    Workspace ws(dir_ / "ws", dir_ / "run");
+    ws.BeginStage("rgbd", R"({"a":1})", false);
+    WriteTextFile(ws.StageFolder("rgbd") / "kept.txt", "x");
+  }
+  Workspace again(dir_ / "ws", dir_ / "run");  // reopened from workspace.json
+  EXPECT_EQ(again.record().stages.at("rgbd").options_json, R"({"a":1})");
+  again.BeginStage("rgbd", R"({"a":1})", false);
+  EXPECT_TRUE(fs::exists(again.StageFolder("rgbd") / "kept.txt"));
+}
+
+TEST_F(WorkspaceTest, OtherOptionsAreRefusedUnlessForcedAndForcingRemovesOutputs) {
+  Workspace ws(dir_ / "ws", dir_ / "run");
+  ws.BeginStage("rgbd", R"({"a":1})", false);
+  ws.FinishStage("rgbd", true, {});
+  WriteTextFile(ws.StageFolder("rgbd") / "old.txt", "x");
+  try {
+    ws.BeginStage("rgbd", R"({"a":2})", false);
+    FAIL() << "expected WorkspaceConflict";
+  } catch (const WorkspaceConflict& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("workspace.json"), std::string::npos) << what;
+    EXPECT_NE(what.find("--force"), std::string::npos) << what;
+  }
+  EXPECT_TRUE(ReadWorkspaceRecord(ws.RecordFile()).stages["rgbd"].done);  // unchanged
+  ws.BeginStage("rgbd", R"({"a":2})", true);
+  EXPECT_FALSE(fs::exists(ws.StageFolder("rgbd") / "old.txt"));
+  const WorkspaceRecord r = ReadWorkspaceRecord(ws.RecordFile());
+  EXPECT_EQ(r.stages.at("rgbd").options_json, R"({"a":2})");
+  EXPECT_FALSE(r.stages.at("rgbd").done);
+}
+
+TEST_F(WorkspaceTest, AWorkspaceOfAnotherRunIsRefused) {
+  Workspace ws(dir_ / "ws", dir_ / "run_a");
+  ws.BeginStage("rgbd", "{}", false);
+  EXPECT_THROW(Workspace(dir_ / "ws", dir_ / "run_b"), WorkspaceConflict);
+  EXPECT_NO_THROW(Workspace(dir_ / "ws", dir_ / "." / "run_a"));
+}
+
+}  // namespace
+}  // namespace sewer3d
