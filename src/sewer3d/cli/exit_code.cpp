@@ -21,7 +21,7 @@ ErrorExit Exit(int code, std::string message) {
 
 }  // namespace
 
-ErrorExit ExitForError(std::exception_ptr error) {
+ErrorExit ExitForError(const std::exception_ptr& error) {
   // Order matters: FileError and CLI::ParseError are runtime_errors, InternalError and
   // invalid_argument are logic_errors; the specific kinds come before their bases.
   try {

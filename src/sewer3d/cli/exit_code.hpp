@@ -28,6 +28,6 @@ struct ErrorExit {
 /// std::filesystem::filesystem_error → kExitBadFile; std::bad_alloc → kExitOutOfMemory;
 /// InternalError, any other exception and non-std exceptions → kExitInternal with "internal
 /// error, please report: …". Line breaks in messages become spaces.
-ErrorExit ExitForError(std::exception_ptr error);
+ErrorExit ExitForError(const std::exception_ptr& error);
 
 }  // namespace sewer3d::cli

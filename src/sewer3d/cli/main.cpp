@@ -12,7 +12,7 @@
 
 namespace {
 
-int ReportError(std::exception_ptr error) {
+int ReportError(const std::exception_ptr& error) {
   const sewer3d::cli::ErrorExit exit = sewer3d::cli::ExitForError(error);
   std::cerr << "sewer3d: error: " << exit.message << "\n";
   return exit.code;
