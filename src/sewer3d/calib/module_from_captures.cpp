@@ -9,14 +9,15 @@
 namespace sewer3d {
 
 void BoardLayout::Check() const {
-  SEWER3D_CHECK(cols >= 2 && rows >= 2, "board " << cols << "x" << rows);
-  SEWER3D_CHECK(square_mm > 0.0, "square_mm " << square_mm);
+  SEWER3D_VALIDATE(cols >= 2 && rows >= 2, "board",
+                   "needs at least 2x2 inner corners, got " << cols << "x" << rows);
+  ValidatePositive("square_mm", square_mm);
 }
 
 void ModuleCalibratorOptions::Check() const {
   triangulation.Check();
-  SEWER3D_CHECK(!corner_transfer.camera && !corner_transfer.projector,
-                "corner transfer lens models are set by the second pass");
+  SEWER3D_VALIDATE(!corner_transfer.camera && !corner_transfer.projector, "corner_transfer",
+                   "lens models must be unset: the second pass sets them");
 }
 
 ModuleCalibrator::ModuleCalibrator(const ModuleDescription& nominal, const BinaryArray& pattern,
@@ -33,10 +34,11 @@ ModuleCalibrator::ModuleCalibrator(const ModuleDescription& nominal, const Binar
 
 CaptureOutcome ModuleCalibrator::AddCapture(const cv::Mat1b& texture_grey,
                                             const cv::Mat& pattern_image) {
-  SEWER3D_CHECK(
+  SEWER3D_VALIDATE(
       texture_grey.cols == nominal_.camera.width && texture_grey.rows == nominal_.camera.height,
-      "texture " << texture_grey.cols << "x" << texture_grey.rows << " but the nominal camera is "
-                 << nominal_.camera.width << "x" << nominal_.camera.height);
+      "texture",
+      "is " << texture_grey.cols << "x" << texture_grey.rows << " but the nominal camera is "
+            << nominal_.camera.width << "x" << nominal_.camera.height);
   CaptureOutcome outcome;
   const auto corners = DetectChessboard(texture_grey, board_.cols, board_.rows);
   if (!corners) {
@@ -70,7 +72,8 @@ CaptureOutcome ModuleCalibrator::AddCapture(const cv::Mat1b& texture_grey,
 }
 
 ModuleFromCapturesResult ModuleCalibrator::Calibrate() const {
-  SEWER3D_CHECK(views_.size() >= 3, views_.size() << " captures used; calibration needs 3");
+  SEWER3D_VALIDATE(views_.size() >= 3, "captures",
+                   views_.size() << " captures used; calibration needs at least 3");
   const auto board = BoardCorners(board_.cols, board_.rows, board_.square_mm);
   const auto calibrate = [&](const std::vector<ModuleCalibrationView>& views) {
     return CalibrateModule(views, board, nominal_.camera.width, nominal_.camera.height,

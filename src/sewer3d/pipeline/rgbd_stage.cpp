@@ -145,7 +145,7 @@ const char* StatusName(RgbdAcquisitionResult::Status status) {
 
 void RgbdStageOptions::Check() const {
   reconstruction.Check();
-  SEWER3D_CHECK(threads >= 1, "threads must be at least 1, got " << threads);
+  SEWER3D_VALIDATE(threads >= 1, "threads", "must be at least 1, got " << threads);
 }
 
 std::string RgbdOptionsJson(const RgbdStageOptions& options) {

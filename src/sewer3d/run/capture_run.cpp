@@ -42,8 +42,9 @@ std::vector<Acquisition> GroupAcquisitions(const std::vector<RunImage>& images) 
     a.module = im.module;
     a.counter = im.counter;
     int& slot = a.image[static_cast<int>(im.kind)];
-    SEWER3D_CHECK(slot < 0, "module " << im.module << " counter " << im.counter << " has two "
-                                      << ImageKindName(im.kind) << " images");
+    SEWER3D_VALIDATE(slot < 0, "images",
+                     "module " << im.module << " counter " << im.counter << " has two "
+                               << ImageKindName(im.kind) << " images");
     slot = static_cast<int>(i);
   }
   std::vector<Acquisition> out;

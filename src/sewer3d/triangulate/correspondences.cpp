@@ -140,8 +140,9 @@ std::vector<TriangulatedPoint> TriangulateObservations(
 }
 
 void DepthOutlierOptions::Check() const {
-  SEWER3D_CHECK(radius_px > 0.0, "radius_px " << radius_px);
-  SEWER3D_CHECK(min_step_mm >= 0.0 && fraction >= 0.0, "depth step");
+  ValidatePositive("radius_px", radius_px);
+  ValidateNotNegative("min_step_mm", min_step_mm);
+  ValidateNotNegative("fraction", fraction);
 }
 
 int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,

@@ -27,7 +27,7 @@ void FrameReconstructionOptions::Check() const {
   decoder.lattice.Check();
   triangulation.Check();
   outliers.Check();
-  SEWER3D_CHECK(max_edge_steps > 0.0, "max_edge_steps " << max_edge_steps);
+  ValidatePositive("max_edge_steps", max_edge_steps);
 }
 
 FrameReconstructor::FrameReconstructor(const ModuleDescription& module, const BinaryArray& pattern,
@@ -40,10 +40,10 @@ FrameReconstructor::FrameReconstructor(const ModuleDescription& module, const Bi
 
 FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image,
                                                     const cv::Mat3b* texture_bgr) {
-  SEWER3D_CHECK(pattern_image.type() == CV_8UC1 || pattern_image.type() == CV_16UC1,
-                "pattern image must be 8- or 16-bit grey");
-  SEWER3D_CHECK(!texture_bgr || texture_bgr->size() == pattern_image.size(),
-                "texture size differs from the pattern image");
+  SEWER3D_VALIDATE(pattern_image.type() == CV_8UC1 || pattern_image.type() == CV_16UC1,
+                   "pattern image", "must be 8- or 16-bit grey");
+  SEWER3D_VALIDATE(!texture_bgr || texture_bgr->size() == pattern_image.size(), "texture",
+                   "size differs from the pattern image");
   const DecodeResult decoded = decoder_.Decode(pattern_image);
   const std::vector<CodedObservation> observations = CodedObservations(decoded);
   FrameReconstruction frame;
