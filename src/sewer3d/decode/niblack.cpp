@@ -115,6 +115,7 @@ void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Ma
           (x - sum * inverse_rows * inverse_count_cols[u]) * NiblackBinariser::kExcessScale;
       // Round, then clear negative values with the sign mask: no branch on the sign of
       // I − m, which is noise and would be mispredicted half the time.
+      // NOLINTNEXTLINE(bugprone-incorrect-roundings): negative values are cleared below
       int rounded = static_cast<int>(excess + 0.5f);
       rounded &= ~(rounded >> 31);
       excess_row[u] = static_cast<std::uint16_t>(std::min(rounded, 65535));

@@ -147,7 +147,7 @@ Rigid3d PipeGeometry::PathFrame(double station_mm, double blend_mm) const {
                                                               start_station_.end(), station_mm) -
                                              start_station_.begin()) -
                                 1);
-  const Rigid3d here = SectionFrame(i, station_mm - start_station_[i]);
+  Rigid3d here = SectionFrame(i, station_mm - start_station_[i]);
   const double end = start_station_[i] + world_.sections[i].length_mm;
   if (i + 1 < n && station_mm > end - blend_mm) {
     const double w = SmoothStep((station_mm - end) / (2.0 * blend_mm));

@@ -224,6 +224,7 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
         for (int k = 0; k < n * n; ++k) {
           // Stratified position in the pixel; the aperture sample uses a scrambled stratum.
           const double sx = (k % n + HashUniform(o.seed, pixel, k, 1)) / n;
+          // NOLINTNEXTLINE(bugprone-integer-division): k / n is the stratum's row, an integer
           const double sy = (k / n + HashUniform(o.seed, pixel, k, 2)) / n;
           const cv::Vec2d xy =
               (1 - sx) * (1 - sy) * c00 + sx * (1 - sy) * c10 + (1 - sx) * sy * c01 + sx * sy * c11;
@@ -237,6 +238,7 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
             const int kk = static_cast<int>(HashUniform(o.seed, pixel, 7) * n * n + k) % (n * n);
             const double radius = 0.5 * setup.camera_aperture_mm *
                                   std::sqrt((kk % n + HashUniform(o.seed, pixel, k, 4)) / n);
+            // NOLINTNEXTLINE(bugprone-integer-division): kk / n is the stratum's ring, an integer
             const double angle = kTwoPi * (kk / n + HashUniform(o.seed, pixel, k, 5)) / n;
             const Eigen::Vector3d lens(radius * std::cos(angle), radius * std::sin(angle), 0.0);
             const Eigen::Vector3d focus = direction * o.camera_focus_mm;
