@@ -2,13 +2,12 @@
 
 #include <fmt/core.h>
 
-#include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <thread>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
@@ -45,17 +44,9 @@ Command AddRgbdCommand(CLI::App& app) {
             options.reconstruction.max_edge_steps = args->max_edge_steps;
             options.threads = args->threads;
             options.force = args->force;
-            const auto start = std::chrono::steady_clock::now();
-            auto progress = [&](int done, int total) {
-              if (args->quiet) return;
-              const double seconds =
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-              const int width = 30, filled = width * done / total;
-              std::fprintf(stderr, "\rrgbd: [%s%s] %d/%d acquisitions  %.0f s  ETA %.0f s ",
-                           std::string(filled, '#').c_str(),
-                           std::string(width - filled, '.').c_str(), done, total, seconds,
-                           seconds / done * (total - done));
-              if (done == total) std::fprintf(stderr, "\n");
+            ProgressBar bar(args->quiet);
+            auto progress = [&](const std::string& pass, int done, int total) {
+              bar.Update("rgbd " + pass, done, total, "acquisitions");
             };
             RgbdStageReport report;
             try {

@@ -9,6 +9,7 @@
 
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
@@ -118,16 +119,9 @@ int RunRun(const RunArgs& a) {
     module = MakeDefaultModule(options);
     pattern = DefaultPatternArray();
   }
-  const auto start = std::chrono::steady_clock::now();
+  ProgressBar bar(a.quiet);
   auto progress = [&](int done, int total) {
-    if (a.quiet) return;
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const int width = 30, filled = width * done / total;
-    std::fprintf(stderr, "\rsimulate %s: [%s%s] %d/%d images  %.0f s  ETA %.0f s ", s.name.c_str(),
-                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), done,
-                 total, seconds, seconds / done * (total - done));
-    if (done == total) std::fprintf(stderr, "\n");
+    bar.Update("simulate " + s.name, done, total, "images");
   };
   // What only the simulation can check (the rig's fit, the capture plan) is still the scenario
   // file's error.

@@ -1,9 +1,12 @@
 #include "sewer3d/io/atomic_file.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <system_error>
+#include <vector>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -55,6 +58,55 @@ void RemoveFolder(const std::filesystem::path& folder) {
   std::error_code ec;
   std::filesystem::remove_all(folder, ec);
   if (ec) throw FileError(folder, "cannot remove folder: " + ec.message());
+}
+
+int RemoveStaleTemporaries(const std::filesystem::path& folder) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) return 0;
+  std::vector<std::filesystem::path> stale;
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() > 1 && name[0] == '.' && name.find(".tmp-") != std::string::npos) {
+      stale.push_back(it->path());
+      if (it->is_directory()) it.disable_recursion_pending();
+    }
+  }
+  if (ec) throw FileError(folder, "cannot list folder: " + ec.message());
+  for (const std::filesystem::path& p : stale) {
+    std::filesystem::remove_all(p, ec);
+    if (ec) throw FileError(p, "cannot remove stale temporary: " + ec.message());
+  }
+  return static_cast<int>(stale.size());
+}
+
+FolderLock::FolderLock(const std::filesystem::path& folder) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw FileError(folder, "cannot create folder: " + ec.message());
+  const std::filesystem::path file = folder / ".lock";
+  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw FileError(file, "cannot open the lock file");
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    throw FileError(folder, "another sewer3d process is writing this workspace; wait for it");
+  }
+}
+
+FolderLock::~FolderLock() {
+  if (fd_ >= 0) ::close(fd_);  // closing releases the lock
+}
+
+FolderLock::FolderLock(FolderLock&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
+
+FolderLock& FolderLock::operator=(FolderLock&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = other.fd_;
+    other.fd_ = -1;
+  }
+  return *this;
 }
 
 }  // namespace sewer3d

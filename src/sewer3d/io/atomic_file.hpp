@@ -33,4 +33,25 @@ bool IsRegularFile(const std::filesystem::path& path);
 /// when something cannot be removed.
 void RemoveFolder(const std::filesystem::path& folder);
 
+/// Removes the temporaries (`.<name>.tmp-…`, files or folders) that killed writers left
+/// anywhere below `folder`; returns how many. Call only while no other process writes there
+/// (hold its FolderLock).
+int RemoveStaleTemporaries(const std::filesystem::path& folder);
+
+/// An exclusive lock on a folder (an advisory lock on `folder/.lock`, released when the object
+/// goes or the process dies, so a killed run never leaves a stale lock). FileError when another
+/// process holds it or it cannot be taken.
+class FolderLock {
+ public:
+  explicit FolderLock(const std::filesystem::path& folder);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  FolderLock(FolderLock&& other) noexcept;
+  FolderLock& operator=(FolderLock&& other) noexcept;
+
+ private:
+  int fd_ = -1;
+};
+
 }  // namespace sewer3d

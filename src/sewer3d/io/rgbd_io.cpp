@@ -2,10 +2,12 @@
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/io/reconstruction_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 
@@ -26,20 +28,20 @@ RgbdFiles RgbdAcquisitionFiles(const std::filesystem::path& rgbd_folder, int mod
   std::snprintf(stem, sizeof stem, "%06d_", counter);
   const std::filesystem::path folder = rgbd_folder / name;
   const std::string s = stem;
-  return {folder / (s + "color.png"), folder / (s + "depth.tiff"),
+  return {folder / (s + "color.png"),         folder / (s + "depth.tiff"),
           folder / (s + "depth_preview.png"), folder / (s + "cloud.ply"),
-          folder / (s + "report.json")};
+          folder / (s + "geometry.json"),     folder / (s + "report.json")};
 }
 
 bool RgbdAcquisitionDone(const RgbdFiles& files) { return IsRegularFile(files.report); }
 
-void WriteRgbdAcquisition(const RgbdFiles& files, const cv::Mat3b& color_bgr,
-                          const FrameReconstruction& frame, const std::string& image,
-                          const std::string& extra_json) {
-  WriteFileAtomically(files.color, [&](const auto& t) { WriteImage(t, color_bgr); });
+bool RgbdGeometryDone(const RgbdFiles& files) { return IsRegularFile(files.geometry); }
+
+void WriteRgbdGeometry(const RgbdFiles& files, const FrameReconstruction& frame,
+                       const std::string& image, const std::string& extra_json) {
   // The single-frame writer fills a temporary folder in the same file system; each file is
-  // renamed into place complete, the report last.
-  const std::filesystem::path temporary = TemporaryPathFor(files.report);
+  // renamed into place complete, the geometry report last.
+  const std::filesystem::path temporary = TemporaryPathFor(files.geometry);
   try {
     WriteFrameReconstruction(temporary, frame, image);
     Rename(temporary / "depth.tiff", files.depth);
@@ -47,13 +49,34 @@ void WriteRgbdAcquisition(const RgbdFiles& files, const cv::Mat3b& color_bgr,
     Rename(temporary / "cloud.ply", files.cloud);
     nlohmann::json report = nlohmann::json::parse(ReadTextFile(temporary / "report.json"));
     report.merge_patch(nlohmann::json::parse(extra_json));
-    WriteTextFileAtomically(files.report, report.dump(2) + "\n");
+    WriteTextFileAtomically(files.geometry, report.dump(2) + "\n");
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove_all(temporary, ignored);
     throw;
   }
   RemoveFolder(temporary);
+}
+
+RgbdGeometry ReadRgbdGeometry(const RgbdFiles& files) {
+  RgbdGeometry g;
+  const cv::Mat depth = ReadImage(files.depth, cv::IMREAD_UNCHANGED);
+  if (depth.type() != CV_32FC1) throw FileError(files.depth, "not a float32 one-channel depth map");
+  g.depth_mm = depth;
+  g.points = ReadPlyPoints(files.cloud);
+  g.report_json = ReadTextFile(files.geometry);
+  const nlohmann::json j = nlohmann::json::parse(g.report_json, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) throw FileError(files.geometry, "not a JSON object");
+  return g;
+}
+
+void WriteRgbdColour(const RgbdFiles& files, const cv::Mat3b& color_bgr,
+                     const std::vector<Eigen::Vector3d>& points,
+                     const std::vector<std::array<std::uint8_t, 3>>& colours,
+                     const std::string& report_json) {
+  WriteFileAtomically(files.color, [&](const auto& t) { WriteImage(t, color_bgr); });
+  WriteFileAtomically(files.cloud, [&](const auto& t) { WritePly(t, points, colours); });
+  WriteTextFileAtomically(files.report, report_json);
 }
 
 }  // namespace sewer3d

@@ -1,33 +1,30 @@
 #pragma once
 /// \file
-/// The RGB-D stage over a whole capture run (issue 14, deliverable 2; DESIGN.md contract
-/// "processing workspace"): for every acquisition, decode and triangulate the pattern image
-/// with its module's FrameReconstructor (triangulate/reconstruct_frame.hpp) and write
-/// `WS/rgbd/m<k>/<counter>_color.png`, `_depth.tiff`, `_cloud.ply` and `_report.json` (last),
-/// then the stage report `WS/rgbd/report.json` (docs/rgbd.md).
-///
-/// Colour is the acquisition's texture_before image as captured (kRgbdColorSource): shading
-/// and colour correction, deblur and the texture → 3D mapping at the pattern instant (issue
-/// 14, deliverables 3–5) are not done yet.
+/// The RGB-D stage over a whole capture run (issue 14; DESIGN.md contract "processing
+/// workspace"; docs/rgbd.md). Two passes over the acquisitions:
+/// - geometry (rgbd_geometry.hpp): decode and triangulate the pattern image with its module's
+///   FrameReconstructor; depth map, preview, cloud, `_geometry.json`;
+/// - colour (rgbd_colour.hpp): the colour image aligned with the depth map, the cloud
+///   recoloured, `_report.json` last;
+/// then the stage report `WS/rgbd/report.json` over every acquisition of the run.
 ///
 /// Streaming: each worker holds one acquisition's images at a time and one FrameReconstructor
-/// per module. Resumable: an acquisition whose report exists is skipped. A bad image fails
-/// only its own acquisition, listed with the file and reason; the others are processed.
+/// per module. Resumable: each pass skips what an earlier run finished (its file written last
+/// exists). A bad image fails only its own acquisition, listed with the file and reason; the
+/// others are processed.
 
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "sewer3d/pipeline/rgbd_colour.hpp"
+#include "sewer3d/pipeline/rgbd_geometry.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/run/capture_run.hpp"
 #include "sewer3d/triangulate/reconstruct_frame.hpp"
 
 namespace sewer3d {
-
-/// Where the colour of the RGB-D outputs comes from, as recorded in workspace.json and the
-/// reports.
-inline constexpr const char* kRgbdColorSource = "texture_before, uncorrected";
 
 struct RgbdStageOptions {
   FrameReconstructionOptions reconstruction;  ///< decoder, triangulation, depth map
@@ -41,33 +38,36 @@ struct RgbdStageOptions {
 };
 
 /// The options that decide the outputs, as workspace.json records them (compact JSON with
-/// sorted keys): triangulation depth range and reprojection limit, outlier rejection,
-/// max_edge_steps. Decoder options are the defaults (not settable from the command line).
+/// sorted keys): the decoder's, triangulation depth range and reprojection limit, outlier
+/// rejection, max_edge_steps, and the colour pass's.
 std::string RgbdOptionsJson(const RgbdStageOptions& options);
 
-/// What happened to one acquisition.
-struct RgbdAcquisitionResult {
-  enum class Status { kDone, kSkipped, kFailed };
+/// One acquisition over both passes.
+struct RgbdAcquisitionSummary {
   int module = 0;
   int counter = 0;
-  Status status = Status::kDone;
-  std::string file;    ///< kFailed: the file at fault (as the run names it, or the output)
-  std::string reason;  ///< kFailed: one line
-  FrameReport frame;   ///< kDone: spots, points, rejections, stage times
-  double seconds = 0;  ///< kDone: reading, reconstruction and writing
+  RgbdAcquisitionResult geometry;  ///< the geometry pass now (skipped: done before)
+  RgbdAcquisitionResult colour;    ///< the colour pass now (skipped: done before)
+  bool complete = false;           ///< its report exists after this run
+  long long spots = 0;             ///< complete: from its report
+  long long points = 0;
+  /// The failure of this acquisition (geometry's, else colour's), or null.
+  const RgbdAcquisitionResult* Failure() const;
 };
 
-/// The stage's report (`WS/rgbd/report.json`, RgbdStageReportToJson).
+/// The stage's report (`WS/rgbd/report.json`, RgbdStageReportToJson): every acquisition of the
+/// run, whether processed now or by an earlier run.
 struct RgbdStageReport {
   int acquisitions = 0;  ///< in the run
-  int done = 0;          ///< processed now
-  int skipped = 0;       ///< already done by an earlier run (report present)
+  int done = 0;          ///< completed now
+  int skipped = 0;       ///< completed by an earlier run (report present)
   int failed = 0;
-  std::vector<RgbdAcquisitionResult> results;  ///< ordered by (module, counter)
-  long long spots = 0;                         ///< over the acquisitions done now
+  std::vector<RgbdAcquisitionSummary> results;  ///< ordered by (module, counter)
+  long long spots = 0;                          ///< over every complete acquisition
   long long points = 0;
-  double seconds = 0;                  ///< the whole stage, wall clock
-  double seconds_per_acquisition = 0;  ///< mean over those done now (one worker's time)
+  double seconds = 0;  ///< the whole stage now, wall clock
+  /// Mean and maximum per acquisition completed now (one worker's time, both passes).
+  double seconds_per_acquisition = 0;
   double max_seconds_per_acquisition = 0;
   int threads = 1;
   /// The first failed acquisition in (module, counter) order; null when none failed.
@@ -77,9 +77,9 @@ struct RgbdStageReport {
 /// The report as JSON text (keys sorted; format in docs/rgbd.md).
 std::string RgbdStageReportToJson(const RgbdStageReport& report);
 
-/// Called after every acquisition (done, skipped or failed) from the thread that finished it,
+/// Called after every acquisition of a pass ("geometry", "colour"), done, skipped or failed,
 /// never from two threads at once.
-using StageProgress = std::function<void(int finished, int total)>;
+using StageProgress = std::function<void(const std::string& pass, int finished, int total)>;
 
 /// Runs the RGB-D stage of `run` into `workspace` (records it there, workspace.hpp). Throws
 /// std::invalid_argument on invalid options, WorkspaceConflict when the stage was recorded with

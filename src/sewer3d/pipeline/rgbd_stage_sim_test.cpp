@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
@@ -74,9 +75,13 @@ TEST_F(RgbdStageTiny, EveryAcquisitionIsDoneWithTheContractFiles) {
   EXPECT_EQ(report_.failed, 0);
   EXPECT_EQ(report_.skipped, 0);
   EXPECT_GT(report_.points, 12 * 500);
-  for (const RgbdAcquisitionResult& r : report_.results) {
+  for (const RgbdAcquisitionSummary& r : report_.results) {
     SCOPED_TRACE("m" + std::to_string(r.module) + " " + std::to_string(r.counter));
+    EXPECT_TRUE(r.complete);
+    EXPECT_EQ(r.geometry.status, RgbdAcquisitionResult::Status::kDone);
+    EXPECT_EQ(r.colour.status, RgbdAcquisitionResult::Status::kDone);
     const RgbdFiles files = RgbdAcquisitionFiles(dir_ / "ws" / "rgbd", r.module, r.counter);
+    EXPECT_TRUE(fs::exists(files.geometry));
     const cv::Mat color = ReadImage(files.color, cv::IMREAD_UNCHANGED);
     EXPECT_EQ(color.type(), CV_8UC3);
     const cv::Mat depth = ReadImage(files.depth, cv::IMREAD_UNCHANGED);
@@ -133,11 +138,12 @@ TEST_F(RgbdStageTiny, DepthMapsMatchTheTruthDepthOfThePatternImage) {
 }
 
 TEST_F(RgbdStageTiny, CloudsAgreeWithTheirDepthMaps) {
-  for (const RgbdAcquisitionResult& r : report_.results) {
+  for (const RgbdAcquisitionSummary& r : report_.results) {
     SCOPED_TRACE("m" + std::to_string(r.module) + " " + std::to_string(r.counter));
     const RgbdFiles files = RgbdAcquisitionFiles(dir_ / "ws" / "rgbd", r.module, r.counter);
     const std::vector<Eigen::Vector3d> points = ReadPlyPoints(files.cloud);
-    EXPECT_EQ(static_cast<int>(points.size()), r.frame.points);
+    EXPECT_EQ(static_cast<int>(points.size()), r.geometry.frame.points);
+    EXPECT_EQ(static_cast<long long>(points.size()), r.points);
     const cv::Mat1f depth = ReadImage(files.depth, cv::IMREAD_UNCHANGED);
     const CameraModel camera(run_.rig.modules[r.module].module.camera);
     // The depth map interpolates between the spots' detected centres, which lie within the
@@ -171,24 +177,42 @@ TEST_F(RgbdStageTiny, CloudsAgreeWithTheirDepthMaps) {
 
 TEST_F(RgbdStageTiny, ARunAgainSkipsEverythingAndLostOutputsAreRedone) {
   const fs::path ws_folder = CopyWorkspace("ws_resume");
-  Workspace ws(ws_folder, run_.folder);
   RgbdStageOptions options;
-  RgbdStageReport again = RunRgbdStage(run_, ws, options);
+  RgbdStageReport again;
+  {
+    Workspace ws(ws_folder, run_.folder);
+    // While one process holds the workspace, another cannot open it.
+    EXPECT_THROW(Workspace(ws_folder, run_.folder), FileError);
+    again = RunRgbdStage(run_, ws, options);
+  }
   EXPECT_EQ(again.skipped, 12);
   EXPECT_EQ(again.done, 0);
-  // Lost: two reports (their other files stay, as after a kill before the report) and the
-  // colour of a third acquisition with its report.
+  EXPECT_EQ(again.points, report_.points);  // the report covers what earlier runs did
+  // Lost: two reports (their other files stay, as after a kill before the report), the
+  // colour of a third acquisition with its report, and a fourth's geometry and report.
   fs::remove(RgbdAcquisitionFiles(ws_folder / "rgbd", 0, 1).report);
   fs::remove(RgbdAcquisitionFiles(ws_folder / "rgbd", 3, 0).report);
   const RgbdFiles m5 = RgbdAcquisitionFiles(ws_folder / "rgbd", 5, 1);
   fs::remove(m5.color);
   fs::remove(m5.report);
-  again = RunRgbdStage(run_, ws, options);
-  EXPECT_EQ(again.done, 3);
-  EXPECT_EQ(again.skipped, 9);
+  const RgbdFiles m1 = RgbdAcquisitionFiles(ws_folder / "rgbd", 1, 0);
+  fs::remove(m1.geometry);
+  fs::remove(m1.report);
+  // A temporary left by a killed writer is removed when the workspace is opened again.
+  const fs::path stale = ws_folder / "rgbd" / "m2" / ".000000_color.png.tmp-999-0.png";
+  std::ofstream(stale) << "partial";
+  Workspace reopened(ws_folder, run_.folder);
+  EXPECT_EQ(reopened.stale_temporaries_removed(), 1);
+  EXPECT_FALSE(fs::exists(stale));
+  again = RunRgbdStage(run_, reopened, options);
+  EXPECT_EQ(again.done, 4);
+  EXPECT_EQ(again.skipped, 8);
   EXPECT_EQ(again.failed, 0);
+  EXPECT_EQ(again.results[2].geometry.status, RgbdAcquisitionResult::Status::kDone);  // m1 c0
+  EXPECT_EQ(again.results[1].geometry.status, RgbdAcquisitionResult::Status::kSkipped);
   EXPECT_TRUE(fs::exists(m5.color));
   EXPECT_TRUE(fs::exists(m5.report));
+  EXPECT_EQ(again.points, report_.points);
 }
 
 TEST_F(RgbdStageTiny, AnInterruptedRunResumesWithoutRedoingFinishedAcquisitions) {
@@ -196,10 +220,12 @@ TEST_F(RgbdStageTiny, AnInterruptedRunResumesWithoutRedoingFinishedAcquisitions)
   fs::remove_all(ws_folder);
   {
     Workspace ws(ws_folder, run_.folder);
-    // Interrupted after the fourth acquisition (a kill would leave at most a temporary file).
+    // Interrupted after the colour pass finished four acquisitions (a kill would leave at
+    // most temporaries).
     EXPECT_THROW(RunRgbdStage(run_, ws, {},
-                              [](int finished, int) {
-                                if (finished == 4) throw std::runtime_error("killed");
+                              [](const std::string& pass, int finished, int) {
+                                if (pass == "colour" && finished == 4)
+                                  throw std::runtime_error("killed");
                               }),
                  std::runtime_error);
   }
@@ -208,6 +234,8 @@ TEST_F(RgbdStageTiny, AnInterruptedRunResumesWithoutRedoingFinishedAcquisitions)
   const RgbdStageReport resumed = RunRgbdStage(run_, ws, {});
   EXPECT_EQ(resumed.skipped, 4);
   EXPECT_EQ(resumed.done, 8);
+  for (const RgbdAcquisitionSummary& r : resumed.results)
+    EXPECT_EQ(r.geometry.status, RgbdAcquisitionResult::Status::kSkipped);
   EXPECT_TRUE(ReadWorkspaceRecord(ws_folder / "workspace.json").stages.at("rgbd").done);
 }
 
@@ -247,8 +275,9 @@ TEST_F(RgbdStageTiny, BadImagesFailOnlyTheirAcquisition) {
   EXPECT_EQ(first->module, 2);
   EXPECT_EQ(fs::path(first->file), truncated);
   EXPECT_NE(first->reason.find("truncated"), std::string::npos) << first->reason;
-  const RgbdAcquisitionResult& wrong_size = report.results[8];  // (module 4, counter 0)
-  ASSERT_EQ(wrong_size.module, 4);
+  ASSERT_EQ(report.results[8].module, 4);  // (module 4, counter 0)
+  ASSERT_NE(report.results[8].Failure(), nullptr);
+  const RgbdAcquisitionResult& wrong_size = *report.results[8].Failure();
   EXPECT_EQ(fs::path(wrong_size.file), small);
   EXPECT_NE(wrong_size.reason.find("120x100"), std::string::npos) << wrong_size.reason;
   EXPECT_FALSE(RgbdAcquisitionDone(RgbdAcquisitionFiles(dir_ / "ws_bad" / "rgbd", 2, 1)));

@@ -34,7 +34,7 @@ std::string RunName(const std::filesystem::path& run_folder) {
 std::string SoftwareVersion() { return SEWER3D_VERSION; }
 
 Workspace::Workspace(const std::filesystem::path& folder, const std::filesystem::path& run_folder)
-    : folder_(folder) {
+    : folder_(folder), lock_(folder), stale_temporaries_removed_(RemoveStaleTemporaries(folder)) {
   const std::string run = RunName(run_folder);
   if (IsRegularFile(RecordFile())) {
     record_ = ReadWorkspaceRecord(RecordFile());

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
 
 namespace sewer3d {
@@ -33,9 +34,10 @@ class WorkspaceConflict : public std::runtime_error {
 /// that runs them.
 class Workspace {
  public:
-  /// Opens `folder` for the run at `run_folder`: reads `folder/workspace.json` when it exists
-  /// (FileError when it is malformed; WorkspaceConflict when it records another run), else
-  /// starts a new record, written by the first BeginStage.
+  /// Opens `folder` for the run at `run_folder`: takes the workspace's lock (FileError when
+  /// another process holds it), removes temporaries a killed run left, reads
+  /// `folder/workspace.json` when it exists (FileError when it is malformed; WorkspaceConflict
+  /// when it records another run), else starts a new record, written by the first BeginStage.
   Workspace(const std::filesystem::path& folder, const std::filesystem::path& run_folder);
 
   const std::filesystem::path& folder() const { return folder_; }
@@ -43,6 +45,8 @@ class Workspace {
   std::filesystem::path StageFolder(const std::string& stage) const { return folder_ / stage; }
   std::filesystem::path RecordFile() const { return folder_ / "workspace.json"; }
   const WorkspaceRecord& record() const { return record_; }
+  /// Temporaries of killed runs removed on opening.
+  int stale_temporaries_removed() const { return stale_temporaries_removed_; }
 
   /// Records that `stage` starts with `options_json` (a JSON object as compact text, sorted
   /// keys) and marks it not done; writes workspace.json. When the stage was recorded with
@@ -57,6 +61,8 @@ class Workspace {
 
  private:
   std::filesystem::path folder_;
+  FolderLock lock_;
+  int stale_temporaries_removed_ = 0;
   WorkspaceRecord record_;
 };
 

@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <optional>
 
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
 
@@ -78,10 +81,27 @@ TEST_F(WorkspaceTest, OtherOptionsAreRefusedUnlessForcedAndForcingRemovesOutputs
 }
 
 TEST_F(WorkspaceTest, AWorkspaceOfAnotherRunIsRefused) {
-  Workspace ws(dir_ / "ws", dir_ / "run_a");
-  ws.BeginStage("rgbd", "{}", false);
+  {
+    Workspace ws(dir_ / "ws", dir_ / "run_a");
+    ws.BeginStage("rgbd", "{}", false);
+  }
   EXPECT_THROW(Workspace(dir_ / "ws", dir_ / "run_b"), WorkspaceConflict);
   EXPECT_NO_THROW(Workspace(dir_ / "ws", dir_ / "." / "run_a"));
+}
+
+TEST_F(WorkspaceTest, OneProcessAtATimeAndStaleTemporariesAreRemoved) {
+  std::optional<Workspace> first;
+  first.emplace(dir_ / "ws", dir_ / "run_a");
+  EXPECT_THROW(Workspace(dir_ / "ws", dir_ / "run_a"), FileError);
+  first.reset();  // the lock goes with the workspace (and with a killed process)
+  fs::create_directories(dir_ / "ws" / "rgbd" / ".m0.tmp-12-3");
+  std::ofstream(dir_ / "ws" / "rgbd" / ".m0.tmp-12-3" / "depth.tiff") << "partial";
+  std::ofstream(dir_ / "ws" / "rgbd" / ".000001_report.json.tmp-12-4.json") << "{";
+  std::ofstream(dir_ / "ws" / "rgbd" / "kept.txt") << "kept";
+  const Workspace ws(dir_ / "ws", dir_ / "run_a");
+  EXPECT_EQ(ws.stale_temporaries_removed(), 2);
+  EXPECT_FALSE(fs::exists(dir_ / "ws" / "rgbd" / ".m0.tmp-12-3"));
+  EXPECT_TRUE(fs::exists(dir_ / "ws" / "rgbd" / "kept.txt"));
 }
 
 }  // namespace

@@ -1,0 +1,76 @@
+#include "sewer3d/pipeline/acquisition_images.hpp"
+
+#include <fmt/core.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
+
+namespace sewer3d {
+namespace {
+
+void CheckSize(const std::filesystem::path& file, const cv::Mat& image,
+               const CameraIntrinsics& camera, int module) {
+  if (image.cols != camera.width || image.rows != camera.height) {
+    throw FileError(file, fmt::format("image is {}x{} but module m{}'s camera is {}x{}", image.cols,
+                                      image.rows, module, camera.width, camera.height));
+  }
+}
+
+const CameraIntrinsics& CameraOf(const CaptureRun& run, const Acquisition& a) {
+  return run.rig.modules.at(a.module).module.camera;
+}
+
+std::filesystem::path ExistingImageFile(const CaptureRun& run, const Acquisition& a,
+                                        ImageKind kind) {
+  const std::filesystem::path file = AcquisitionImageFile(run, a, kind);
+  if (a.Image(kind) < 0)
+    throw FileError(file, std::string("no ") + ImageKindName(kind) + " image in acquisitions.csv");
+  return file;
+}
+
+// Until run.json records the camera's colour filter array, every run's textures are colour.
+bool RunHasColorFilter(const CaptureRun&) { return false; }
+
+}  // namespace
+
+std::filesystem::path AcquisitionImageFile(const CaptureRun& run, const Acquisition& a,
+                                           ImageKind kind) {
+  const int i = a.Image(kind);
+  if (i >= 0) return run.folder / run.images[i].file;
+  return run.folder / "images" / (ImageStem(a.module, a.counter, kind) + ".png");
+}
+
+cv::Mat ReadPatternImage(const CaptureRun& run, const Acquisition& a) {
+  const std::filesystem::path file = ExistingImageFile(run, a, ImageKind::kPattern);
+  cv::Mat image = ReadGreyImage(file);
+  CheckSize(file, image, CameraOf(run, a), a.module);
+  return image;
+}
+
+cv::Mat3b ReadTextureImage(const CaptureRun& run, const Acquisition& a, ImageKind kind) {
+  const std::filesystem::path file = ExistingImageFile(run, a, kind);
+  if (!RunHasColorFilter(run)) {
+    cv::Mat image = ReadImage(file, cv::IMREAD_COLOR);
+    CheckSize(file, image, CameraOf(run, a), a.module);
+    return image;
+  }
+  cv::Mat raw = ReadImage(file, cv::IMREAD_UNCHANGED);
+  if (raw.channels() != 1)
+    throw FileError(file,
+                    "run.json says the camera has a colour filter array, but the image "
+                    "has " +
+                        std::to_string(raw.channels()) + " channels, not a raw mosaic");
+  CheckSize(file, raw, CameraOf(run, a), a.module);
+  // A 16-bit raw uses the full 16-bit range (docs/formats.md); the texture path works in 8 bits.
+  if (raw.depth() == CV_16U) raw.convertTo(raw, CV_8U, 255.0 / 65535.0);
+  cv::Mat3b bgr;
+  // RGGB (red at row 0, column 0) is OpenCV's "BayerBG" (named from the second row's second
+  // and third pixels); edge-aware interpolation keeps the wall's fine texture.
+  cv::cvtColor(raw, bgr, cv::COLOR_BayerBG2BGR_EA);
+  return bgr;
+}
+
+}  // namespace sewer3d
