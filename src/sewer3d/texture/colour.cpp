@@ -159,13 +159,18 @@ cv::Mat3f LinearFromSrgb8(const cv::Mat3b& srgb_bgr) {
 }
 
 cv::Mat3b Srgb8FromLinear(const cv::Mat3f& linear_bgr) {
+  // Code i is chosen for linear values in [t[i-1], t[i]) with t[i] the linear value of the
+  // encoded (i + 0.5) / 255: the same rounding as lround(255 LinearToSrgb(v)), without a pow.
+  std::array<float, 255> t{};
+  for (int i = 0; i < 255; ++i) t[i] = static_cast<float>(SrgbToLinear((i + 0.5) / 255.0));
   cv::Mat3b out(linear_bgr.size());
   for (int r = 0; r < linear_bgr.rows; ++r) {
     for (int c = 0; c < linear_bgr.cols; ++c) {
       for (int k = 0; k < 3; ++k) {
         const float v = linear_bgr(r, c)[k];
-        const double clipped = std::isfinite(v) ? std::clamp<double>(v, 0.0, 1.0) : 0.0;
-        out(r, c)[k] = cv::saturate_cast<uchar>(std::lround(255.0 * LinearToSrgb(clipped)));
+        out(r, c)[k] = std::isfinite(v)
+                           ? static_cast<uchar>(std::upper_bound(t.begin(), t.end(), v) - t.begin())
+                           : 0;
       }
     }
   }

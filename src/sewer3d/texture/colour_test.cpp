@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -111,6 +112,14 @@ TEST(Colour, ImageConversionsRoundTripInBgrOrder) {
   const cv::Mat3f linear = LinearFromSrgb8(srgb);
   EXPECT_NEAR(linear(0, 16)[0], SrgbToLinear(128 / 255.0), 1e-7);
   EXPECT_EQ(cv::norm(Srgb8FromLinear(linear), srgb, cv::NORM_INF), 0.0);
+  // Encoding rounds like lround(255 LinearToSrgb(v)) and clips.
+  cv::Mat3f ramp(1, 2001);
+  for (int c = 0; c < ramp.cols; ++c) ramp(0, c) = cv::Vec3f::all(c / 1000.0f - 0.5f);
+  const cv::Mat3b encoded = Srgb8FromLinear(ramp);
+  for (int c = 0; c < ramp.cols; ++c) {
+    const double v = std::clamp(static_cast<double>(ramp(0, c)[0]), 0.0, 1.0);
+    EXPECT_NEAR(encoded(0, c)[1], 255.0 * LinearToSrgb(v), 0.5 + 1e-4) << v;
+  }
   const cv::Mat3f lab = LabFromLinear(linear);
   // BGR image, RGB pixel functions: pure red in BGR is (0, 0, 255).
   cv::Mat3f red(1, 1, cv::Vec3f(0.0f, 0.0f, 1.0f));

@@ -1,5 +1,6 @@
 #include "sewer3d/texture/shading.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 
@@ -90,20 +91,34 @@ void FillHoles(Grid& g, const std::vector<bool>& known, int cols, int rows) {
   }
 }
 
-// One [1 2 1]/4 pass along rows and one along columns; the border neighbour outside the grid
-// is extrapolated linearly (2 v0 - v1), so that a linear field passes unchanged.
-void SmoothPass(Grid& g, int cols, int rows) {
-  const auto pass = [&](int n, int count, int stride, int line_stride) {
-    if (n < 2) return;
-    std::vector<double> v(n);
-    for (int line = 0; line < count; ++line) {
-      double* base = g.data() + static_cast<std::ptrdiff_t>(line) * line_stride;
-      for (int k = 0; k < n; ++k) v[k] = base[k * stride];
-      for (int k = 0; k < n; ++k) {
-        const double left = k > 0 ? v[k - 1] : 2.0 * v[0] - v[1];
-        const double right = k + 1 < n ? v[k + 1] : 2.0 * v[n - 1] - v[n - 2];
-        base[k * stride] = 0.25 * left + 0.5 * v[k] + 0.25 * right;
+// Local quadratic regression (Savitzky–Golay) along rows, then along columns: each value is
+// replaced by the quadratic least-squares fit over the 2h + 1 nearest cells (a window shifted
+// inwards at the borders), so that fields quadratic in each coordinate — vignetting, emission
+// fall-off — pass unbiased while cell noise is averaged.
+void SmoothQuadratic(Grid& g, int cols, int rows, int half_width) {
+  const auto pass = [&](int n, int lines, int stride, int line_stride) {
+    const int window = std::min(n, 2 * half_width + 1);
+    if (window < 2) return;
+    const int degree = std::min(2, window - 1);
+    // Weights of the fitted value at k (the constant term of the fit centred on k).
+    std::vector<int> first(n);
+    std::vector<Eigen::VectorXd> weights(n);
+    for (int k = 0; k < n; ++k) {
+      first[k] = std::clamp(k - half_width, 0, n - window);
+      Eigen::MatrixXd a(window, degree + 1);
+      for (int i = 0; i < window; ++i) {
+        for (int d = 0; d <= degree; ++d) a(i, d) = std::pow(first[k] + i - k, d);
       }
+      weights[k] = (a.transpose() * a).ldlt().solve(a.transpose()).row(0).transpose();
+    }
+    std::vector<double> out(n);
+    for (int line = 0; line < lines; ++line) {
+      double* base = g.data() + static_cast<std::ptrdiff_t>(line) * line_stride;
+      for (int k = 0; k < n; ++k) {
+        out[k] = 0.0;
+        for (int i = 0; i < window; ++i) out[k] += weights[k][i] * base[(first[k] + i) * stride];
+      }
+      for (int k = 0; k < n; ++k) base[k * stride] = out[k];
     }
   };
   pass(cols, rows, 1, cols);
@@ -138,7 +153,7 @@ void ReferenceLightOptions::Check() const {
                    "must exceed dark_linear (" << dark_linear << "), got " << saturated_linear);
   SEWER3D_VALIDATE(min_samples_per_cell >= 1, "min_samples_per_cell",
                    "must be >= 1, got " << min_samples_per_cell);
-  ValidateNotNegative("smoothing_passes", smoothing_passes);
+  ValidateNotNegative("smoothing_cells", smoothing_cells);
   CheckWithin("geometry.", [&] { geometry.Check(); });
 }
 
@@ -274,7 +289,7 @@ ReferenceLightResult ReferenceLightEstimator::Estimate() const {
     if (estimated == 0) return result;
     result.report.cells_filled += static_cast<int>(cells) - estimated;
     FillHoles(grid, known, cols, rows);
-    for (int pass = 0; pass < options_.smoothing_passes; ++pass) SmoothPass(grid, cols, rows);
+    if (options_.smoothing_cells > 0) SmoothQuadratic(grid, cols, rows, options_.smoothing_cells);
     double sum = 0.0;
     for (size_t cell = 0; cell < cells; ++cell) {
       reference.log2_bgr[cell][k] = static_cast<float>(grid[cell]);

@@ -76,7 +76,8 @@ struct ReferenceLightOptions {
   /// count below / above every bin, which leaves the median exact while they are a minority.
   double dark_linear = 0.002, saturated_linear = 0.95;
   int min_samples_per_cell = 100;  ///< fewer: the cell is filled from its neighbours
-  int smoothing_passes = 2;        ///< [1 2 1]/4 passes over the log grid (linear borders kept)
+  /// Half-width (cells) of the local quadratic fit smoothing the log grid; 0 = none.
+  int smoothing_cells = 3;
   GeometryOptions geometry;
   void Check() const;
 };
