@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/texture/colour.hpp"
