@@ -89,7 +89,8 @@ void RestoreLine(const cv::Mat1f& line3, const float* length_px, const DeblurOpt
       const double gain = std::clamp((1.0 + kw) * h / (h * h + kw), -o.max_gain, o.max_gain);
       for (int c = 0; c < 3; ++c) filtered.at<cv::Vec2f>(c, j) *= static_cast<float>(gain);
     }
-    cv::dft(filtered, restored, cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+    cv::dft(filtered, restored,
+            cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
     const cv::Mat1f r = restored;
     for (const auto& [u, weight] : members) {
       for (int c = 0; c < 3; ++c) out3(c, u) += weight * r(c, u + pad);
@@ -151,9 +152,10 @@ DeblurResult Deblur(const cv::Mat3f& image, const cv::Mat1f& depth_mm, const Cam
   }
   report.along_columns = std::abs(mean_d[1]) >= std::abs(mean_d[0]);
   const int axis = report.along_columns ? 1 : 0;
-  report.off_axis_deg =
-      valid == 0 ? 0.0 : std::atan2(std::abs(mean_d[1 - axis]), std::abs(mean_d[axis])) * 180.0 /
-                             std::numbers::pi;
+  report.off_axis_deg = valid == 0
+                            ? 0.0
+                            : std::atan2(std::abs(mean_d[1 - axis]), std::abs(mean_d[axis])) *
+                                  180.0 / std::numbers::pi;
   result.blur_length_px.create(image.size());
   report.min_length_px = std::numeric_limits<double>::infinity();
   for (int v = 0; v < image.rows; ++v) {
@@ -189,14 +191,13 @@ DeblurResult Deblur(const cv::Mat3f& image, const cv::Mat1f& depth_mm, const Cam
     signal += std_dev[0] / 3.0;
   }
   report.noise_sigma = options.noise_sigma > 0.0 ? options.noise_sigma : noise;
-  report.noise_to_signal =
-      std::max(NoiseToSignalFloor(options.max_gain),
-               std::pow(report.noise_sigma / std::max(signal, 1e-12), 2.0));
+  report.noise_to_signal = std::max(NoiseToSignalFloor(options.max_gain),
+                                    std::pow(report.noise_sigma / std::max(signal, 1e-12), 2.0));
   std::set<int> all_bins;
   for (const float len : lengths) {
     if (len >= options.min_length_px) {
-      all_bins.insert(static_cast<int>(std::min<double>(len, options.max_length_px) /
-                                       options.bin_px));
+      all_bins.insert(
+          static_cast<int>(std::min<double>(len, options.max_length_px) / options.bin_px));
     }
   }
   report.bins = static_cast<int>(all_bins.size());

@@ -40,7 +40,7 @@ struct DeblurReport {
   double off_axis_deg = 0.0;   ///< mean travel direction's angle from that axis (not restored)
   double min_length_px = 0.0;  ///< blur lengths over pixels with depth (along the axis)
   double max_length_px = 0.0;
-  int bins = 0;                ///< distinct length bins filtered
+  int bins = 0;                   ///< distinct length bins filtered
   long long pixels_restored = 0;  ///< pixels with a blur of at least min_length_px
   long long pixels_clamped = 0;   ///< pixels whose blur exceeded max_length_px
   double noise_sigma = 0.0;       ///< used (given or estimated), image units
@@ -49,8 +49,8 @@ struct DeblurReport {
 };
 
 struct DeblurResult {
-  cv::Mat3f image;             ///< restored image, same size and units as the input
-  cv::Mat1f blur_length_px;    ///< blur length along the restored axis; NaN without depth
+  cv::Mat3f image;           ///< restored image, same size and units as the input
+  cv::Mat1f blur_length_px;  ///< blur length along the restored axis; NaN without depth
   DeblurReport report;
 };
 
