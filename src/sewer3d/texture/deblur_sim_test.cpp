@@ -138,6 +138,7 @@ TEST(DeblurRendered, StripeEdgesSharpenWithoutHalos) {
   RecordProperty("blur_px", std::to_string(r.report.min_length_px) + ".." +
                                 std::to_string(r.report.max_length_px));
   RecordProperty("bins", r.report.bins);
+  RecordProperty("time_ms", std::to_string(r.report.time_ms));
   RecordProperty("noise_dn_K", std::to_string(r.report.noise_sigma) + " " +
                                    std::to_string(r.report.noise_to_signal));
   RecordProperty("width_sharp_blurred_deblurred", std::to_string(s.median_width_px) + " " +

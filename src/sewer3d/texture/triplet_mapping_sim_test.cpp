@@ -125,6 +125,7 @@ TEST_F(TripletMapping, AkazeMotionRegistersTheTextureToThePatternInstant) {
   RecordProperty("matches_inliers",
                  std::to_string(r.report.matches) + " " + std::to_string(r.report.inliers));
   RecordProperty("rms_px", std::to_string(r.report.reprojection_rms_px));
+  RecordProperty("time_ms", std::to_string(r.report.time_ms));
   RecordProperty("motion_mm_deg",
                  std::to_string(r.report.motion_mm) + " " + std::to_string(r.report.rotation_deg));
   RecordProperty("misregistration_px", std::to_string(mapped) + " naive " + std::to_string(naive));
