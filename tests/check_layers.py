@@ -22,7 +22,7 @@ import re
 import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*"sewer3d/([A-Za-z0-9_]+)/[^"]+"', re.M)
-SIMULATOR = {"sim", "simio"}
+SIMULATOR = {"sim", "simio", "simeval"}
 
 
 def read_layers(path):

@@ -1,5 +1,7 @@
 // `sewer3d evaluate plane|cylinder`: fits the surface to a cloud and prints the accuracy
 // figures of the paper's Tables 1 and 2, plus errors against the truth when it is known.
+// `sewer3d evaluate rgbd`: the RGB-D stage's colour against a simulated run's truth
+// (cmd_evaluate_rgbd.cpp).
 
 #include <fmt/core.h>
 
@@ -7,6 +9,7 @@
 #include <cmath>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/evaluate_commands.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/model/fit.hpp"
@@ -16,16 +19,22 @@ namespace sewer3d::cli {
 
 Command AddEvaluateCommand(CLI::App& app) {
   struct Args {
-    std::string surface, cloud, truth;
+    std::string surface, cloud, truth, run, workspace, out;
     double inner_fraction = 0.5;
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub =
-      app.add_subcommand("evaluate", "Fit a plane or cylinder to a cloud; RMS and maximum error");
-  sub->add_option("surface", args->surface, "plane or cylinder")
+      app.add_subcommand("evaluate",
+                         "Accuracy against the truth: a plane or cylinder fitted to a cloud, or a "
+                         "processing stage on a simulated run (rgbd)");
+  sub->add_option("what", args->surface, "plane, cylinder or rgbd")
       ->required()
-      ->check(CLI::IsMember({"plane", "cylinder"}));
-  sub->add_option("--cloud", args->cloud, "Point cloud (PLY, camera frame, mm)")->required();
+      ->check(CLI::IsMember({"plane", "cylinder", "rgbd"}));
+  sub->add_option("--cloud", args->cloud, "plane, cylinder: point cloud (PLY, camera frame, mm)");
+  sub->add_option("--run", args->run, "rgbd: the simulated capture run (with truth/)");
+  sub->add_option("--workspace", args->workspace, "rgbd: the processing workspace WS");
+  sub->add_option("--out", args->out,
+                  "rgbd: folder for evaluation.json and pictures (default WS/evaluation/rgbd)");
   sub->add_option("--inner-fraction", args->inner_fraction,
                   "Central fraction of the view used for the fit")
       ->capture_default_str()
@@ -33,6 +42,12 @@ Command AddEvaluateCommand(CLI::App& app) {
   sub->add_option("--truth", args->truth,
                   "scene.json of the simulated capture: errors against the true surface");
   return {sub, [args] {
+            if (args->surface == "rgbd") {
+              if (args->run.empty() || args->workspace.empty())
+                throw CLI::RequiredError("evaluate rgbd needs --run and --workspace");
+              return RunEvaluateRgbd(args->run, args->workspace, args->out);
+            }
+            if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
             const auto all = ReadPlyPoints(args->cloud);
             const auto points = InnerPoints(all, args->inner_fraction);
             if (points.size() < 10)

@@ -19,13 +19,14 @@ Command AddRgbdCommand(CLI::App& app) {
     std::string run, out;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     double max_edge_steps = FrameReconstructionOptions{}.max_edge_steps;
-    bool quiet = false, force = false;
+    bool quiet = false, force = false, debug_images = false, no_deblur = false;
+    int reference_frames = RgbdColourOptions{}.reference_frames;
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
       "rgbd",
-      "Decode every pattern image of a run: WS/rgbd/m<k>/<counter>_color.png, _depth.tiff, "
-      "_cloud.ply, _report.json");
+      "RGB-D for every acquisition of a run: WS/rgbd/m<k>/<counter>_color.png (corrected "
+      "texture at the pattern instant), _depth.tiff, _cloud.ply, _report.json");
   sub->add_option("RUN", args->run, "Capture run folder (docs/formats.md)")->required();
   sub->add_option("--out", args->out, "Processing workspace folder WS")->required();
   sub->add_option("--threads", args->threads, "Acquisitions processed at once")
@@ -35,6 +36,15 @@ Command AddRgbdCommand(CLI::App& app) {
                   "Depth map: longest triangle edge, in pattern pitches")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 20.0));
+  sub->add_option("--reference-frames", args->reference_frames,
+                  "Acquisitions per module the reference light (shading correction) is estimated "
+                  "from")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  sub->add_flag("--no-deblur", args->no_deblur, "Leave the texture images' motion blur as it is");
+  sub->add_flag("--debug-images", args->debug_images,
+                "Also write WS/rgbd/debug/m<k>/<counter>_captured.png, _mapped.png, "
+                "_deblur_crop.png");
   sub->add_flag("--force", args->force,
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
@@ -43,6 +53,9 @@ Command AddRgbdCommand(CLI::App& app) {
             RgbdStageOptions options;
             options.reconstruction.max_edge_steps = args->max_edge_steps;
             options.threads = args->threads;
+            options.colour.reference_frames = args->reference_frames;
+            options.colour.deblur = !args->no_deblur;
+            options.colour.debug_images = args->debug_images;
             options.force = args->force;
             ProgressBar bar(args->quiet);
             auto progress = [&](const std::string& pass, int done, int total) {

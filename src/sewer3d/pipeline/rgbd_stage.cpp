@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <nlohmann/json.hpp>
 
+#include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
@@ -109,6 +111,7 @@ json PassJson(const RgbdAcquisitionResult& r) {
 
 void RgbdStageOptions::Check() const {
   reconstruction.Check();
+  colour.Check();
   SEWER3D_VALIDATE(threads >= 1, "threads", "must be at least 1, got " << threads);
 }
 
@@ -124,7 +127,8 @@ std::string RgbdOptionsJson(const RgbdStageOptions& options) {
                    {{"radius_px", r.outliers.radius_px},
                     {"min_step_mm", r.outliers.min_step_mm},
                     {"fraction", r.outliers.fraction}}},
-                  {"color", kRgbdColorSource}};
+                  {"color", kRgbdColorSource},
+                  {"colour", json::parse(RgbdColourOptionsJson(options.colour))}};
   return j.dump();
 }
 
@@ -159,8 +163,22 @@ std::string RgbdStageReportToJson(const RgbdStageReport& report) {
     }
     list.push_back(entry);
   }
+  json references = json::array();
+  for (const RgbdReferenceResult& r : report.references) {
+    json entry = {{"module", r.module},
+                  {"estimated", r.reference.has_value()},
+                  {"from_earlier_run", r.skipped}};
+    if (!r.skipped) {
+      entry["frames"] = r.report.frames;
+      entry["cells_filled"] = r.report.cells_filled;
+      entry["cells"] = r.report.cells;
+    }
+    if (!r.reason.empty()) entry["reason"] = r.reason;
+    references.push_back(entry);
+  }
   const json j = {{"stage", kStage},
                   {"color", kRgbdColorSource},
+                  {"references", references},
                   {"acquisitions", report.acquisitions},
                   {"done", report.done},
                   {"skipped", report.skipped},
@@ -208,6 +226,23 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
         s.geometry = RgbdGeometryPass(run, acquisitions[i], folder, reconstructors);
       },
       progress_of("geometry"));
+  const size_t modules = run.rig.modules.size();
+  report.references.resize(modules);
+  std::vector<std::unique_ptr<ShadingCorrector>> correctors(modules);
+  ForEachItem<int>(
+      modules, options.threads, [] { return 0; },
+      [&](size_t k, int&) {
+        report.references[k] =
+            RgbdReferencePass(run, static_cast<int>(k), acquisitions, folder, options.colour);
+        if (report.references[k].reference) {
+          correctors[k] = std::make_unique<ShadingCorrector>(
+              CameraModel(run.rig.modules[k].module.camera), *report.references[k].reference,
+              options.colour.correction);
+        }
+      },
+      [&](int finished) {
+        if (progress) progress("reference", finished, static_cast<int>(modules));
+      });
   ForEachItem<int>(
       acquisitions.size(), options.threads, [] { return 0; },
       [&](size_t i, int&) {
@@ -216,7 +251,8 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
           s.colour.status = Status::kSkipped;
           return;
         }
-        s.colour = RgbdColourPass(run, acquisitions[i], folder);
+        s.colour = RgbdColourPass(run, acquisitions[i], folder,
+                                  correctors[acquisitions[i].module].get(), options.colour);
       },
       progress_of("colour"));
 

@@ -28,6 +28,7 @@ namespace sewer3d {
 
 struct RgbdStageOptions {
   FrameReconstructionOptions reconstruction;  ///< decoder, triangulation, depth map
+  RgbdColourOptions colour;                   ///< reference light, deblur, mapping, correction
   /// Acquisitions processed at once (≥ 1), each worker holding one acquisition's images and
   /// one FrameReconstructor per module it has met. Does not change the outputs.
   int threads = 1;
@@ -63,6 +64,7 @@ struct RgbdStageReport {
   int skipped = 0;       ///< completed by an earlier run (report present)
   int failed = 0;
   std::vector<RgbdAcquisitionSummary> results;  ///< ordered by (module, counter)
+  std::vector<RgbdReferenceResult> references;  ///< one per module
   long long spots = 0;                          ///< over every complete acquisition
   long long points = 0;
   double seconds = 0;  ///< the whole stage now, wall clock
@@ -77,8 +79,8 @@ struct RgbdStageReport {
 /// The report as JSON text (keys sorted; format in docs/rgbd.md).
 std::string RgbdStageReportToJson(const RgbdStageReport& report);
 
-/// Called after every acquisition of a pass ("geometry", "colour"), done, skipped or failed,
-/// never from two threads at once.
+/// Called after every item of a pass ("geometry", "colour": acquisitions; "reference":
+/// modules), done, skipped or failed, never from two threads at once.
 using StageProgress = std::function<void(const std::string& pass, int finished, int total)>;
 
 /// Runs the RGB-D stage of `run` into `workspace` (records it there, workspace.hpp). Throws

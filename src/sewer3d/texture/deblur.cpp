@@ -224,44 +224,4 @@ DeblurResult Deblur(const cv::Mat3f& image, const cv::Mat1f& depth_mm, const Cam
   return result;
 }
 
-cv::Mat1f PipePriorDepth(const CameraModel& camera, const Rigid3d& carrier_from_camera,
-                         double diameter_mm) {
-  ValidatePositive("diameter_mm", diameter_mm);
-  const CameraIntrinsics& in = camera.intrinsics();
-  const double radius2 = 0.25 * diameter_mm * diameter_mm;
-  const Eigen::Matrix3d rotation = carrier_from_camera.RotationMatrix();
-  const Eigen::Vector3d& o = carrier_from_camera.translation;
-  cv::Mat1f depth(in.height, in.width, kNaN);
-  // The ray o + s d (d = rotation · (x, y, 1), so s is the camera z) meets x² + y² = r² in the
-  // carrier frame at the larger root; a camera outside the pipe (c ≥ 0) sees no prior.
-  const double c = o.x() * o.x() + o.y() * o.y() - radius2;
-  if (c >= 0.0) return depth;
-  cv::parallel_for_(cv::Range(0, in.height), [&](const cv::Range& rows) {
-    for (int v = rows.start; v < rows.end; ++v) {
-      for (int u = 0; u < in.width; ++u) {
-        const auto xy = camera.Unproject({double(u), double(v)});
-        if (!xy) continue;
-        const Eigen::Vector3d d = rotation * Eigen::Vector3d(xy->x(), xy->y(), 1.0);
-        const double a = d.x() * d.x() + d.y() * d.y();
-        if (a < 1e-12) continue;
-        const double b = 2.0 * (o.x() * d.x() + o.y() * d.y());
-        const double s = (-b + std::sqrt(b * b - 4.0 * a * c)) / (2.0 * a);
-        if (s > 0.0) depth(v, u) = static_cast<float>(s);
-      }
-    }
-  });
-  return depth;
-}
-
-cv::Mat1f FillDepthFromPrior(const cv::Mat1f& depth_mm, const cv::Mat1f& prior_mm) {
-  SEWER3D_VALIDATE(depth_mm.size() == prior_mm.size(), "prior_mm", "must have the depth's size");
-  cv::Mat1f out = depth_mm.clone();
-  for (int v = 0; v < out.rows; ++v) {
-    for (int u = 0; u < out.cols; ++u) {
-      if (std::isnan(out(v, u))) out(v, u) = prior_mm(v, u);
-    }
-  }
-  return out;
-}
-
 }  // namespace sewer3d

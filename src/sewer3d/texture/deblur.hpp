@@ -6,15 +6,12 @@
 /// comes from the depth and the camera's velocity; the image is restored line by line along the
 /// dominant travel axis by a 1-D Wiener filter of a centred box of that length, with lengths
 /// grouped in bins and blended linearly between neighbouring bins (no seams).
-///
-/// Also: a depth prior for pixels the decoder left empty — a round pipe of the nominal diameter
-/// coaxial with the carrier (carrier frame, run/rig.hpp: z along the carrier axis, origin on it).
+/// Pixels the decoder left without depth take it from a pipe prior first (depth_prior.hpp).
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
 #include "sewer3d/camera/camera_model.hpp"
-#include "sewer3d/core/rigid3.hpp"
 
 namespace sewer3d {
 
@@ -67,15 +64,5 @@ cv::Mat2f BlurDisplacementPx(const CameraModel& camera, const cv::Mat1f& depth_m
 DeblurResult Deblur(const cv::Mat3f& image, const cv::Mat1f& depth_mm, const CameraModel& camera,
                     const Eigen::Vector3d& velocity_mm_s, double exposure_ms,
                     const DeblurOptions& options = {});
-
-/// Depth z (mm, camera frame) of the wall of a round pipe of `diameter_mm` whose axis is the
-/// carrier's z axis (x = y = 0 in the carrier frame), seen from the camera at
-/// `carrier_from_camera`; NaN where the ray misses it (the camera outside the pipe, or beyond
-/// the lens's fold).
-cv::Mat1f PipePriorDepth(const CameraModel& camera, const Rigid3d& carrier_from_camera,
-                         double diameter_mm);
-
-/// `depth_mm` with its NaN pixels taken from `prior_mm` (same size).
-cv::Mat1f FillDepthFromPrior(const cv::Mat1f& depth_mm, const cv::Mat1f& prior_mm);
 
 }  // namespace sewer3d

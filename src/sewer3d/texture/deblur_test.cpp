@@ -176,35 +176,5 @@ TEST(Deblur, OptionsAreChecked) {
   EXPECT_THROW(o.Check(), std::invalid_argument);
 }
 
-// A camera 40 mm above the carrier axis looking up (12 o'clock), y along the axis: a DN300
-// wall is 110 mm away on the optical axis, and every prior point lies on the circle.
-TEST(PipePrior, DepthLiesOnTheNominalPipe) {
-  const CameraModel camera = Pinhole(80, 60);
-  Eigen::Matrix3d carrier_from_camera_rotation;
-  carrier_from_camera_rotation.col(0) = Eigen::Vector3d::UnitX();
-  carrier_from_camera_rotation.col(1) = Eigen::Vector3d::UnitZ();
-  carrier_from_camera_rotation.col(2) = -Eigen::Vector3d::UnitY();
-  const Rigid3d carrier_from_camera(carrier_from_camera_rotation, Eigen::Vector3d(0, -40, 5));
-  const cv::Mat1f prior = PipePriorDepth(camera, carrier_from_camera, 300.0);
-  EXPECT_NEAR(prior(30, 40) + prior(29, 39), 2 * 110.0, 0.5);
-  for (int v = 0; v < prior.rows; ++v) {
-    for (int u = 0; u < prior.cols; ++u) {
-      ASSERT_TRUE(std::isfinite(prior(v, u)));
-      const auto xy = camera.Unproject({double(u), double(v)});
-      const Eigen::Vector3d p =
-          carrier_from_camera * (Eigen::Vector3d(xy->x(), xy->y(), 1.0) * double(prior(v, u)));
-      EXPECT_NEAR(std::hypot(p.x(), p.y()), 150.0, 1e-3);
-    }
-  }
-  cv::Mat1f depth(prior.size(), std::numeric_limits<float>::quiet_NaN());
-  depth(10, 10) = 99.0F;
-  const cv::Mat1f filled = FillDepthFromPrior(depth, prior);
-  EXPECT_EQ(filled(10, 10), 99.0F);
-  EXPECT_EQ(filled(20, 20), prior(20, 20));
-  // A camera outside the pipe sees no prior.
-  const Rigid3d outside(carrier_from_camera_rotation, Eigen::Vector3d(0, -200, 0));
-  EXPECT_EQ(cv::countNonZero(PipePriorDepth(camera, outside, 300.0) > 0), 0);
-}
-
 }  // namespace
 }  // namespace sewer3d

@@ -156,6 +156,8 @@ class ShadingCorrector {
   CorrectedTexture Correct(const cv::Mat3f& linear_bgr, const cv::Mat1f& depth_mm) const;
   /// The same on an 8-bit sRGB BGR texture, returning 8-bit sRGB (clipped).
   cv::Mat3b CorrectSrgb8(const cv::Mat3b& srgb_bgr, const cv::Mat1f& depth_mm) const;
+  /// The camera's NormalisedCoordinates, for callers that need them too (e.g. the pipe prior).
+  const cv::Mat2f& normalised() const { return normalised_; }
 
  private:
   CorrectionOptions options_;

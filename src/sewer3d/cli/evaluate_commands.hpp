@@ -1,0 +1,13 @@
+#pragma once
+/// \file
+/// The parts of `sewer3d evaluate` that judge a processing stage on a simulated run.
+
+#include <string>
+
+namespace sewer3d::cli {
+
+/// `sewer3d evaluate rgbd --run RUN --workspace WS [--out DIR]`: prints the colour figures,
+/// writes DIR/evaluation.json and DIR/colour_montage.png; returns the exit code.
+int RunEvaluateRgbd(const std::string& run, const std::string& workspace, const std::string& out);
+
+}  // namespace sewer3d::cli
