@@ -1,5 +1,6 @@
 #include "sewer3d/register/depth_geometry.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "sewer3d/core/check.hpp"

@@ -99,6 +99,7 @@ void PointRegistrationOptions::Check() const {
   SEWER3D_VALIDATE(reselect_rounds >= 0, "reselect_rounds", "must be >= 0");
   ValidatePositive("gate_chi2", gate_chi2);
   ValidatePositive("min_variance_factor", min_variance_factor);
+  ValidateNotNegative("max_effective_inliers", max_effective_inliers);
 }
 
 PointRegistrationResult RegisterPoints(const std::vector<PointMatch>& matches,
@@ -145,7 +146,11 @@ PointRegistrationResult RegisterPoints(const std::vector<PointMatch>& matches,
   for (int i : out.inliers) sum2 += (pose * matches[i].b - matches[i].a).squaredNorm();
   out.rms_mm = std::sqrt(sum2 / static_cast<double>(out.inliers.size()));
   out.a_from_b = pose;
-  out.information = ToResidualOrder(n.h / out.variance_factor);
+  const double n_inliers = static_cast<double>(out.inliers.size());
+  const double cap = options.max_effective_inliers > 0
+                         ? std::min(1.0, options.max_effective_inliers / n_inliers)
+                         : 1.0;
+  out.information = ToResidualOrder(n.h * (cap / out.variance_factor));
   out.converged = converged && static_cast<int>(out.inliers.size()) >= options.min_inliers;
   return out;
 }

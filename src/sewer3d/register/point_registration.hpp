@@ -46,7 +46,15 @@ struct PointRegistrationOptions {
   int refine_iterations = 15;      ///< Gauss–Newton steps per inlier selection
   int reselect_rounds = 3;         ///< inlier re-selections by the χ² gate after refinement
   double gate_chi2 = 16.27;        ///< χ²(3) at 0.999: r ᵀ W r / s² above this is an outlier
-  double min_variance_factor = 0.1;  ///< floor of s² (see PointRegistrationResult)
+  /// Floor of s² (PointRegistrationResult): 1 trusts the noise model at most, never more —
+  /// residuals smaller than the model predicts are not taken as a licence for more confidence.
+  double min_variance_factor = 1.0;
+  /// Beyond this many inliers the information stops growing (it is scaled by
+  /// max_effective_inliers / inliers): keypoint biases from the change of perspective between
+  /// the views and depth-map interpolation shared by nearby keypoints do not average out, so
+  /// thousands of matches do not give √n-times better poses (measured in
+  /// docs/registration.md). 0: no cap.
+  int max_effective_inliers = 400;
 
   void Check() const;
 };
@@ -54,7 +62,8 @@ struct PointRegistrationOptions {
 struct PointRegistrationResult {
   bool converged = false;  ///< enough inliers and Gauss–Newton converged
   Rigid3d a_from_b;
-  /// Information of the pose graph residual (information.hpp): D H D / s², H = Σ Jᵀ W J.
+  /// Information of the pose graph residual (information.hpp): D H D / s², H = Σ Jᵀ W J,
+  /// times min(1, max_effective_inliers / inliers).
   Matrix6d information = Matrix6d::Zero();
   std::vector<int> inliers;  ///< indices into the matches
   double rms_mm = 0.0;       ///< RMS of |r_i| over the inliers
