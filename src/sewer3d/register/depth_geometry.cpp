@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "sewer3d/core/check.hpp"
 
 namespace sewer3d {
@@ -48,8 +50,13 @@ cv::Mat3f PointMap(const cv::Mat1f& depth, const CameraModel& camera) {
   return out;
 }
 
-cv::Mat3f NormalMap(const cv::Mat3f& points, int step_px, double max_step_mm) {
-  SEWER3D_CHECK(step_px >= 1);
+cv::Mat3f NormalMap(const cv::Mat3f& points_in, int step_px, int smooth_px, double max_step_mm) {
+  SEWER3D_CHECK(step_px >= 1 && smooth_px >= 1);
+  cv::Mat3f points = points_in;
+  if (smooth_px > 1) {  // NaN spreads over the box: no normal next to a hole
+    cv::boxFilter(points_in, points, -1, cv::Size(smooth_px, smooth_px), cv::Point(-1, -1), true,
+                  cv::BORDER_REPLICATE);
+  }
   cv::Mat3f out(points.size(), cv::Vec3f(kNaN, kNaN, kNaN));
   for (int v = step_px; v + step_px < points.rows; ++v) {
     for (int u = step_px; u + step_px < points.cols; ++u) {

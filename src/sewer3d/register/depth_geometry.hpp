@@ -18,11 +18,13 @@ namespace sewer3d {
 /// lies beyond the lens fold. Throws std::invalid_argument when the sizes differ.
 cv::Mat3f PointMap(const cv::Mat1f& depth, const CameraModel& camera);
 
-/// Unit normals of the surface a point map samples, from the cross product of central
-/// differences ±step_px along rows and columns, oriented toward the camera; NaN where one of
-/// the four neighbours is missing or farther than max_step_mm from the centre point (a depth
-/// discontinuity).
-cv::Mat3f NormalMap(const cv::Mat3f& points, int step_px, double max_step_mm);
+/// Unit normals of the surface a point map samples: the points are averaged over a
+/// smooth_px × smooth_px box (1: none; depth noise would otherwise tilt the normals by
+/// ~σ_z / pixel pitch), then the cross product of central differences ±step_px along rows and
+/// columns, oriented toward the camera. NaN where a pixel of the box or one of the four
+/// neighbours is missing, or a neighbour lies farther than max_step_mm from the centre point
+/// (a depth discontinuity).
+cv::Mat3f NormalMap(const cv::Mat3f& points, int step_px, int smooth_px, double max_step_mm);
 
 /// Bilinear interpolation of a one-channel map at a pixel position (pixel centres at integer
 /// coordinates); nullopt outside the image, where one of the four pixels is NaN, or where they

@@ -96,12 +96,16 @@ Vector6d ObservableStep(const Normal& n, double length_mm, double ratio) {
 void ProjectionRegistrationOptions::Check() const {
   SEWER3D_VALIDATE(sample_step_px >= 1, "sample_step_px", "must be >= 1, got " << sample_step_px);
   SEWER3D_VALIDATE(normal_step_px >= 1, "normal_step_px", "must be >= 1, got " << normal_step_px);
+  SEWER3D_VALIDATE(normal_smooth_px >= 1, "normal_smooth_px",
+                   "must be >= 1, got " << normal_smooth_px);
+  SEWER3D_VALIDATE(freeze_ratio >= 0.0 && freeze_ratio < 1.0, "freeze_ratio",
+                   "must lie in [0, 1), got " << freeze_ratio);
   ValidatePositive("max_depth_step_mm", max_depth_step_mm);
   ValidatePositive("max_distance_mm", max_distance_mm);
   ValidatePositive("min_gate_mm", min_gate_mm);
   ValidatePositive("huber_k", huber_k);
   SEWER3D_VALIDATE(max_iterations >= 1, "max_iterations", "must be >= 1");
-  ValidatePositive("convergence_mm", convergence_mm);
+  ValidatePositive("convergence_chi2", convergence_chi2);
   SEWER3D_VALIDATE(degeneracy_ratio > 0.0 && degeneracy_ratio < 1.0, "degeneracy_ratio",
                    "must lie in (0, 1), got " << degeneracy_ratio);
   SEWER3D_VALIDATE(min_correspondences >= 6, "min_correspondences", "must be >= 6");
@@ -115,7 +119,8 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
                                                 const ProjectionRegistrationOptions& options) {
   options.Check();
   SurfaceA a{camera_a, PointMap(depth_a, camera_a), {}, options.max_depth_step_mm};
-  a.normals = NormalMap(a.points, options.normal_step_px, options.max_depth_step_mm);
+  a.normals = NormalMap(a.points, options.normal_step_px, options.normal_smooth_px,
+                        options.max_depth_step_mm);
   SEWER3D_VALIDATE(depth_b.cols == camera_b.intrinsics().width &&
                        depth_b.rows == camera_b.intrinsics().height,
                    "depth_b", "is not the camera's size");
@@ -135,11 +140,10 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
     out.report.iterations = it + 1;
     if (static_cast<int>(s.size()) < options.min_correspondences) return out;
     const double sigma = std::max(RobustSigma(s), 1e-6);
-    const Vector6d delta = ObservableStep(Accumulate(s, options.huber_k * sigma), length_mm,
-                                          options.degeneracy_ratio);
+    const Normal n = Accumulate(s, options.huber_k * sigma);
+    const Vector6d delta = ObservableStep(n, length_mm, options.freeze_ratio);
     pose = ApplyUpdate(pose, delta);
-    converged = delta.head<3>().norm() < options.convergence_mm &&
-                delta.tail<3>().norm() * length_mm < options.convergence_mm;
+    converged = delta.dot(n.h * delta) / (sigma * sigma) < options.convergence_chi2;
     gate = std::clamp(4.0 * sigma, options.min_gate_mm, options.max_distance_mm);
   }
   s = Associate(a, b, pose, gate);

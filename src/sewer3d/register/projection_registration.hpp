@@ -14,7 +14,7 @@
 /// the directions the geometry does not constrain — translation along a cylinder's axis and
 /// rotation about it — carry near-zero information. Those directions are also left where the
 /// initial guess put them: each step is solved only in the span of the Hessian's eigenvectors
-/// above the degeneracy ratio. Neighbouring samples share depth-map interpolation; take
+/// above a (small) ratio of the largest. Neighbouring samples share depth-map interpolation; take
 /// sample_step_px at least the spacing of the measured spots, or Ω is over-confident.
 
 #include <opencv2/core.hpp>
@@ -27,14 +27,26 @@ namespace sewer3d {
 
 struct ProjectionRegistrationOptions {
   int sample_step_px = 4;           ///< every n-th pixel of b (rows and columns)
-  int normal_step_px = 2;           ///< central differences of a's points for its normals
-  double max_depth_step_mm = 2.0;   ///< larger steps between neighbours: no normal, no lookup
+  int normal_step_px = 3;           ///< central differences of a's points for its normals
+  int normal_smooth_px = 5;         ///< box over a's points before the differences (NormalMap)
+  /// Larger steps between neighbours: no normal, no lookup (a depth edge). Joints and steps of
+  /// a few mm are what constrains the slide along a pipe, so keep them.
+  double max_depth_step_mm = 5.0;
   double max_distance_mm = 5.0;     ///< association gate of the first iteration
   double min_gate_mm = 0.3;         ///< the gate shrinks to max(4 σ, this) as it converges
   double huber_k = 1.345;           ///< Huber threshold in units of the robust σ
-  int max_iterations = 40;
-  double convergence_mm = 1e-5;     ///< step (translation and rotation · L) below this: done
-  double degeneracy_ratio = 1e-3;   ///< smallest / largest eigenvalue (rotation as arc at L)
+  int max_iterations = 100;  ///< Huber IRLS converges linearly where few points constrain
+  /// Done when a step's Mahalanobis length δᵀ Ω δ (in the information of the current
+  /// correspondences) falls below this: the step is far inside the estimate's own uncertainty.
+  double convergence_chi2 = 1e-4;
+  /// Degenerate when the smallest / largest eigenvalue (rotation as arc at L) is below this.
+  /// A bare cylinder gives ~1e-5 (only the normals' noise constrains its symmetries); a bump of
+  /// 3 mm × 8 mm σ in a 648 × 486 view ~5e-4.
+  double degeneracy_ratio = 1e-4;
+  /// Steps are solved only along eigenvectors above this ratio: directions with less
+  /// information stay at the initial guess instead of following the normals' noise (which
+  /// otherwise walks a cylinder's slide and turn by ~0.03 mm / 0.03° per iteration).
+  double freeze_ratio = 5e-5;
   int min_correspondences = 100;
 
   void Check() const;
@@ -49,7 +61,7 @@ struct ProjectionRegistrationReport {
 };
 
 struct ProjectionRegistrationResult {
-  bool converged = false;  ///< the step fell below convergence_mm with enough correspondences
+  bool converged = false;  ///< the step fell below convergence_chi2 with enough correspondences
   Rigid3d a_from_b;
   /// Information of the pose-graph residual [translation; 2 vec(rotation error)] (mm, rad).
   Matrix6d information = Matrix6d::Zero();
