@@ -2,7 +2,6 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-
 #include <opencv2/imgproc.hpp>
 
 #include "sewer3d/core/check.hpp"

@@ -5,8 +5,8 @@
 
 #include <Eigen/Core>
 #include <limits>
-#include <optional>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
 #include "sewer3d/camera/camera_model.hpp"

@@ -18,10 +18,10 @@ void CheckImage(const RgbdImage& image, const CameraModel& camera, const char* n
   const CameraIntrinsics& in = camera.intrinsics();
   SEWER3D_VALIDATE(image.color_bgr.cols == in.width && image.color_bgr.rows == in.height &&
                        image.depth.size() == image.color_bgr.size(),
-                   name, "colour " << image.color_bgr.cols << " x " << image.color_bgr.rows
-                                   << " and depth " << image.depth.cols << " x "
-                                   << image.depth.rows << " must both be the camera's "
-                                   << in.width << " x " << in.height);
+                   name,
+                   "colour " << image.color_bgr.cols << " x " << image.color_bgr.rows
+                             << " and depth " << image.depth.cols << " x " << image.depth.rows
+                             << " must both be the camera's " << in.width << " x " << in.height);
 }
 
 // SIFT where the depth map has values (elsewhere a keypoint could not be lifted anyway).
@@ -47,8 +47,8 @@ std::vector<cv::DMatch> Match(const Features& a, const Features& b,
   if (options.cross_check) matcher.knnMatch(b.descriptors, a.descriptors, ba, 1);
   for (const auto& m : ab) {
     if (m.size() < 2 || !(m[0].distance < options.ratio * m[1].distance)) continue;
-    if (options.cross_check && (ba[m[0].trainIdx].empty() ||
-                                ba[m[0].trainIdx][0].trainIdx != m[0].queryIdx))
+    if (options.cross_check &&
+        (ba[m[0].trainIdx].empty() || ba[m[0].trainIdx][0].trainIdx != m[0].queryIdx))
       continue;
     out.push_back(m[0]);
   }

@@ -1,12 +1,11 @@
 // Feature registration of two rendered views of a concrete pipe wall (648 × 486 camera).
-#include "sewer3d/register/feature_registration.hpp"
-
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/register/feature_registration.hpp"
 #include "sewer3d/sim/material.hpp"
 #include "sewer3d/sim/renderer.hpp"
 #include "sewer3d/sim/surface.hpp"
@@ -74,7 +73,7 @@ Scene ConcreteWall() {
   scene.material = Material::kConcrete;
   scene.material_seed = 7;
   scene.diameter_mm = 300.0;
-  scene.axis = Eigen::Vector3d::UnitY();             // along the carrier axis
+  scene.axis = Eigen::Vector3d::UnitY();                   // along the carrier axis
   scene.axis_point_mm = Eigen::Vector3d(4.0, 0.0, -12.0);  // wall ≈ 138 mm ahead
   return scene;
 }
@@ -89,10 +88,10 @@ PairOutcome RegisterPair(const Rigid3d& a_from_b, bool printed, std::uint64_t se
   const CameraModel camera(module.camera);
   const Scene scene = ConcreteWall();
   const FeatureRegistrationOptions options;
-  const RgbdImage a = RenderView(module, MovedScene(scene, Rigid3d::Identity(), printed), options.noise,
-                                 seed);
-  const RgbdImage b = RenderView(module, MovedScene(scene, a_from_b, printed), options.noise,
-                                 seed + 1);
+  const RgbdImage a =
+      RenderView(module, MovedScene(scene, Rigid3d::Identity(), printed), options.noise, seed);
+  const RgbdImage b =
+      RenderView(module, MovedScene(scene, a_from_b, printed), options.noise, seed + 1);
   PairOutcome out;
   out.result = RegisterFeatures(a, camera, b, camera, options);
   PoseEdge edge;
@@ -107,8 +106,8 @@ PairOutcome RegisterPair(const Rigid3d& a_from_b, bool printed, std::uint64_t se
 // b moved 45 mm along the pipe (the along-pipe neighbour at 60 % overlap), 1.5 mm across,
 // 0.8 mm nearer the wall, turned 0.7°.
 Rigid3d AlongPipeNeighbour() {
-  const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7 * kRadPerDeg,
-                                               Eigen::Vector3d(0.3, 0.2, 1.0).normalized()));
+  const Eigen::Quaterniond q(
+      Eigen::AngleAxisd(0.7 * kRadPerDeg, Eigen::Vector3d(0.3, 0.2, 1.0).normalized()));
   return {q, Eigen::Vector3d(1.5, 45.0, 0.8)};
 }
 

@@ -37,7 +37,7 @@ Matrix6d ToResidualOrder(const Matrix6d& hessian);
 /// characteristic distance L (the scene's distance from the camera), so that translation and
 /// rotation are comparable: Ω_s = S Ω S, S = diag(1, 1, 1, 1/L, 1/L, 1/L) (units 1/mm²).
 struct InformationSpectrum {
-  double length_scale_mm = 1.0;  ///< L
+  double length_scale_mm = 1.0;             ///< L
   Vector6d eigenvalues = Vector6d::Zero();  ///< of Ω_s, ascending, 1/mm²
   /// Unit eigenvectors of Ω_s (columns, as eigenvalues), in (mm, L·rad) coordinates.
   Matrix6d eigenvectors = Matrix6d::Identity();

@@ -69,8 +69,7 @@ InitialPosesResult InitialPoses(const CaptureRun& run) {
   InitialPosesResult out;
   InitialPosesReport& report = out.report;
   for (size_t i = 1; i < run.odometry.size(); ++i)
-    if (run.odometry[i].distance_mm < run.odometry[i - 1].distance_mm)
-      ++report.odometry_backwards;
+    if (run.odometry[i].distance_mm < run.odometry[i - 1].distance_mm) ++report.odometry_backwards;
   double t0 = run.images.front().time_s;
   for (const RunImage& image : run.images) t0 = std::min(t0, image.time_s);
   report.first_image_time_s = t0;
@@ -81,8 +80,9 @@ InitialPosesResult InitialPoses(const CaptureRun& run) {
   report.acquisitions = static_cast<int>(acquisitions.size());
   for (const Acquisition& acq : acquisitions) {
     SEWER3D_VALIDATE(acq.module >= 0 && acq.module < static_cast<int>(run.rig.modules.size()),
-                     "module", "image of module " << acq.module << " but the rig has "
-                                                  << run.rig.modules.size() << " modules");
+                     "module",
+                     "image of module " << acq.module << " but the rig has "
+                                        << run.rig.modules.size() << " modules");
     const int image = acq.Image(ImageKind::kPattern);
     if (image < 0) {
       ++report.without_pattern;

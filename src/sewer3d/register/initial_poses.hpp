@@ -28,11 +28,11 @@ struct AcquisitionNode {
 };
 
 struct InitialPosesReport {
-  int acquisitions = 0;           ///< grouped from the run's images
-  int nodes = 0;                  ///< with a pattern image, hence a pose
-  int without_pattern = 0;        ///< skipped: no pattern image
-  int outside_odometry = 0;       ///< time outside the odometry's span: nearest reading used
-  int odometry_backwards = 0;     ///< consecutive readings whose distance decreases
+  int acquisitions = 0;        ///< grouped from the run's images
+  int nodes = 0;               ///< with a pattern image, hence a pose
+  int without_pattern = 0;     ///< skipped: no pattern image
+  int outside_odometry = 0;    ///< time outside the odometry's span: nearest reading used
+  int odometry_backwards = 0;  ///< consecutive readings whose distance decreases
   double first_image_time_s = 0.0;
 };
 
@@ -52,10 +52,10 @@ struct ModuleWallPoints {
 };
 
 struct CarrierOffsetOptions {
-  int min_points = 30;          ///< in all
-  int min_modules = 3;          ///< with at least one point: the circle needs the angles spread
-  int iterations = 20;          ///< Gauss–Newton steps of the geometric fit
-  double outlier_mm = 5.0;      ///< points farther than this from the first circle are dropped
+  int min_points = 30;      ///< in all
+  int min_modules = 3;      ///< with at least one point: the circle needs the angles spread
+  int iterations = 20;      ///< Gauss–Newton steps of the geometric fit
+  double outlier_mm = 5.0;  ///< points farther than this from the first circle are dropped
 
   void Check() const;
 };

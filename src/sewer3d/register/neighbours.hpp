@@ -47,10 +47,10 @@ struct NeighbourPair {
 
 struct NeighbourReport {
   int nodes = 0;
-  int candidates = 0;         ///< pairs of an allowed kind whose footprints meet along z
-  int kept = 0;               ///< overlap ≥ min_overlap
-  int rejected_overlap = 0;   ///< candidates below the threshold
-  int nodes_without_wall = 0; ///< none of the node's samples hit the mock-up cylinder
+  int candidates = 0;          ///< pairs of an allowed kind whose footprints meet along z
+  int kept = 0;                ///< overlap ≥ min_overlap
+  int rejected_overlap = 0;    ///< candidates below the threshold
+  int nodes_without_wall = 0;  ///< none of the node's samples hit the mock-up cylinder
 };
 
 struct NeighbourResult {

@@ -14,9 +14,9 @@
 namespace sewer3d {
 namespace {
 
-constexpr double kSpeed = 100.0;   // mm/s
-constexpr double kPeriod = 0.5;    // s between a module's acquisitions: 50 mm of travel
-constexpr double kScale = 1.004;   // the cable counter's scale error
+constexpr double kSpeed = 100.0;  // mm/s
+constexpr double kPeriod = 0.5;   // s between a module's acquisitions: 50 mm of travel
+constexpr double kScale = 1.004;  // the cable counter's scale error
 constexpr int kCounters = 6;
 
 // A run of kCounters acquisitions per module; odd modules 20 ms later; odometry at 20 Hz.
@@ -59,8 +59,9 @@ TEST(InitialPoses, CarrierMovesAlongModelZByTheOdometryDistance) {
     EXPECT_THAT(n.world_from_camera, testing::PoseNear(expected, 1e-9, 1e-9));
   }
   CaptureRun missing = run;
-  missing.images.erase(std::find_if(missing.images.begin(), missing.images.end(),
-                                    [](const RunImage& i) { return i.kind == ImageKind::kPattern; }));
+  missing.images.erase(
+      std::find_if(missing.images.begin(), missing.images.end(),
+                   [](const RunImage& i) { return i.kind == ImageKind::kPattern; }));
   EXPECT_EQ(InitialPoses(missing).report.without_pattern, 1);
   missing.odometry.clear();
   EXPECT_THROW(InitialPoses(missing), std::invalid_argument);
@@ -84,8 +85,8 @@ TEST(InitialPoses, CarrierOffsetFromSixWalls) {
         const Eigen::Vector2d e = d.head<2>();
         const double b = q.dot(e), c = q.squaredNorm() - radius * radius;
         const double s = (-b + std::sqrt(b * b - e.squaredNorm() * c)) / e.squaredNorm();
-        const Eigen::Vector3d p = carrier_from_camera.Inverse() *
-                                  (carrier_from_camera.translation + s * d);
+        const Eigen::Vector3d p =
+            carrier_from_camera.Inverse() * (carrier_from_camera.translation + s * d);
         wall.points_in_camera.push_back(p * (1.0 + noise(rng) / p.norm()));
       }
     }

@@ -41,8 +41,8 @@ Normal Accumulate(const std::vector<PointMatch>& matches, const std::vector<int>
 }
 
 // RANSAC over the 3-point solver; returns the best inlier set (distance threshold).
-std::vector<int> Ransac(const std::vector<PointMatch>& matches,
-                        const PointRegistrationOptions& o, int* iterations) {
+std::vector<int> Ransac(const std::vector<PointMatch>& matches, const PointRegistrationOptions& o,
+                        int* iterations) {
   const int n = static_cast<int>(matches.size());
   std::mt19937_64 rng(o.seed);
   std::uniform_int_distribution<int> pick(0, n - 1);
@@ -63,9 +63,9 @@ std::vector<int> Ransac(const std::vector<PointMatch>& matches,
     const double w = static_cast<double>(best.size()) / n;
     const double p_fail = 1.0 - w * w * w;
     if (p_fail <= 0.0) break;
-    needed = std::min(o.ransac_max_iterations,
-                      static_cast<int>(std::ceil(std::log(1.0 - o.ransac_confidence) /
-                                                 std::log(p_fail))));
+    needed = std::min(
+        o.ransac_max_iterations,
+        static_cast<int>(std::ceil(std::log(1.0 - o.ransac_confidence) / std::log(p_fail))));
   }
   return best;
 }

@@ -43,9 +43,9 @@ struct PointRegistrationOptions {
   double ransac_threshold_mm = 1.0;  ///< inlier distance |R b + t − a| for RANSAC's scoring
   std::uint64_t seed = 1;
   int min_inliers = 12;
-  int refine_iterations = 15;      ///< Gauss–Newton steps per inlier selection
-  int reselect_rounds = 3;         ///< inlier re-selections by the χ² gate after refinement
-  double gate_chi2 = 16.27;        ///< χ²(3) at 0.999: r ᵀ W r / s² above this is an outlier
+  int refine_iterations = 15;  ///< Gauss–Newton steps per inlier selection
+  int reselect_rounds = 3;     ///< inlier re-selections by the χ² gate after refinement
+  double gate_chi2 = 16.27;    ///< χ²(3) at 0.999: r ᵀ W r / s² above this is an outlier
   /// Floor of s² (PointRegistrationResult): 1 trusts the noise model at most, never more —
   /// residuals smaller than the model predicts are not taken as a licence for more confidence.
   double min_variance_factor = 1.0;

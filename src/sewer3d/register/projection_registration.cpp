@@ -121,10 +121,11 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
   SurfaceA a{camera_a, PointMap(depth_a, camera_a), {}, options.max_depth_step_mm};
   a.normals = NormalMap(a.points, options.normal_step_px, options.normal_smooth_px,
                         options.max_depth_step_mm);
-  SEWER3D_VALIDATE(depth_b.cols == camera_b.intrinsics().width &&
-                       depth_b.rows == camera_b.intrinsics().height,
-                   "depth_b", "is not the camera's size");
-  const std::vector<Eigen::Vector3d> b = SampleDepthPoints(depth_b, camera_b, options.sample_step_px);
+  SEWER3D_VALIDATE(
+      depth_b.cols == camera_b.intrinsics().width && depth_b.rows == camera_b.intrinsics().height,
+      "depth_b", "is not the camera's size");
+  const std::vector<Eigen::Vector3d> b =
+      SampleDepthPoints(depth_b, camera_b, options.sample_step_px);
   ProjectionRegistrationResult out;
   out.report.samples_b = static_cast<int>(b.size());
   double length_mm = 0.0;

@@ -26,16 +26,16 @@
 namespace sewer3d {
 
 struct ProjectionRegistrationOptions {
-  int sample_step_px = 4;           ///< every n-th pixel of b (rows and columns)
-  int normal_step_px = 3;           ///< central differences of a's points for its normals
-  int normal_smooth_px = 5;         ///< box over a's points before the differences (NormalMap)
+  int sample_step_px = 4;    ///< every n-th pixel of b (rows and columns)
+  int normal_step_px = 3;    ///< central differences of a's points for its normals
+  int normal_smooth_px = 5;  ///< box over a's points before the differences (NormalMap)
   /// Larger steps between neighbours: no normal, no lookup (a depth edge). Joints and steps of
   /// a few mm are what constrains the slide along a pipe, so keep them.
   double max_depth_step_mm = 5.0;
-  double max_distance_mm = 5.0;     ///< association gate of the first iteration
-  double min_gate_mm = 0.3;         ///< the gate shrinks to max(4 σ, this) as it converges
-  double huber_k = 1.345;           ///< Huber threshold in units of the robust σ
-  int max_iterations = 100;  ///< Huber IRLS converges linearly where few points constrain
+  double max_distance_mm = 5.0;  ///< association gate of the first iteration
+  double min_gate_mm = 0.3;      ///< the gate shrinks to max(4 σ, this) as it converges
+  double huber_k = 1.345;        ///< Huber threshold in units of the robust σ
+  int max_iterations = 100;      ///< Huber IRLS converges linearly where few points constrain
   /// Done when a step's Mahalanobis length δᵀ Ω δ (in the information of the current
   /// correspondences) falls below this: the step is far inside the estimate's own uncertainty.
   double convergence_chi2 = 1e-4;
@@ -56,7 +56,7 @@ struct ProjectionRegistrationReport {
   int samples_b = 0;        ///< b's sampled points with depth
   int correspondences = 0;  ///< associated and inside the gate at the end
   int iterations = 0;
-  double gate_mm = 0.0;     ///< the last association gate
+  double gate_mm = 0.0;          ///< the last association gate
   InformationSpectrum spectrum;  ///< of the information, L = mean distance of b's points
 };
 
@@ -66,8 +66,8 @@ struct ProjectionRegistrationResult {
   /// Information of the pose-graph residual [translation; 2 vec(rotation error)] (mm, rad).
   Matrix6d information = Matrix6d::Zero();
   int correspondences = 0;
-  double rms_mm = 0.0;    ///< point-to-plane residual RMS of the correspondences
-  double sigma_mm = 0.0;  ///< residual noise σ used to scale the information
+  double rms_mm = 0.0;      ///< point-to-plane residual RMS of the correspondences
+  double sigma_mm = 0.0;    ///< residual noise σ used to scale the information
   bool degenerate = false;  ///< report.spectrum.degenerate
   Vector6d weak_direction = Vector6d::Zero();  ///< report.spectrum.weak_direction
   ProjectionRegistrationReport report;

@@ -1,12 +1,11 @@
 // Projection-based registration on depth maps ray-cast from simulated walls (648 × 486 camera):
 // a bare cylinder leaves translation along and rotation about its axis unconstrained; a bump or
 // a joint on the wall constrains them.
-#include "sewer3d/register/projection_registration.hpp"
-
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "sewer3d/register/projection_registration.hpp"
 #include "sewer3d/sim/scene.hpp"
 #include "sewer3d/testing/matchers.hpp"
 #include "sewer3d/testing/small_module.hpp"
@@ -57,8 +56,8 @@ Rigid3d Truth() {
           Eigen::Vector3d(0.8, 45.0, 0.6)};
 }
 Rigid3d Guess() {
-  const Rigid3d error(Eigen::Quaterniond(Eigen::AngleAxisd(0.3 * kRadPerDeg,
-                                                           Eigen::Vector3d(1.0, 0.3, -0.5).normalized())),
+  const Rigid3d error(Eigen::Quaterniond(Eigen::AngleAxisd(
+                          0.3 * kRadPerDeg, Eigen::Vector3d(1.0, 0.3, -0.5).normalized())),
                       Eigen::Vector3d(0.5, 2.0, -0.3));
   return error * Truth();
 }
@@ -79,8 +78,9 @@ void Record(const ProjectionRegistrationResult& r) {
   const Vector6d& e = r.report.spectrum.eigenvalues;
   ::testing::Test::RecordProperty(
       "figures", "correspondences " + std::to_string(r.correspondences) + " sigma_mm " +
-                     std::to_string(r.sigma_mm) + " ratio " + std::to_string(r.report.spectrum.ratio) +
-                     " eigenvalues " + std::to_string(e(0)) + " " + std::to_string(e(1)) + " " +
+                     std::to_string(r.sigma_mm) + " ratio " +
+                     std::to_string(r.report.spectrum.ratio) + " eigenvalues " +
+                     std::to_string(e(0)) + " " + std::to_string(e(1)) + " " +
                      std::to_string(e(2)) + " " + std::to_string(e(5)) + " iterations " +
                      std::to_string(r.report.iterations));
 }
