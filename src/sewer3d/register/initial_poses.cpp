@@ -1,0 +1,152 @@
+#include "sewer3d/register/initial_poses.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <set>
+
+#include "sewer3d/core/check.hpp"
+
+namespace sewer3d {
+namespace {
+
+// Odometry distance at t, the nearest reading's outside the readings' span.
+double DistanceAt(const std::vector<OdometryReading>& odometry, double time_s, bool* outside) {
+  if (const auto d = OdometryDistanceAt(odometry, time_s)) return *d;
+  *outside = true;
+  return time_s < odometry.front().time_s ? odometry.front().distance_mm
+                                          : odometry.back().distance_mm;
+}
+
+struct Circle {
+  Eigen::Vector2d centre;
+  double radius = 0.0;
+};
+
+// Kåsa: x² + y² + D x + E y + F = 0 in least squares.
+std::optional<Circle> AlgebraicCircle(const std::vector<Eigen::Vector2d>& p) {
+  Eigen::MatrixXd a(p.size(), 3);
+  Eigen::VectorXd b(p.size());
+  for (size_t i = 0; i < p.size(); ++i) {
+    a.row(i) << p[i].x(), p[i].y(), 1.0;
+    b(i) = -p[i].squaredNorm();
+  }
+  const Eigen::Vector3d x = a.colPivHouseholderQr().solve(b);
+  const Eigen::Vector2d centre(-0.5 * x(0), -0.5 * x(1));
+  const double r2 = centre.squaredNorm() - x(2);
+  if (!(r2 > 0.0) || !x.allFinite()) return std::nullopt;
+  return Circle{centre, std::sqrt(r2)};
+}
+
+// Gauss–Newton on r_i = |p_i − c| − R.
+Circle GeometricCircle(const std::vector<Eigen::Vector2d>& p, Circle c, int iterations) {
+  for (int it = 0; it < iterations; ++it) {
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector2d& q : p) {
+      const Eigen::Vector2d d = q - c.centre;
+      const double n = d.norm();
+      if (n <= 0.0) continue;
+      const Eigen::Vector3d j(-d.x() / n, -d.y() / n, -1.0);
+      h += j * j.transpose();
+      g += j * (n - c.radius);
+    }
+    const Eigen::Vector3d step = -h.ldlt().solve(g);
+    if (!step.allFinite()) break;
+    c.centre += step.head<2>();
+    c.radius += step(2);
+    if (step.norm() < 1e-9) break;
+  }
+  return c;
+}
+
+}  // namespace
+
+InitialPosesResult InitialPoses(const CaptureRun& run) {
+  SEWER3D_VALIDATE(!run.odometry.empty(), "odometry", "has no reading");
+  SEWER3D_VALIDATE(!run.images.empty(), "images", "the run has no image");
+  InitialPosesResult out;
+  InitialPosesReport& report = out.report;
+  for (size_t i = 1; i < run.odometry.size(); ++i)
+    if (run.odometry[i].distance_mm < run.odometry[i - 1].distance_mm) ++report.odometry_backwards;
+  double t0 = run.images.front().time_s;
+  for (const RunImage& image : run.images) t0 = std::min(t0, image.time_s);
+  report.first_image_time_s = t0;
+  bool ignored = false;
+  const double d0 = DistanceAt(run.odometry, t0, &ignored);
+
+  const std::vector<Acquisition> acquisitions = GroupAcquisitions(run.images);
+  report.acquisitions = static_cast<int>(acquisitions.size());
+  for (const Acquisition& acq : acquisitions) {
+    SEWER3D_VALIDATE(acq.module >= 0 && acq.module < static_cast<int>(run.rig.modules.size()),
+                     "module",
+                     "image of module " << acq.module << " but the rig has "
+                                        << run.rig.modules.size() << " modules");
+    const int image = acq.Image(ImageKind::kPattern);
+    if (image < 0) {
+      ++report.without_pattern;
+      continue;
+    }
+    AcquisitionNode node;
+    node.module = acq.module;
+    node.counter = acq.counter;
+    node.time_s = run.images[image].time_s;
+    bool outside = false;
+    node.distance_mm = DistanceAt(run.odometry, node.time_s, &outside) - d0;
+    if (outside) ++report.outside_odometry;
+    const Rigid3d world_from_carrier(Eigen::Quaterniond::Identity(),
+                                     Eigen::Vector3d(0.0, 0.0, node.distance_mm));
+    node.world_from_camera = world_from_carrier * run.rig.modules[acq.module].carrier_from_camera;
+    out.nodes.push_back(node);
+  }
+  report.nodes = static_cast<int>(out.nodes.size());
+  return out;
+}
+
+void CarrierOffsetOptions::Check() const {
+  SEWER3D_VALIDATE(min_points >= 3, "min_points", "must be >= 3, got " << min_points);
+  SEWER3D_VALIDATE(min_modules >= 1, "min_modules", "must be >= 1, got " << min_modules);
+  SEWER3D_VALIDATE(iterations >= 0, "iterations", "must be >= 0, got " << iterations);
+  ValidatePositive("outlier_mm", outlier_mm);
+}
+
+CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
+                                            const std::vector<ModuleWallPoints>& walls,
+                                            const CarrierOffsetOptions& options) {
+  options.Check();
+  std::vector<Eigen::Vector2d> points;
+  std::set<int> modules;
+  for (const ModuleWallPoints& wall : walls) {
+    SEWER3D_VALIDATE(wall.module >= 0 && wall.module < static_cast<int>(rig.modules.size()),
+                     "module", "is " << wall.module << ", the rig has " << rig.modules.size());
+    const Rigid3d& carrier_from_camera = rig.modules[wall.module].carrier_from_camera;
+    for (const Eigen::Vector3d& p : wall.points_in_camera) {
+      if (!p.allFinite()) continue;
+      points.push_back((carrier_from_camera * p).head<2>());
+      modules.insert(wall.module);
+    }
+  }
+  CarrierOffsetEstimate out;
+  out.modules = static_cast<int>(modules.size());
+  if (static_cast<int>(points.size()) < options.min_points || out.modules < options.min_modules)
+    return out;
+  const auto first = AlgebraicCircle(points);
+  if (!first) return out;
+  std::vector<Eigen::Vector2d> kept;
+  for (const Eigen::Vector2d& p : points)
+    if (std::abs((p - first->centre).norm() - first->radius) <= options.outlier_mm)
+      kept.push_back(p);
+  if (static_cast<int>(kept.size()) < options.min_points) return out;
+  const Circle c = GeometricCircle(kept, *first, options.iterations);
+  double sum2 = 0.0;
+  for (const Eigen::Vector2d& p : kept) sum2 += std::pow((p - c.centre).norm() - c.radius, 2);
+  out.valid = std::isfinite(c.radius) && c.radius > 0.0;
+  out.axis_in_carrier_mm = c.centre;
+  out.diameter_mm = 2.0 * c.radius;
+  out.rms_mm = std::sqrt(sum2 / static_cast<double>(kept.size()));
+  out.points = static_cast<int>(kept.size());
+  return out;
+}
+
+}  // namespace sewer3d

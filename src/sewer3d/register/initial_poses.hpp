@@ -1,0 +1,85 @@
+#pragma once
+/// \file
+/// Initial camera poses of a run's acquisitions from odometry and the rig (paper §4.1), and
+/// the carrier's offset from the pipe axis from the six modules' walls at one instant.
+///
+/// **Model frame** (the frame of WS/registration/poses.csv): origin at the carrier centre at
+/// the time of the run's first image, z along the pipe (the carrier's axis, forward), y down
+/// and x right as the carrier's frame (run/rig.hpp) was at that instant. Odometry only knows
+/// the distance travelled, so the initial guess moves the carrier straight along model z
+/// without turning: world_from_carrier(t) = translation (0, 0, d(t) − d(t₀)), with d the cable
+/// counter's distance, and world_from_camera = world_from_carrier · carrier_from_camera.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/run/capture_run.hpp"
+
+namespace sewer3d {
+
+/// A node of the registration graph: one acquisition's camera at its pattern instant.
+struct AcquisitionNode {
+  int module = 0;
+  int counter = 0;
+  double time_s = 0.0;        ///< the pattern image's time
+  double distance_mm = 0.0;   ///< odometry distance at time_s, relative to the first image
+  Rigid3d world_from_camera;  ///< model frame
+};
+
+struct InitialPosesReport {
+  int acquisitions = 0;        ///< grouped from the run's images
+  int nodes = 0;               ///< with a pattern image, hence a pose
+  int without_pattern = 0;     ///< skipped: no pattern image
+  int outside_odometry = 0;    ///< time outside the odometry's span: nearest reading used
+  int odometry_backwards = 0;  ///< consecutive readings whose distance decreases
+  double first_image_time_s = 0.0;
+};
+
+struct InitialPosesResult {
+  std::vector<AcquisitionNode> nodes;  ///< ordered by (module, counter)
+  InitialPosesReport report;
+};
+
+/// The initial guess for every acquisition with a pattern image. Throws std::invalid_argument
+/// when the run has no odometry reading, no image, or an image names a module the rig lacks.
+InitialPosesResult InitialPoses(const CaptureRun& run);
+
+/// One module's wall points at (about) one instant, in its camera frame (mm).
+struct ModuleWallPoints {
+  int module = 0;
+  std::vector<Eigen::Vector3d> points_in_camera;
+};
+
+struct CarrierOffsetOptions {
+  int min_points = 30;      ///< in all
+  int min_modules = 3;      ///< with at least one point: the circle needs the angles spread
+  int iterations = 20;      ///< Gauss–Newton steps of the geometric fit
+  double outlier_mm = 5.0;  ///< points farther than this from the first circle are dropped
+
+  void Check() const;
+};
+
+/// A circle fitted to the walls around the carrier, in the carrier's x-y plane.
+struct CarrierOffsetEstimate {
+  bool valid = false;
+  /// Where the pipe axis crosses the carrier's x-y plane (carrier frame, mm); the carrier
+  /// centre's offset from the pipe axis is its negative.
+  Eigen::Vector2d axis_in_carrier_mm = Eigen::Vector2d::Zero();
+  double diameter_mm = 0.0;
+  double rms_mm = 0.0;  ///< radial residual of the points used
+  int points = 0;       ///< used
+  int modules = 0;      ///< contributing
+};
+
+/// Fits the pipe's cross-section to the modules' wall points mapped into the carrier frame
+/// (rig's carrier_from_camera) and projected along the carrier axis: an algebraic (Kåsa) fit,
+/// then Gauss–Newton on the geometric distances after dropping outliers. Assumes the pipe
+/// axis is parallel to the carrier's (a tilt of α widens the circle by 1/cos α along it).
+/// `valid` false with too few points or modules. Throws std::invalid_argument for a module
+/// index the rig lacks or bad options.
+CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
+                                            const std::vector<ModuleWallPoints>& walls,
+                                            const CarrierOffsetOptions& options = {});
+
+}  // namespace sewer3d

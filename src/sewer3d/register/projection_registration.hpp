@@ -1,0 +1,86 @@
+#pragma once
+/// \file
+/// Projection-based pairwise registration (paper §4.3, for texture-poor walls such as plastic
+/// pipe): b's depth-map points are associated projectively with a's surface — each point,
+/// moved by the current a_from_b, is projected into a's camera and meets a's point and normal
+/// there (bilinear in a's point and normal maps) — and the point-to-plane cost
+///   E = Σ_i ρ(n_iᵀ (R p_i + t − q_i))
+/// is minimised by Gauss–Newton from an initial guess (odometry), ρ Huber with its scale from
+/// the residuals' median absolute deviation. No photometric term (not implemented: the
+/// geometric term alone, with honest information, is what the plastic case needs).
+///
+/// The information is the Gauss–Newton Hessian divided by the residual variance,
+/// Ω = D (Σ w_i J_iᵀ J_i) D / σ² (information.hpp for D and the update convention), so that
+/// the directions the geometry does not constrain — translation along a cylinder's axis and
+/// rotation about it — carry near-zero information. Those directions are also left where the
+/// initial guess put them: each step is solved only in the span of the Hessian's eigenvectors
+/// above a (small) ratio of the largest. Neighbouring samples share depth-map interpolation; take
+/// sample_step_px at least the spacing of the measured spots, or Ω is over-confident.
+
+#include <opencv2/core.hpp>
+
+#include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/register/information.hpp"
+
+namespace sewer3d {
+
+struct ProjectionRegistrationOptions {
+  int sample_step_px = 4;    ///< every n-th pixel of b (rows and columns)
+  int normal_step_px = 3;    ///< central differences of a's points for its normals
+  int normal_smooth_px = 5;  ///< box over a's points before the differences (NormalMap)
+  /// Larger steps between neighbours: no normal, no lookup (a depth edge). Joints and steps of
+  /// a few mm are what constrains the slide along a pipe, so keep them.
+  double max_depth_step_mm = 5.0;
+  double max_distance_mm = 5.0;  ///< association gate of the first iteration
+  double min_gate_mm = 0.3;      ///< the gate shrinks to max(4 σ, this) as it converges
+  double huber_k = 1.345;        ///< Huber threshold in units of the robust σ
+  int max_iterations = 100;      ///< Huber IRLS converges linearly where few points constrain
+  /// Done when a step's Mahalanobis length δᵀ Ω δ (in the information of the current
+  /// correspondences) falls below this: the step is far inside the estimate's own uncertainty.
+  double convergence_chi2 = 1e-4;
+  /// Degenerate when the smallest / largest eigenvalue (rotation as arc at L) is below this.
+  /// A bare cylinder gives ~1e-5 (only the normals' noise constrains its symmetries); a bump of
+  /// 3 mm × 8 mm σ in a 648 × 486 view ~5e-4.
+  double degeneracy_ratio = 1e-4;
+  /// Steps are solved only along eigenvectors above this ratio: directions with less
+  /// information stay at the initial guess instead of following the normals' noise (which
+  /// otherwise walks a cylinder's slide and turn by ~0.03 mm / 0.03° per iteration).
+  double freeze_ratio = 5e-5;
+  int min_correspondences = 100;
+
+  void Check() const;
+};
+
+struct ProjectionRegistrationReport {
+  int samples_b = 0;        ///< b's sampled points with depth
+  int correspondences = 0;  ///< associated and inside the gate at the end
+  int iterations = 0;
+  double gate_mm = 0.0;          ///< the last association gate
+  InformationSpectrum spectrum;  ///< of the information, L = mean distance of b's points
+};
+
+struct ProjectionRegistrationResult {
+  bool converged = false;  ///< the step fell below convergence_chi2 with enough correspondences
+  Rigid3d a_from_b;
+  /// Information of the pose-graph residual [translation; 2 vec(rotation error)] (mm, rad).
+  Matrix6d information = Matrix6d::Zero();
+  int correspondences = 0;
+  double rms_mm = 0.0;      ///< point-to-plane residual RMS of the correspondences
+  double sigma_mm = 0.0;    ///< residual noise σ used to scale the information
+  bool degenerate = false;  ///< report.spectrum.degenerate
+  Vector6d weak_direction = Vector6d::Zero();  ///< report.spectrum.weak_direction
+  ProjectionRegistrationReport report;
+};
+
+/// Registers b's depth map onto a's from `initial_a_from_b`. Expected failures (too few
+/// correspondences, no convergence) give converged = false; throws std::invalid_argument for
+/// bad options or depth maps whose sizes differ from their cameras.
+ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
+                                                const CameraModel& camera_a,
+                                                const cv::Mat1f& depth_b,
+                                                const CameraModel& camera_b,
+                                                const Rigid3d& initial_a_from_b,
+                                                const ProjectionRegistrationOptions& options);
+
+}  // namespace sewer3d
