@@ -14,8 +14,8 @@ namespace sewer3d {
 enum class ColorFilter {
   kNone,  ///< a full RGB value per pixel (as if demosaiced in the camera)
   /// Bayer RGGB: row 0 is R G R G …, row 1 is G B G B …; the image is one channel. OpenCV
-  /// demosaics it with cv::COLOR_BayerRG2BGR (its naming reads the 2 × 2 block from its second
-  /// row and column; verified in sensor_test.cpp).
+  /// demosaics it with cv::COLOR_BayerBG2BGR, not BayerRG2BGR: OpenCV names a layout by the
+  /// 2 × 2 block that starts at row 1, column 1 (verified in sensor_test.cpp).
   kRggb,
 };
 
