@@ -65,8 +65,8 @@ Eigen::Vector3d PlasticAlbedo(std::uint64_t seed, const Eigen::Vector2d& p) {
     const double half = 2.0 + 8.0 * mn::Unit(h, 1);
     const double angle = kTwoPi * mn::Unit(h, 2);
     const Eigen::Vector2d along(std::cos(angle), std::sin(angle));
-    const Eigen::Vector2d centre = kCell * Eigen::Vector2d(fx + 0.5, fy + 0.5) +
-                                   (kCell / 3) * (mn::Unit(h, 3) - 0.5) * along;
+    const Eigen::Vector2d centre =
+        kCell * Eigen::Vector2d(fx + 0.5, fy + 0.5) + (kCell / 3) * (mn::Unit(h, 3) - 0.5) * along;
     const Eigen::Vector2d d = p - centre;
     const double t = std::clamp(d.dot(along), -half, half);
     k *= 1.0 + 0.05 * mn::Band((d - t * along).norm(), 0.06, 0.05);

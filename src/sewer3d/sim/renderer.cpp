@@ -94,7 +94,8 @@ struct Sample {
 Eigen::Vector3d RingLight(const RenderOptions& o, double cos_theta) {
   const double t = (1.0 - cos_theta) / (1.0 - std::sqrt(0.5));
   const double shift = o.ring_light_color_shift * (t - 0.35);
-  return std::pow(cos_theta, o.ring_light_exponent) * Eigen::Vector3d(1.0 + shift, 1.0, 1.0 - shift);
+  return std::pow(cos_theta, o.ring_light_exponent) *
+         Eigen::Vector3d(1.0 + shift, 1.0, 1.0 - shift);
 }
 
 Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
@@ -275,8 +276,8 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
           cv::Vec3f(texture_signal.x(), texture_signal.y(), texture_signal.z());
       if (o.truth_albedo) {
         const Eigen::Vector3d albedo = sum.albedo / sum.hits;  // NaN when no sample hit
-        frame.truth_albedo(v, u) = sum.hits > 0 ? cv::Vec3f(albedo.x(), albedo.y(), albedo.z())
-                                                : cv::Vec3f(NAN, NAN, NAN);
+        frame.truth_albedo(v, u) =
+            sum.hits > 0 ? cv::Vec3f(albedo.x(), albedo.y(), albedo.z()) : cv::Vec3f(NAN, NAN, NAN);
       }
       frame.pattern(v, u) = o.images == RenderImages::kTexture
                                 ? 0

@@ -57,7 +57,7 @@ struct RenderOptions {
   Eigen::Vector3d white_balance = Eigen::Vector3d::Ones();
   /// Fill RenderedFrame::truth_albedo (texture images only).
   bool truth_albedo = false;
-  double speed_mm_s = 0.0;      ///< rig motion during the exposure (0: no motion blur)
+  double speed_mm_s = 0.0;  ///< rig motion during the exposure (0: no motion blur)
   double exposure_ms = 2.0;
   Eigen::Vector3d motion_direction = Eigen::Vector3d::UnitY();  ///< camera frame
   SensorModel sensor;

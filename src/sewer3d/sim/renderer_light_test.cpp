@@ -68,7 +68,8 @@ TEST(RendererLight, LensShadingTakesMoreRedThanBlueOffAxis) {
   const Eigen::Vector3d centre = Light(f, 324, 243), corner = Light(f, 630, 475);
   const double cos_corner = CosAngle(m, 630, 475), cos_centre = CosAngle(m, 324, 243);
   // Red/blue falls as cos^(e_R − e_B); the rest of the light is colourless here.
-  const double expected = std::pow(cos_corner / cos_centre, o.color_shading.x() - o.color_shading.z());
+  const double expected =
+      std::pow(cos_corner / cos_centre, o.color_shading.x() - o.color_shading.z());
   EXPECT_NEAR((corner.x() / corner.z()) / (centre.x() / centre.z()), expected, 0.01);
   EXPECT_LT(expected, 0.9);
 }

@@ -179,8 +179,8 @@ void Scenario::Check() const {
   CheckWithin("capture.", [&] { capture.Check(); });
   CheckWithin("odometry.", [&] { odometry.Check(); });
   CheckWithin("render.", [&] { render.Check(); });
-  SEWER3D_VALIDATE(white_balance_error >= 0.0 && white_balance_error <= 0.5,
-                   "white_balance_error", "must be 0..0.5, got " << white_balance_error);
+  SEWER3D_VALIDATE(white_balance_error >= 0.0 && white_balance_error <= 0.5, "white_balance_error",
+                   "must be 0..0.5, got " << white_balance_error);
   const double length = world.LengthMm();
   SEWER3D_VALIDATE(motion.start_station_mm - 0.5 * rig.carrier_length_mm >= -length &&
                        motion.start_station_mm + motion.travel_mm <= 2.0 * length,

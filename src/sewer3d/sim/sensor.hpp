@@ -25,10 +25,10 @@ const char* ColorFilterName(ColorFilter filter);
 std::optional<ColorFilter> ParseColorFilter(std::string_view name);
 
 struct SensorModel {
-  double full_well_e = 6000.0;  ///< electrons at full scale
-  double read_noise_e = 3.0;    ///< read noise, electrons RMS
-  int bits = 8;                 ///< ADC resolution, 8..12
-  bool noise = true;            ///< photon shot noise and read noise
+  double full_well_e = 6000.0;                    ///< electrons at full scale
+  double read_noise_e = 3.0;                      ///< read noise, electrons RMS
+  int bits = 8;                                   ///< ADC resolution, 8..12
+  bool noise = true;                              ///< photon shot noise and read noise
   ColorFilter color_filter = ColorFilter::kNone;  ///< of the texture image
 };
 

@@ -60,7 +60,8 @@ TEST(Sensor, MosaicOfARenderDemosaicsCloseToTheFullColourRender) {
   cv::Mat diff;
   cv::absdiff(rgb(inner), frame.texture(inner), diff);
   const cv::Scalar mae = cv::mean(diff);
-  const cv::Scalar mean_demosaiced = cv::mean(rgb(inner)), mean_full = cv::mean(frame.texture(inner));
+  const cv::Scalar mean_demosaiced = cv::mean(rgb(inner)),
+                   mean_full = cv::mean(frame.texture(inner));
   RecordProperty("mean_abs_error_dn_g", std::to_string(mae[1]));
   for (int c = 0; c < 3; ++c) {
     EXPECT_LT(mae[c], 4.0) << c;

@@ -234,12 +234,30 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
 void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& p,
                        RenderOptions& o) {
   in.OnlyKnown(j, p,
-               {"supersampling", "sensor_width_mm", "camera_f_number", "camera_focus_mm",
-                "projector_f_number", "projector_focus_mm", "projector_psf_px", "texture_level",
-                "pattern_level", "ambient_level", "vignetting", "ring_light_exponent",
-                "ring_light_color_shift", "color_shading", "white_balance", "truth_albedo",
-                "speed_mm_s", "exposure_ms", "motion_direction", "full_well_e", "read_noise_e",
-                "bits", "noise", "color_filter"});
+               {"supersampling",
+                "sensor_width_mm",
+                "camera_f_number",
+                "camera_focus_mm",
+                "projector_f_number",
+                "projector_focus_mm",
+                "projector_psf_px",
+                "texture_level",
+                "pattern_level",
+                "ambient_level",
+                "vignetting",
+                "ring_light_exponent",
+                "ring_light_color_shift",
+                "color_shading",
+                "white_balance",
+                "truth_albedo",
+                "speed_mm_s",
+                "exposure_ms",
+                "motion_direction",
+                "full_well_e",
+                "read_noise_e",
+                "bits",
+                "noise",
+                "color_filter"});
   o.supersampling = in.Integer(j, "supersampling", p, o.supersampling);
   o.sensor_width_mm = in.Number(j, "sensor_width_mm", p, o.sensor_width_mm);
   o.camera_f_number = in.Number(j, "camera_f_number", p, o.camera_f_number);
