@@ -1,6 +1,10 @@
 // Renderer throughput (samples/s) on the default module's full 2592 x 1944 frame and a
-// reduced 648 x 486 one, for a DN300 concrete cylinder with the default (realistic) options.
+// reduced 648 x 486 one, for a DN300 concrete cylinder with the default (realistic) options;
+// keypoints that feature detectors find on each material's texture image.
 #include <benchmark/benchmark.h>
+
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/core/units.hpp"
@@ -66,6 +70,46 @@ void BM_PipeWorldIntersect(benchmark::State& state) {
   benchmark::DoNotOptimize(hits);
 }
 BENCHMARK(BM_PipeWorldIntersect)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace sewer3d
+
+namespace sewer3d {
+namespace {
+
+// Keypoints that SIFT and AKAZE (OpenCV defaults) find on a texture image of a DN300 cylinder
+// of each material, rendered full-size with the default options (S = 1 as in the presets) and
+// stored as 8-bit like a run's images: how much the wall's texture gives feature-based
+// registration (docs/simulator.md). The time is the render's.
+void BM_TextureFeatures(benchmark::State& state) {
+  const ModuleDescription module = MakeDefaultModule({});
+  Scene scene;
+  scene.type = Scene::Type::kCylinder;
+  scene.diameter_mm = 300.0;
+  scene.material = static_cast<Material>(state.range(0));
+  RenderOptions options;
+  options.images = RenderImages::kTexture;
+  options.supersampling = 1;
+  options.truth_depth = false;
+  cv::Mat3w texture;
+  for (auto _ : state) texture = RenderFrame(module, DefaultPatternArray(), scene, options).texture;
+  cv::Mat texture8, grey;
+  texture.convertTo(texture8, CV_8U, 255.0 / ((1 << options.sensor.bits) - 1));
+  cv::cvtColor(texture8, grey, cv::COLOR_RGB2GRAY);
+  std::vector<cv::KeyPoint> sift, akaze;
+  cv::SIFT::create()->detect(grey, sift);
+  cv::AKAZE::create()->detect(grey, akaze);
+  state.counters["sift"] = static_cast<double>(sift.size());
+  state.counters["akaze"] = static_cast<double>(akaze.size());
+}
+BENCHMARK(BM_TextureFeatures)
+    ->ArgName("material")
+    ->Arg(static_cast<int>(Material::kConcrete))
+    ->Arg(static_cast<int>(Material::kVitrifiedClay))
+    ->Arg(static_cast<int>(Material::kPlastic))
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace sewer3d

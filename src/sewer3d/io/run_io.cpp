@@ -97,6 +97,7 @@ void WriteRunInfo(const fs::path& path, const RunInfo& info, const RunCounts& co
                {"acquisitions", counts.acquisitions},
                {"images", counts.images},
                {"acquisition_period_s", info.acquisition_period_s},
+               {"color_filter", info.color_filter},
                {"simulation_seconds", counts.simulation_seconds}};
   WriteTextFile(path, j.dump(2) + "\n");
 }
@@ -122,6 +123,9 @@ RunInfo ReadRunInfo(const fs::path& path) {
     info.seed = seed->get<std::uint64_t>();
   }
   info.acquisition_period_s = in.Number(j, "acquisition_period_s", "", 0.0);
+  info.color_filter = in.Text(j, "color_filter", "", "none");
+  if (info.color_filter != "none" && info.color_filter != "RGGB")
+    in.Fail("color_filter", "must be \"none\" or \"RGGB\", got '" + info.color_filter + "'");
   return info;
 }
 

@@ -10,6 +10,7 @@
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/testing/matchers.hpp"
 #include "sewer3d/testing/small_module.hpp"
@@ -123,6 +124,29 @@ TEST_F(RunIoTest, WholeRunRoundTrips) {
   }
   ASSERT_EQ(run.odometry.size(), 4u);
   EXPECT_DOUBLE_EQ(run.odometry[2].distance_mm, 9.98);
+}
+
+TEST_F(RunIoTest, ColorFilterRoundTripsDefaultsToNoneAndRefusesUnknownNames) {
+  WriteRun();
+  EXPECT_EQ(ReadRunInfo(dir_ / "run.json").color_filter, "none");
+  RunInfo info = ReadRunInfo(dir_ / "run.json");
+  info.color_filter = "RGGB";
+  WriteRunInfo(dir_ / "run.json", info, {2, 2, 12, 0.0});
+  EXPECT_EQ(LoadRun(dir_).info.color_filter, "RGGB");
+  const std::string written = ReadTextFile(dir_ / "run.json");
+  const std::string member = "\"color_filter\": \"RGGB\",";
+  const size_t at = written.find(member);
+  ASSERT_NE(at, std::string::npos) << written;
+  std::string absent = written;
+  absent.erase(at, member.size());
+  WriteTextFile(dir_ / "run.json", absent);
+  EXPECT_EQ(ReadRunInfo(dir_ / "run.json").color_filter, "none");  // runs from before
+  std::string unknown = written;
+  unknown.replace(at, member.size(), "\"color_filter\": \"rggb\",");
+  WriteTextFile(dir_ / "run.json", unknown);
+  const std::string error = ErrorOf();
+  EXPECT_NE(error.find("run.json"), std::string::npos) << error;
+  EXPECT_NE(error.find("color_filter"), std::string::npos) << error;
 }
 
 TEST_F(RunIoTest, RefusesInconsistentRuns) {

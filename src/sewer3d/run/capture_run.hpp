@@ -55,6 +55,9 @@ struct RunInfo {
   std::string scenario;  ///< simulated runs: the scenario's name
   std::uint64_t seed = 0;
   double acquisition_period_s = 0.0;
+  /// The texture images' colour filter: "none" (3-channel colour images) or "RGGB" (one-channel
+  /// Bayer raw, row 0 R G R G …; OpenCV demosaics it with cv::COLOR_BayerBG2BGR).
+  std::string color_filter = "none";
 };
 
 /// A whole capture run in memory (images stay on disk: `folder / image.file`).

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "sewer3d/core/units.hpp"
+#include "sewer3d/sim/material_noise.hpp"
+#include "sewer3d/sim/material_walls.hpp"
 
 namespace sewer3d {
 namespace {
@@ -44,35 +46,33 @@ double Fbm(std::uint64_t seed, double x, double y, int octaves) {
   return sum / norm;
 }
 
-// Aggregate grains: a jittered grid of irregular grains (cell 5 mm, radius 0.4–2.5 mm) a
-// little brighter or darker than the cement around them.
-double Aggregate(std::uint64_t seed, const Eigen::Vector2d& p) {
-  constexpr double kCell = 5.0;
-  const double cx = std::floor(p.x() / kCell), cy = std::floor(p.y() / kCell);
-  double shade = 0.0;
-  for (int dj = -1; dj <= 1; ++dj) {
-    for (int di = -1; di <= 1; ++di) {
-      const auto i = static_cast<std::uint64_t>(static_cast<std::int64_t>(cx) + di);
-      const auto j = static_cast<std::uint64_t>(static_cast<std::int64_t>(cy) + dj);
-      const Eigen::Vector2d centre((cx + di + HashUniform(seed, i, j, 1)) * kCell,
-                                   (cy + dj + HashUniform(seed, i, j, 2)) * kCell);
-      const double radius = 0.4 + 2.1 * HashUniform(seed, i, j, 3) * HashUniform(seed, i, j, 4);
-      // Irregular outline: the radius wobbles with the direction.
-      const Eigen::Vector2d d = p - centre;
-      if (d.squaredNorm() > 1.5625 * radius * radius) continue;  // beyond the largest wobble
-      const double wobble =
-          0.75 + 0.5 * ValueNoise(seed + i * 31 + j, 2.0 + std::atan2(d.y(), d.x()), 0.5);
-      const double r = d.norm() / (radius * wobble);
-      if (r < 1.0) {
-        const double edge = std::min(1.0, (1.0 - r) * radius * 3.0);
-        shade = (HashUniform(seed, i, j, 5) - 0.5) * 0.16 * edge;
-      }
-    }
-  }
-  return shade;
-}
-
 }  // namespace
+
+Eigen::Vector3d PlasticAlbedo(std::uint64_t seed, const Eigen::Vector2d& p) {
+  namespace mn = material_noise;
+  // Extrusion lines: the die leaves faint ridges along the pipe (constant round it), ~1 mm apart.
+  const double x = p.x() + 0.5 * mn::ValueNoise(seed + 3, p.y() / 200.0, 0.5);
+  const double lines = mn::ValueNoise(seed + 5, x / 1.2, 0.5) - 0.5 +
+                       0.5 * (mn::ValueNoise(seed + 6, x / 0.5, 0.5) - 0.5);
+  double k = 1.0 + 0.02 * (Fbm(seed, p.x() / 50.0, p.y() / 50.0, 2) - 0.5) + 0.008 * lines;
+  // Sparse scratches: in a quarter of the 30 mm cells a straight segment 4–20 mm long, 0.12 mm
+  // wide, lighter (stress whitening).
+  constexpr double kCell = 30.0;
+  const double fx = std::floor(p.x() / kCell), fy = std::floor(p.y() / kCell);
+  const std::uint64_t h =
+      mn::CellHash(seed + 9, static_cast<std::int64_t>(fx), static_cast<std::int64_t>(fy));
+  if (mn::Unit(h, 0) < 0.25) {
+    const double half = 2.0 + 8.0 * mn::Unit(h, 1);
+    const double angle = kTwoPi * mn::Unit(h, 2);
+    const Eigen::Vector2d along(std::cos(angle), std::sin(angle));
+    const Eigen::Vector2d centre =
+        kCell * Eigen::Vector2d(fx + 0.5, fy + 0.5) + (kCell / 3) * (mn::Unit(h, 3) - 0.5) * along;
+    const Eigen::Vector2d d = p - centre;
+    const double t = std::clamp(d.dot(along), -half, half);
+    k *= 1.0 + 0.05 * mn::Band((d - t * along).norm(), 0.06, 0.05);
+  }
+  return Eigen::Vector3d(0.62, 0.50, 0.40) * k;
+}
 
 double SmoothNoise(std::uint64_t seed, double x, double y, int octaves) {
   return Fbm(seed, x, y, octaves);
@@ -91,25 +91,12 @@ double HashUniform(std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint6
 
 Eigen::Vector3d MaterialAlbedo(Material material, std::uint64_t seed, const Eigen::Vector2d& p) {
   switch (material) {
-    case Material::kConcrete: {
-      const double mottling = Fbm(seed, p.x() / 3.0, p.y() / 3.0, 4) - 0.5;  // 3 mm and finer
-      const double stain = std::max(0.0, Fbm(seed + 7, p.x() / 60.0, p.y() / 60.0, 2) - 0.55);
-      const double grey = 0.45 + 0.22 * mottling + Aggregate(seed + 13, p);
-      const Eigen::Vector3d base(grey, grey * 0.98, grey * 0.94);
-      const Eigen::Vector3d stained = base.cwiseProduct(Eigen::Vector3d(0.75, 0.65, 0.5));
-      const double w = std::min(1.0, stain * 4.0);
-      return ((1 - w) * base + w * stained).cwiseMax(0.02).cwiseMin(0.95);
-    }
-    case Material::kVitrifiedClay: {
-      const double streak = Fbm(seed, p.x() / 40.0, p.y() / 4.0, 3) - 0.5;
-      const double speck = Fbm(seed + 3, p.x() / 1.5, p.y() / 1.5, 2) - 0.5;
-      const double k = 1.0 + 0.25 * streak + 0.1 * speck;
-      return (Eigen::Vector3d(0.36, 0.20, 0.12) * k).cwiseMax(0.02).cwiseMin(0.95);
-    }
-    case Material::kPlastic: {
-      const double k = 1.0 + 0.02 * (Fbm(seed, p.x() / 50.0, p.y() / 50.0, 2) - 0.5);
-      return Eigen::Vector3d(0.62, 0.50, 0.40) * k;
-    }
+    case Material::kConcrete:
+      return ConcreteAlbedo(seed, p);
+    case Material::kVitrifiedClay:
+      return ClayAlbedo(seed, p);
+    case Material::kPlastic:
+      return PlasticAlbedo(seed, p);
     case Material::kSediment: {
       const double grit = Fbm(seed + 5, p.x() / 2.0, p.y() / 2.0, 3) - 0.5;
       const double patch = Fbm(seed + 9, p.x() / 25.0, p.y() / 25.0, 2) - 0.5;

@@ -10,12 +10,19 @@ namespace sewer3d {
 
 enum class Material { kConcrete, kVitrifiedClay, kPlastic, kSediment };
 
-/// Albedo at surface coordinates `p_mm`:
-/// - concrete: grey cement (~0.45) with multi-scale mottling, aggregate grains 1–8 mm of
-///   varying brightness, and large brownish stains;
-/// - vitrified clay: glazed reddish brown (~0.35, 0.2, 0.12) with faint streaks;
-/// - plastic: nearly uniform light orange-grey with 1 % low-frequency variation;
+/// Albedo at surface coordinates `p_mm` (x round the pipe, y along it), detailed down to the
+/// ~0.1 mm per pixel of the texture images (docs/simulator.md, "Materials"):
+/// - concrete: grey cement (~0.47) mottled at 2–10 mm with sand speckle at 0.15–0.4 mm; angular
+///   aggregate (Voronoi polygons of 2.2 and 7 mm cells with crisp edges; light, mid-grey and
+///   dark rock); pores 0.2–1.8 mm across (dark pits); faint formwork lines along the pipe;
+///   large brownish stains. Mean ~0.45;
+/// - vitrified clay: glazed reddish brown (~0.36, 0.2, 0.12) with streaks, glaze crazing (a
+///   network of dark hairline cracks round 3.5 mm and fainter 1.3 mm cells), dark and light
+///   specks 0.1–0.7 mm;
+/// - plastic: orange-grey (0.62, 0.5, 0.4), 2 % low-frequency variation, extrusion lines along
+///   the pipe (< 1 %), sparse light scratches; nearly featureless;
 /// - sediment: dark brown grit with patches (deposits at the invert).
+/// Pure function: the same (material, seed, point) always gives the same albedo.
 Eigen::Vector3d MaterialAlbedo(Material material, std::uint64_t seed, const Eigen::Vector2d& p_mm);
 
 /// Smooth fractal value noise in [0, 1] with a unit feature size at the first octave.

@@ -85,29 +85,49 @@ struct Setup {
 struct Sample {
   double pattern = 0.0;
   Eigen::Vector3d texture = Eigen::Vector3d::Zero();
+  Eigen::Vector3d albedo = Eigen::Vector3d::Zero();  // of the surface hit
+  int hits = 0;
 };
+
+// The ring light's radiant intensity (RGB, 1 on the axis's white) toward a direction whose
+// cosine with the camera axis is cos_theta: cos^n falloff, colour from bluish to warm.
+Eigen::Vector3d RingLight(const RenderOptions& o, double cos_theta) {
+  const double t = (1.0 - cos_theta) / (1.0 - std::sqrt(0.5));
+  const double shift = o.ring_light_color_shift * (t - 0.35);
+  return std::pow(cos_theta, o.ring_light_exponent) *
+         Eigen::Vector3d(1.0 + shift, 1.0, 1.0 - shift);
+}
 
 Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
              const Eigen::Vector3d& rig_shift, double cos_alpha) {
   Sample out;
   const auto hit = s.surface.Intersect(origin, direction);
   if (!hit) return out;
+  out.hits = 1;
   const RenderOptions& o = s.o;
   const Eigen::Vector3d albedo =
       hit->albedo.allFinite()
           ? hit->albedo
           : MaterialAlbedo(hit->material, s.surface.MaterialSeed(), hit->surface_mm);
+  out.albedo = albedo;
   const double grey = albedo.mean();
   const double vignetting = o.vignetting ? std::pow(cos_alpha, 4) : 1.0;
   if (o.images != RenderImages::kPattern) {
-    // Texture light: a ring around the camera pupil, treated as a point source there.
+    // Texture light: a ring around the camera pupil, treated as a point source there whose
+    // intensity and colour depend on the emission angle (the ring's axis is the camera's).
     const Eigen::Vector3d to_light = rig_shift - hit->point;
     const double d_light = to_light.norm();
     const double cos_light = std::max(0.0, hit->normal.dot(to_light) / d_light);
     const double falloff = std::pow(kReferenceDistanceMm / d_light, 2) * cos_light;
-    out.texture =
-        (albedo / 0.5) * (o.texture_level * falloff * cos_alpha * cos_alpha + o.ambient_level);
-    out.texture *= vignetting;
+    const Eigen::Vector3d light = o.texture_level * falloff * RingLight(o, -to_light.z() / d_light);
+    out.texture = (albedo / 0.5).cwiseProduct(light + Eigen::Vector3d::Constant(o.ambient_level));
+    if (o.vignetting) {
+      const Eigen::Vector3d shading(std::pow(cos_alpha, 4 + o.color_shading.x()),
+                                    std::pow(cos_alpha, 4 + o.color_shading.y()),
+                                    std::pow(cos_alpha, 4 + o.color_shading.z()));
+      out.texture = out.texture.cwiseProduct(shading);
+    }
+    out.texture = out.texture.cwiseProduct(o.white_balance);
   }
   if (o.images == RenderImages::kTexture) return out;
   // Pattern light from the projector.
@@ -138,18 +158,6 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
   return out;
 }
 
-std::uint16_t Digitise(double signal, const SensorModel& sensor, std::uint64_t seed,
-                       std::uint64_t pixel, std::uint64_t channel) {
-  double electrons = std::max(0.0, signal) * sensor.full_well_e;
-  if (sensor.noise) {
-    electrons += std::sqrt(electrons) * HashNormal(seed, pixel, channel);
-    electrons += sensor.read_noise_e * HashNormal(seed, pixel, channel + 100);
-  }
-  const double max_dn = (1 << sensor.bits) - 1;
-  return static_cast<std::uint16_t>(
-      std::clamp(std::round(electrons / sensor.full_well_e * max_dn), 0.0, max_dn));
-}
-
 }  // namespace
 
 void RenderOptions::Check() const {
@@ -164,6 +172,13 @@ void RenderOptions::Check() const {
   ValidateNotNegative("texture_level", texture_level);
   ValidateNotNegative("pattern_level", pattern_level);
   ValidateNotNegative("ambient_level", ambient_level);
+  ValidateNotNegative("ring_light_exponent", ring_light_exponent);
+  SEWER3D_VALIDATE(std::abs(ring_light_color_shift) <= 0.5, "ring_light_color_shift",
+                   "must be within ±0.5, got " << ring_light_color_shift);
+  SEWER3D_VALIDATE(color_shading.minCoeff() >= 0.0 && color_shading.maxCoeff() <= 8.0,
+                   "color_shading", "must be 0..8 per channel");
+  SEWER3D_VALIDATE(white_balance.minCoeff() > 0.0 && white_balance.maxCoeff() <= 4.0,
+                   "white_balance", "gains must be in (0, 4]");
   ValidateNotNegative("speed_mm_s", speed_mm_s);
   ValidateNotNegative("exposure_ms", exposure_ms);
   SEWER3D_VALIDATE(motion_direction.norm() > 0.0, "motion_direction",
@@ -180,6 +195,7 @@ RenderOptions RenderOptions::Ideal() {
   o.projector_f_number = 0.0;
   o.ambient_level = 0.0;
   o.vignetting = false;
+  o.ring_light_color_shift = 0.0;
   o.sensor.noise = false;
   o.supersampling = 4;
   return o;
@@ -203,6 +219,7 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
   frame.pattern.create(h, w);
   frame.texture.create(h, w);
   frame.truth_depth.create(h, w);
+  if (o.truth_albedo) frame.truth_albedo.create(h, w);
   const Eigen::Vector3d motion =
       o.motion_direction.normalized() * (o.speed_mm_s * o.exposure_ms * 1e-3);
 
@@ -248,6 +265,8 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
           const Sample s = Shade(setup, origin, direction, shift, cos_alpha);
           sum.pattern += s.pattern;
           sum.texture += s.texture;
+          sum.albedo += s.albedo;
+          sum.hits += s.hits;
         }
       }
       const double pattern_signal = sum.pattern / (n * n);
@@ -255,6 +274,11 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
       frame.pattern_signal(v, u) = static_cast<float>(pattern_signal);
       frame.texture_signal(v, u) =
           cv::Vec3f(texture_signal.x(), texture_signal.y(), texture_signal.z());
+      if (o.truth_albedo) {
+        const Eigen::Vector3d albedo = sum.albedo / sum.hits;  // NaN when no sample hit
+        frame.truth_albedo(v, u) =
+            sum.hits > 0 ? cv::Vec3f(albedo.x(), albedo.y(), albedo.z()) : cv::Vec3f(NAN, NAN, NAN);
+      }
       frame.pattern(v, u) = o.images == RenderImages::kTexture
                                 ? 0
                                 : Digitise(pattern_signal, o.sensor, o.seed, pixel, 0);
@@ -266,6 +290,8 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
                           Digitise(texture_signal.z(), o.sensor, o.seed, pixel, 3));
     }
   });
+  if (o.sensor.color_filter == ColorFilter::kRggb && o.images != RenderImages::kPattern)
+    frame.texture_raw = MosaicRggb(frame.texture);
   frame.samples = static_cast<std::int64_t>(w) * h * n * n;
   return frame;
 }

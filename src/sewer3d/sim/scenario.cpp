@@ -1,8 +1,10 @@
 #include "sewer3d/sim/scenario.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/sim/material.hpp"
 
 namespace sewer3d {
 namespace {
@@ -48,6 +50,7 @@ Scenario Tiny() {
   s.motion.travel_mm = 100.0;
   s.render.supersampling = 1;
   s.truth_depth = TruthDepth::kAll;
+  s.truth_albedo = true;
   return s;
 }
 
@@ -84,6 +87,8 @@ Scenario Demo() {
   s.motion.travel_mm = 1000.0;
   s.render.supersampling = 1;
   s.truth_depth = TruthDepth::kNone;  // 20 MB per full-size map; the world and poses define it
+  s.render.sensor.color_filter = ColorFilter::kRggb;
+  s.truth_albedo = true;
   return s;
 }
 
@@ -156,6 +161,7 @@ Scenario Long() {
   s.motion.travel_mm = 10000.0;
   s.render.supersampling = 1;
   s.truth_depth = TruthDepth::kNone;
+  s.render.sensor.color_filter = ColorFilter::kRggb;
   s.odometry.slips = {{.station_mm = 4300.0, .length_mm = 500.0, .fraction = 0.15}};
   return s;
 }
@@ -173,6 +179,8 @@ void Scenario::Check() const {
   CheckWithin("capture.", [&] { capture.Check(); });
   CheckWithin("odometry.", [&] { odometry.Check(); });
   CheckWithin("render.", [&] { render.Check(); });
+  SEWER3D_VALIDATE(white_balance_error >= 0.0 && white_balance_error <= 0.5, "white_balance_error",
+                   "must be 0..0.5, got " << white_balance_error);
   const double length = world.LengthMm();
   SEWER3D_VALIDATE(motion.start_station_mm - 0.5 * rig.carrier_length_mm >= -length &&
                        motion.start_station_mm + motion.travel_mm <= 2.0 * length,
@@ -189,6 +197,13 @@ void Scenario::Check() const {
                          << " mm, wander " << motion.wander_mm << " mm) does not fit in a Ø"
                          << diameter << " section");
   }
+}
+
+Eigen::Vector3d CameraWhiteBalance(const Scenario& scenario, int module) {
+  const auto m = static_cast<std::uint64_t>(module);
+  const double sigma = scenario.white_balance_error;
+  return {std::exp(sigma * HashNormal(scenario.seed, 0x3b, m)), 1.0,
+          std::exp(sigma * HashNormal(scenario.seed, 0xbb, m))};
 }
 
 const std::vector<std::string>& PresetNames() {

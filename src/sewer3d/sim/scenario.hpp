@@ -32,14 +32,23 @@ struct Scenario {
   OdometryOptions odometry;
   RenderOptions render;
   TruthDepth truth_depth = TruthDepth::kPattern;  ///< which images get a truth depth map
+  /// Each module's camera white balance is off by gains exp(σ n) on R and B (n standard normal
+  /// from the seed and the module, G = 1): σ = this (docs/simulated_run.md).
+  double white_balance_error = 0.04;
+  bool truth_albedo = false;  ///< write truth/albedo/ for every texture image
 
   void Check() const;  ///< throws std::invalid_argument
 };
+
+/// The white-balance gains (R, G, B) of module `module`'s camera in `scenario`'s run.
+Eigen::Vector3d CameraWhiteBalance(const Scenario& scenario, int module);
 
 const std::vector<std::string>& PresetNames();
 /// tiny: 648 × 486 images, DN300 concrete with a displaced joint, two acquisitions (tests);
 /// demo: full-size images, DN300, 1 m of travel: concrete, displaced joint, intruding
 /// connection, spalled patch, crack, then plastic; long: 10 m with every kind of feature.
+/// Texture images: full colour with truth albedo (tiny), Bayer RGGB with truth albedo (demo),
+/// Bayer RGGB without (long).
 /// Throws std::invalid_argument for an unknown name.
 Scenario PresetScenario(const std::string& name);
 

@@ -195,10 +195,13 @@ std::string ScenarioToJson(const Scenario& s) {
                                       {"fraction", slip.fraction}});
   }
   json render = RenderOptionsToJson(s.render);
-  for (const char* per_shot : {"speed_mm_s", "exposure_ms", "motion_direction"})
+  for (const char* per_shot :
+       {"speed_mm_s", "exposure_ms", "motion_direction", "white_balance", "truth_albedo"})
     render.erase(per_shot);
   j["render"] = render;
   j["truth_depth"] = TruthDepthName(s.truth_depth);
+  j["truth_albedo"] = s.truth_albedo;
+  j["white_balance_error"] = s.white_balance_error;
   return j.dump(2);
 }
 
@@ -207,7 +210,7 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
   const json j = in.ParseObject(text);
   in.OnlyKnown(j, "",
                {"name", "seed", "module", "camera_width", "rig", "pipe", "motion", "capture",
-                "odometry", "render", "truth_depth"});
+                "odometry", "render", "truth_depth", "truth_albedo", "white_balance_error"});
   Scenario s;
   s.name = in.Text(j, "name", "", path.stem().string());
   s.seed = static_cast<std::uint64_t>(in.Number(j, "seed", "", 1.0));
@@ -271,6 +274,8 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
                                 in.Number(slips[i], "fraction", p, 0.0)});
   }
   ReadRenderOptions(in, in.Object(j, "render", ""), "render.", s.render);
+  s.truth_albedo = in.Bool(j, "truth_albedo", "", s.truth_albedo);
+  s.white_balance_error = in.Number(j, "white_balance_error", "", s.white_balance_error);
   const std::string truth = in.Text(j, "truth_depth", "", "pattern");
   if (truth == "all")
     s.truth_depth = TruthDepth::kAll;

@@ -39,6 +39,40 @@ TEST(ScenarioIo, PresetsRoundTrip) {
   }
 }
 
+TEST(ScenarioIo, TextureRealismMembersRoundTripAndDefault) {
+  Scenario s = PresetScenario("tiny");
+  s.truth_albedo = false;
+  s.white_balance_error = 0.07;
+  s.render.ring_light_exponent = 3.0;
+  s.render.ring_light_color_shift = -0.05;
+  s.render.color_shading = {1.0, 0.5, 0.0};
+  s.render.sensor.color_filter = ColorFilter::kRggb;
+  const Scenario back = ParseScenario(ScenarioToJson(s), "s.json");
+  EXPECT_FALSE(back.truth_albedo);
+  EXPECT_DOUBLE_EQ(back.white_balance_error, 0.07);
+  EXPECT_DOUBLE_EQ(back.render.ring_light_exponent, 3.0);
+  EXPECT_DOUBLE_EQ(back.render.ring_light_color_shift, -0.05);
+  EXPECT_EQ(back.render.color_shading, Eigen::Vector3d(1.0, 0.5, 0.0));
+  EXPECT_EQ(back.render.sensor.color_filter, ColorFilter::kRggb);
+  EXPECT_EQ(PresetScenario("demo").render.sensor.color_filter, ColorFilter::kRggb);
+  EXPECT_EQ(PresetScenario("long").render.sensor.color_filter, ColorFilter::kRggb);
+  EXPECT_FALSE(PresetScenario("long").truth_albedo);
+  EXPECT_TRUE(PresetScenario("demo").truth_albedo);
+  // A file from before these members: the defaults.
+  const Scenario old = ParseScenario(
+      R"({"pipe": {"sections": [{"length_mm": 2000}]}, "render": {"supersampling": 2}})", "o.json");
+  const RenderOptions defaults;
+  EXPECT_FALSE(old.truth_albedo);
+  EXPECT_DOUBLE_EQ(old.white_balance_error, Scenario().white_balance_error);
+  EXPECT_EQ(old.render.sensor.color_filter, ColorFilter::kNone);
+  EXPECT_EQ(old.render.color_shading, defaults.color_shading);
+  EXPECT_DOUBLE_EQ(old.render.ring_light_color_shift, defaults.ring_light_color_shift);
+  EXPECT_NE(ErrorOf(R"({"pipe": {"sections": [{"length_mm": 2000}]},
+                        "render": {"color_filter": "BGGR"}})")
+                .find("render.color_filter"),
+            std::string::npos);
+}
+
 TEST(ScenarioIo, DefaultsFillAMinimalFile) {
   const Scenario s = ParseScenario(R"({"pipe": {"sections": [{"length_mm": 2000}]}})", "min.json");
   EXPECT_EQ(s.name, "min");

@@ -140,6 +140,15 @@ void WritePatternImage(const std::filesystem::path& path, const RenderedFrame& f
 }
 
 void WriteTextureImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits) {
+  if (!frame.texture_raw.empty()) {  // Bayer raw: stored like the pattern image
+    cv::Mat raw;
+    if (bits == 8)
+      frame.texture_raw.convertTo(raw, CV_8U);
+    else
+      raw = frame.texture_raw;
+    WriteImage(path, raw);
+    return;
+  }
   cv::Mat texture8, bgr;
   frame.texture.convertTo(texture8, CV_8U, 255.0 / ((1 << bits) - 1));
   cv::cvtColor(texture8, bgr, cv::COLOR_RGB2BGR);
@@ -206,6 +215,11 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
           {"pattern_level", o.pattern_level},
           {"ambient_level", o.ambient_level},
           {"vignetting", o.vignetting},
+          {"ring_light_exponent", o.ring_light_exponent},
+          {"ring_light_color_shift", o.ring_light_color_shift},
+          {"color_shading", {o.color_shading.x(), o.color_shading.y(), o.color_shading.z()}},
+          {"white_balance", {o.white_balance.x(), o.white_balance.y(), o.white_balance.z()}},
+          {"truth_albedo", o.truth_albedo},
           {"speed_mm_s", o.speed_mm_s},
           {"exposure_ms", o.exposure_ms},
           {"motion_direction",
@@ -213,16 +227,37 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
           {"full_well_e", o.sensor.full_well_e},
           {"read_noise_e", o.sensor.read_noise_e},
           {"bits", o.sensor.bits},
-          {"noise", o.sensor.noise}};
+          {"noise", o.sensor.noise},
+          {"color_filter", ColorFilterName(o.sensor.color_filter)}};
 }
 
 void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& p,
                        RenderOptions& o) {
   in.OnlyKnown(j, p,
-               {"supersampling", "sensor_width_mm", "camera_f_number", "camera_focus_mm",
-                "projector_f_number", "projector_focus_mm", "projector_psf_px", "texture_level",
-                "pattern_level", "ambient_level", "vignetting", "speed_mm_s", "exposure_ms",
-                "motion_direction", "full_well_e", "read_noise_e", "bits", "noise"});
+               {"supersampling",
+                "sensor_width_mm",
+                "camera_f_number",
+                "camera_focus_mm",
+                "projector_f_number",
+                "projector_focus_mm",
+                "projector_psf_px",
+                "texture_level",
+                "pattern_level",
+                "ambient_level",
+                "vignetting",
+                "ring_light_exponent",
+                "ring_light_color_shift",
+                "color_shading",
+                "white_balance",
+                "truth_albedo",
+                "speed_mm_s",
+                "exposure_ms",
+                "motion_direction",
+                "full_well_e",
+                "read_noise_e",
+                "bits",
+                "noise",
+                "color_filter"});
   o.supersampling = in.Integer(j, "supersampling", p, o.supersampling);
   o.sensor_width_mm = in.Number(j, "sensor_width_mm", p, o.sensor_width_mm);
   o.camera_f_number = in.Number(j, "camera_f_number", p, o.camera_f_number);
@@ -234,6 +269,11 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
   o.pattern_level = in.Number(j, "pattern_level", p, o.pattern_level);
   o.ambient_level = in.Number(j, "ambient_level", p, o.ambient_level);
   o.vignetting = in.Bool(j, "vignetting", p, o.vignetting);
+  o.ring_light_exponent = in.Number(j, "ring_light_exponent", p, o.ring_light_exponent);
+  o.ring_light_color_shift = in.Number(j, "ring_light_color_shift", p, o.ring_light_color_shift);
+  o.color_shading = in.Vector(j, "color_shading", p, o.color_shading);
+  o.white_balance = in.Vector(j, "white_balance", p, o.white_balance);
+  o.truth_albedo = in.Bool(j, "truth_albedo", p, o.truth_albedo);
   o.speed_mm_s = in.Number(j, "speed_mm_s", p, o.speed_mm_s);
   o.exposure_ms = in.Number(j, "exposure_ms", p, o.exposure_ms);
   o.motion_direction = in.Vector(j, "motion_direction", p, o.motion_direction);
@@ -241,6 +281,10 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
   o.sensor.read_noise_e = in.Number(j, "read_noise_e", p, o.sensor.read_noise_e);
   o.sensor.bits = in.Integer(j, "bits", p, o.sensor.bits);
   o.sensor.noise = in.Bool(j, "noise", p, o.sensor.noise);
+  const std::string filter = in.Text(j, "color_filter", p, ColorFilterName(o.sensor.color_filter));
+  const auto parsed = ParseColorFilter(filter);
+  if (!parsed) in.Fail(p + "color_filter", "must be none or RGGB, got '" + filter + "'");
+  o.sensor.color_filter = *parsed;
 }
 
 }  // namespace sewer3d

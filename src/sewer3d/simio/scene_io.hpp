@@ -18,7 +18,8 @@ std::string SceneToJson(const Scene& scene);
 
 /// The pattern image as stored: 8-bit grey, or 16-bit holding the DN when bits > 8.
 void WritePatternImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits);
-/// The texture image as stored: 8-bit colour.
+/// The texture image as stored: 8-bit colour (BGR file order); with a Bayer filter
+/// (frame.texture_raw) one-channel raw, 8-bit when `bits` is 8, else 16-bit holding the DN.
 void WriteTextureImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits);
 
 /// Writes pattern.png (8-bit, or 16-bit holding the DN when bits > 8), texture.png (8-bit

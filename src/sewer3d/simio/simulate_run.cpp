@@ -42,6 +42,7 @@ void WriteRunJson(const fs::path& out, const Scenario& s, const CapturePlan& pla
   info.scenario = s.name;
   info.seed = s.seed;
   info.acquisition_period_s = plan.period_s;
+  info.color_filter = ColorFilterName(s.render.sensor.color_filter);
   WriteRunInfo(out / "run.json", info,
                {s.rig.modules, plan.acquisitions, static_cast<int>(plan.shots.size()), seconds});
 }
@@ -87,6 +88,10 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
   WriteOdometry(out / "odometry.csv", readings);
   WriteOdometryTruth(out / "truth" / "odometry.csv", odometry);
   WriteTruthPoses(out / "truth" / "poses.csv", poses);
+  std::vector<Eigen::Vector3d> white_balance;
+  for (int k = 0; k < scenario.rig.modules; ++k)
+    white_balance.push_back(CameraWhiteBalance(scenario, k));
+  WriteCameraGains(out / "truth" / "camera_gains.csv", white_balance);
   WriteTextFile(out / "truth" / "scenario.json", ScenarioToJson(scenario) + "\n");
   WriteTextFile(out / "truth" / "world.json", PipeWorldToJson(scenario.world) + "\n");
   WriteFeatureTruth(out / "truth" / "features.json", pipe);
@@ -118,6 +123,8 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
         scenario.truth_depth == TruthDepth::kAll ||
         (scenario.truth_depth == TruthDepth::kPattern && shot.kind == ImageKind::kPattern);
     o.truth_depth = truth;
+    o.white_balance = white_balance[shot.module];
+    o.truth_albedo = scenario.truth_albedo && shot.kind != ImageKind::kPattern;
     const RenderedFrame frame =
         RenderFrame(m.module, pattern, PipeView(pipe, world_from_camera), o);
     const fs::path image = out / index[i].file;
@@ -129,6 +136,10 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
       WriteImage(
           out / "truth" / "depth" / (ImageStem(shot.module, shot.counter, shot.kind) + ".tiff"),
           frame.truth_depth);
+    }
+    if (o.truth_albedo) {
+      WriteTruthAlbedo(out / "truth" / "albedo" / ImageStem(shot.module, shot.counter, shot.kind),
+                       frame.truth_albedo);
     }
     const int now = ++done;
     if (progress) {

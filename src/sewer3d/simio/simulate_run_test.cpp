@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -130,6 +131,82 @@ TEST_F(TinyRun, RunFolderLoadsCompleteAndMatchesThePlan) {
   EXPECT_GE(run.odometry.back().time_s, run.images.back().time_s);
   EXPECT_GT(result_.bytes, 1000u);
   for (const NeighbourOverlap& o : result_.overlap) EXPECT_GT(o.overlap_deg, 5.0);
+}
+
+}  // namespace
+}  // namespace sewer3d
+
+namespace sewer3d {
+namespace {
+
+// Per pixel, red over blue of image / albedo: the white balance times the ring light's and
+// the lens's colour at that pixel, which are the same for every module (NaN where the pixel is
+// dark, saturated or sees no surface).
+cv::Mat1f RedOverBlue(const cv::Mat& image_bgr, const cv::Mat& albedo_bgr16) {
+  cv::Mat1f ratio(image_bgr.size(), NAN);
+  for (int v = 0; v < image_bgr.rows; ++v) {
+    for (int u = 0; u < image_bgr.cols; ++u) {
+      const cv::Vec3w a = albedo_bgr16.at<cv::Vec3w>(v, u);
+      const cv::Vec3b p = image_bgr.at<cv::Vec3b>(v, u);
+      if (std::min(p[0], p[2]) < 40 || std::max(p[0], p[2]) > 250 || std::min(a[0], a[2]) == 0)
+        continue;
+      ratio(v, u) = static_cast<float>((double(p[2]) / a[2]) / (double(p[0]) / a[0]));
+    }
+  }
+  return ratio;
+}
+
+TEST_F(TinyRun, TextureImagesCarryEachModulesWhiteBalanceAndHaveTruthAlbedo) {
+  const CaptureRun run = LoadRun(dir_);
+  EXPECT_EQ(run.info.color_filter, "none");
+  const Scenario scenario = ReadScenario(dir_ / "truth" / "scenario.json");
+  EXPECT_TRUE(scenario.truth_albedo);
+  std::ifstream gains_file(dir_ / "truth" / "camera_gains.csv");
+  std::string line;
+  std::getline(gains_file, line);
+  EXPECT_EQ(line, "module,gain_r,gain_g,gain_b");
+  std::vector<Eigen::Vector3d> gains;
+  for (int m; std::getline(gains_file, line);) {
+    Eigen::Vector3d g;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%lf", &m, &g.x(), &g.y(), &g.z()), 4);
+    EXPECT_EQ(m, static_cast<int>(gains.size()));
+    EXPECT_LT((g - CameraWhiteBalance(scenario, m)).norm(), 1e-5);  // written to 1e-6
+    gains.push_back(g);
+  }
+  ASSERT_EQ(gains.size(), 6u);
+  double spread = 0.0;
+  for (const Eigen::Vector3d& g : gains) spread = std::max(spread, std::abs(g.x() - gains[0].x()));
+  EXPECT_GT(spread, 0.01);  // σ = 4 %: the modules' cameras differ
+
+  // Each module's first texture image: pixel by pixel, its red/blue balance over module 0's
+  // is the ratio of their gains; the median over the pixels agrees within 1 % (8-bit noise of
+  // ~1 % per pixel averages out; the ambient light, colourless, shifts pixels in shadow).
+  std::vector<cv::Mat1f> red_over_blue(6);
+  for (const RunImage& e : run.images) {
+    if (e.kind == ImageKind::kPattern) continue;
+    const fs::path albedo = dir_ / "truth" / "albedo" / ImageStem(e.module, e.counter, e.kind);
+    const cv::Mat srgb = ReadImage(albedo.string() + ".png", cv::IMREAD_UNCHANGED);
+    const cv::Mat linear = ReadImage(albedo.string() + "_linear.png", cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(srgb.type(), CV_8UC3);
+    ASSERT_EQ(linear.type(), CV_16UC3);
+    if (e.counter != 0 || e.kind != ImageKind::kTextureBefore) continue;
+    const cv::Mat image = ReadImage(dir_ / e.file, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(linear.size(), image.size());
+    red_over_blue[e.module] = RedOverBlue(image, linear);
+  }
+  for (int m = 1; m < 6; ++m) {
+    std::vector<float> relative;
+    for (int v = 0; v < red_over_blue[0].rows; ++v) {
+      for (int u = 0; u < red_over_blue[0].cols; ++u) {
+        const float r = red_over_blue[m](v, u) / red_over_blue[0](v, u);
+        if (std::isfinite(r)) relative.push_back(r);
+      }
+    }
+    ASSERT_GT(relative.size(), 10000u);
+    std::nth_element(relative.begin(), relative.begin() + relative.size() / 2, relative.end());
+    const double expected = (gains[m].x() / gains[m].z()) / (gains[0].x() / gains[0].z());
+    EXPECT_NEAR(relative[relative.size() / 2], expected, 0.01) << "module " << m;
+  }
 }
 
 }  // namespace

@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "sewer3d/io/csv.hpp"
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
 
@@ -19,7 +21,40 @@ using nlohmann::json;
 constexpr const char* kPoseHeader =
     "module,counter,image,time_s,station_mm,x_mm,y_mm,z_mm,qx,qy,qz,qw";
 
+// sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1].
+double LinearToSrgb(double linear) {
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
 }  // namespace
+
+void WriteCameraGains(const std::filesystem::path& path,
+                      const std::vector<Eigen::Vector3d>& gains_rgb) {
+  std::string text = "module,gain_r,gain_g,gain_b\n";
+  for (size_t m = 0; m < gains_rgb.size(); ++m) {
+    text += fmt::format("{},{:.6f},{:.6f},{:.6f}\n", m, gains_rgb[m].x(), gains_rgb[m].y(),
+                        gains_rgb[m].z());
+  }
+  WriteTextFile(path, text);
+}
+
+void WriteTruthAlbedo(const std::filesystem::path& path_stem, const cv::Mat3f& albedo_rgb) {
+  cv::Mat3b srgb(albedo_rgb.size());
+  cv::Mat3w linear(albedo_rgb.size());
+  for (int v = 0; v < albedo_rgb.rows; ++v) {
+    for (int u = 0; u < albedo_rgb.cols; ++u) {
+      for (int c = 0; c < 3; ++c) {
+        const float a = albedo_rgb(v, u)[c];
+        const double x = std::isnan(a) ? 0.0 : std::clamp(static_cast<double>(a), 0.0, 1.0);
+        srgb(v, u)[2 - c] = static_cast<std::uint8_t>(std::lround(255.0 * LinearToSrgb(x)));
+        linear(v, u)[2 - c] = static_cast<std::uint16_t>(std::lround(65535.0 * x));
+      }
+    }
+  }
+  const std::string stem = path_stem.string();
+  WriteImage(stem + ".png", srgb);
+  WriteImage(stem + "_linear.png", linear);
+}
 
 void WriteOdometryTruth(const std::filesystem::path& path,
                         const std::vector<OdometrySample>& samples) {

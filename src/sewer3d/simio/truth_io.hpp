@@ -4,7 +4,9 @@
 /// true carrier poses, the defects with their true dimensions. Only the simulator writes these
 /// and only evaluation reads them; the processing chain never links this.
 
+#include <Eigen/Core>
 #include <filesystem>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "sewer3d/core/rigid3.hpp"
@@ -29,6 +31,15 @@ struct TruthPose {
 };
 void WriteTruthPoses(const std::filesystem::path& path, const std::vector<TruthPose>& poses);
 std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path);
+
+/// truth/camera_gains.csv: each module's white-balance gains (module,gain_r,gain_g,gain_b).
+void WriteCameraGains(const std::filesystem::path& path,
+                      const std::vector<Eigen::Vector3d>& gains_rgb);
+
+/// A texture image's truth albedo (linear, R, G, B channels; NaN: no surface) as
+/// `<path_stem>.png` (8-bit sRGB) and `<path_stem>_linear.png` (16-bit, albedo × 65535), both
+/// in the BGR order cv::imwrite expects, 0 where NaN. Creates the folder.
+void WriteTruthAlbedo(const std::filesystem::path& path_stem, const cv::Mat3f& albedo_rgb);
 
 /// truth/features.json: every joint, feature and deformed section with id, EN 13508-2 main
 /// code, station, clock position and true dimensions.
