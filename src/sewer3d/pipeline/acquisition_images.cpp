@@ -31,9 +31,6 @@ std::filesystem::path ExistingImageFile(const CaptureRun& run, const Acquisition
   return file;
 }
 
-// Until run.json records the camera's colour filter array, every run's textures are colour.
-bool RunHasColorFilter(const CaptureRun&) { return false; }
-
 }  // namespace
 
 std::filesystem::path AcquisitionImageFile(const CaptureRun& run, const Acquisition& a,
@@ -52,7 +49,7 @@ cv::Mat ReadPatternImage(const CaptureRun& run, const Acquisition& a) {
 
 cv::Mat3b ReadTextureImage(const CaptureRun& run, const Acquisition& a, ImageKind kind) {
   const std::filesystem::path file = ExistingImageFile(run, a, kind);
-  if (!RunHasColorFilter(run)) {
+  if (run.info.color_filter == "none") {
     cv::Mat image = ReadImage(file, cv::IMREAD_COLOR);
     CheckSize(file, image, CameraOf(run, a), a.module);
     return image;

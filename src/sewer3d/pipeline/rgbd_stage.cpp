@@ -176,21 +176,24 @@ std::string RgbdStageReportToJson(const RgbdStageReport& report) {
     if (!r.reason.empty()) entry["reason"] = r.reason;
     references.push_back(entry);
   }
-  const json j = {{"stage", kStage},
-                  {"color", kRgbdColorSource},
-                  {"references", references},
-                  {"acquisitions", report.acquisitions},
-                  {"done", report.done},
-                  {"skipped", report.skipped},
-                  {"failed", report.failed},
-                  {"failures", failures},
-                  {"totals", {{"spots", report.spots}, {"points", report.points}}},
-                  {"seconds",
-                   {{"stage", report.seconds},
-                    {"per_acquisition_mean", report.seconds_per_acquisition},
-                    {"per_acquisition_max", report.max_seconds_per_acquisition}}},
-                  {"threads", report.threads},
-                  {"per_acquisition", list}};
+  const json j = {
+      {"stage", kStage},
+      {"color", kRgbdColorSource},
+      {"references", references},
+      {"wall_colour_bgr",
+       {report.wall_colour_bgr[0], report.wall_colour_bgr[1], report.wall_colour_bgr[2]}},
+      {"acquisitions", report.acquisitions},
+      {"done", report.done},
+      {"skipped", report.skipped},
+      {"failed", report.failed},
+      {"failures", failures},
+      {"totals", {{"spots", report.spots}, {"points", report.points}}},
+      {"seconds",
+       {{"stage", report.seconds},
+        {"per_acquisition_mean", report.seconds_per_acquisition},
+        {"per_acquisition_max", report.max_seconds_per_acquisition}}},
+      {"threads", report.threads},
+      {"per_acquisition", list}};
   return j.dump(2) + "\n";
 }
 
@@ -228,21 +231,34 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
       progress_of("geometry"));
   const size_t modules = run.rig.modules.size();
   report.references.resize(modules);
-  std::vector<std::unique_ptr<ShadingCorrector>> correctors(modules);
   ForEachItem<int>(
       modules, options.threads, [] { return 0; },
       [&](size_t k, int&) {
         report.references[k] =
             RgbdReferencePass(run, static_cast<int>(k), acquisitions, folder, options.colour);
-        if (report.references[k].reference) {
-          correctors[k] = std::make_unique<ShadingCorrector>(
-              CameraModel(run.rig.modules[k].module.camera), *report.references[k].reference,
-              options.colour.correction);
-        }
       },
       [&](int finished) {
         if (progress) progress("reference", finished, static_cast<int>(modules));
       });
+  // Every module's median wall is given the modules' common colour (CommonWallColour).
+  CorrectionOptions correction = options.colour.correction;
+  std::vector<cv::Vec3d> levels;
+  for (const RgbdReferenceResult& r : report.references) {
+    if (r.reference) levels.push_back(r.reference->level_bgr);
+  }
+  if (!levels.empty())
+    correction.target_bgr = CommonWallColour(levels, correction.wall_level_linear);
+  report.wall_colour_bgr = correction.target_bgr;
+  std::vector<std::unique_ptr<ShadingCorrector>> correctors(modules);
+  ForEachItem<int>(
+      modules, options.threads, [] { return 0; },
+      [&](size_t k, int&) {
+        if (!report.references[k].reference) return;
+        correctors[k] =
+            std::make_unique<ShadingCorrector>(CameraModel(run.rig.modules[k].module.camera),
+                                               *report.references[k].reference, correction);
+      },
+      {});
   ForEachItem<int>(
       acquisitions.size(), options.threads, [] { return 0; },
       [&](size_t i, int&) {

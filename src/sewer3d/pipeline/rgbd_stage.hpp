@@ -65,7 +65,9 @@ struct RgbdStageReport {
   int failed = 0;
   std::vector<RgbdAcquisitionSummary> results;  ///< ordered by (module, counter)
   std::vector<RgbdReferenceResult> references;  ///< one per module
-  long long spots = 0;                          ///< over every complete acquisition
+  /// The colour (linear BGR) every module's median wall is mapped to (CommonWallColour).
+  cv::Vec3d wall_colour_bgr{0, 0, 0};
+  long long spots = 0;  ///< over every complete acquisition
   long long points = 0;
   double seconds = 0;  ///< the whole stage now, wall clock
   /// Mean and maximum per acquisition completed now (one worker's time, both passes).

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "sewer3d/core/check.hpp"
@@ -158,6 +159,48 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
   return out;
 }
 
+// Motion blur of a frame rendered with one sample per pixel: each pixel averages the sharp
+// signal along the image path of its 3-D point over the exposure (the camera moves by `motion`,
+// camera frame, so the point by −motion), bilinear samples every quarter pixel. Pixels without
+// depth keep their value.
+void BlurAlongMotion(const CameraModel& camera, const cv::Mat1f& depth,
+                     const Eigen::Vector3d& motion, RenderedFrame& frame) {
+  const cv::Mat1f pattern = frame.pattern_signal.clone();
+  const cv::Mat3f texture = frame.texture_signal.clone();
+  tbb::parallel_for(0, depth.rows, [&](int v) {
+    for (int u = 0; u < depth.cols; ++u) {
+      const float z = depth(v, u);
+      const auto xy = camera.Unproject({double(u), double(v)});
+      if (!std::isfinite(z) || !xy) continue;
+      const Eigen::Vector3d p = double(z) * Eigen::Vector3d(xy->x(), xy->y(), 1.0);
+      const auto a = camera.Project(p + 0.5 * motion), b = camera.Project(p - 0.5 * motion);
+      if (!a || !b) continue;
+      const Eigen::Vector2d d = *b - *a;
+      const int steps = std::max(2, static_cast<int>(std::ceil(d.norm() / 0.25)));
+      double sum_pattern = 0.0;
+      cv::Vec3d sum_texture(0, 0, 0);
+      for (int i = 0; i < steps; ++i) {
+        const Eigen::Vector2d q = Eigen::Vector2d(u, v) + d * ((i + 0.5) / steps - 0.5);
+        // Bilinear, the border clamped.
+        const double x = std::clamp(q.x(), 0.0, depth.cols - 1.0);
+        const double y = std::clamp(q.y(), 0.0, depth.rows - 1.0);
+        const int x0 = std::min(static_cast<int>(x), depth.cols - 2);
+        const int y0 = std::min(static_cast<int>(y), depth.rows - 2);
+        const double fx = x - x0, fy = y - y0;
+        const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy,
+                     w11 = fx * fy;
+        sum_pattern += w00 * pattern(y0, x0) + w10 * pattern(y0, x0 + 1) +
+                       w01 * pattern(y0 + 1, x0) + w11 * pattern(y0 + 1, x0 + 1);
+        sum_texture += w00 * cv::Vec3d(texture(y0, x0)) + w10 * cv::Vec3d(texture(y0, x0 + 1)) +
+                       w01 * cv::Vec3d(texture(y0 + 1, x0)) +
+                       w11 * cv::Vec3d(texture(y0 + 1, x0 + 1));
+      }
+      frame.pattern_signal(v, u) = static_cast<float>(sum_pattern / steps);
+      frame.texture_signal(v, u) = cv::Vec3f(sum_texture / steps);
+    }
+  });
+}
+
 }  // namespace
 
 void RenderOptions::Check() const {
@@ -222,13 +265,16 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
   if (o.truth_albedo) frame.truth_albedo.create(h, w);
   const Eigen::Vector3d motion =
       o.motion_direction.normalized() * (o.speed_mm_s * o.exposure_ms * 1e-3);
+  // One sample per pixel cannot sample the exposure: the motion blur is applied to the
+  // rendered signal instead (BlurAlongMotion).
+  const bool blur_after = n == 1 && motion.norm() > 0.0;
 
   tbb::parallel_for(0, h, [&](int v) {
     for (int u = 0; u < w; ++u) {
       const std::uint64_t pixel = static_cast<std::uint64_t>(v) * w + u;
       const auto centre_ray = setup.camera.Unproject({double(u), double(v)});
       float depth = NAN;
-      if (centre_ray && o.truth_depth) {
+      if (centre_ray && (o.truth_depth || blur_after)) {
         const auto hit = surface.Intersect(Eigen::Vector3d::Zero(),
                                            Eigen::Vector3d(centre_ray->x(), centre_ray->y(), 1.0));
         if (hit) depth = static_cast<float>(hit->point.z());
@@ -247,7 +293,11 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
               (1 - sx) * (1 - sy) * c00 + sx * (1 - sy) * c10 + (1 - sx) * sy * c01 + sx * sy * c11;
           Eigen::Vector3d direction(xy[0], xy[1], 1.0);
           const double cos_alpha = 1.0 / direction.norm();
-          const double tau = n * n > 1 ? (k + HashUniform(o.seed, pixel, k, 3)) / (n * n) : 0.5;
+          // The instant uses its own scrambled stratum (step n + 1, coprime to n²): tied to k
+          // it would follow the sub-pixel row and lengthen the blur along v by about a pixel.
+          const int kt =
+              (static_cast<int>(HashUniform(o.seed, pixel, 8) * n * n) + k * (n + 1)) % (n * n);
+          const double tau = n * n > 1 ? (kt + HashUniform(o.seed, pixel, k, 3)) / (n * n) : 0.5;
           const Eigen::Vector3d shift = motion * (tau - 0.5);
           Eigen::Vector3d origin = shift;
           if (setup.camera_aperture_mm > 0.0) {
@@ -279,15 +329,22 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
         frame.truth_albedo(v, u) =
             sum.hits > 0 ? cv::Vec3f(albedo.x(), albedo.y(), albedo.z()) : cv::Vec3f(NAN, NAN, NAN);
       }
+    }
+  });
+  if (blur_after) BlurAlongMotion(setup.camera, frame.truth_depth, motion, frame);
+  if (!o.truth_depth) frame.truth_depth.setTo(NAN);
+  tbb::parallel_for(0, h, [&](int v) {
+    for (int u = 0; u < w; ++u) {
+      const std::uint64_t pixel = static_cast<std::uint64_t>(v) * w + u;
+      const cv::Vec3f t = frame.texture_signal(v, u);
       frame.pattern(v, u) = o.images == RenderImages::kTexture
                                 ? 0
-                                : Digitise(pattern_signal, o.sensor, o.seed, pixel, 0);
-      frame.texture(v, u) =
-          o.images == RenderImages::kPattern
-              ? cv::Vec3w(0, 0, 0)
-              : cv::Vec3w(Digitise(texture_signal.x(), o.sensor, o.seed, pixel, 1),
-                          Digitise(texture_signal.y(), o.sensor, o.seed, pixel, 2),
-                          Digitise(texture_signal.z(), o.sensor, o.seed, pixel, 3));
+                                : Digitise(frame.pattern_signal(v, u), o.sensor, o.seed, pixel, 0);
+      frame.texture(v, u) = o.images == RenderImages::kPattern
+                                ? cv::Vec3w(0, 0, 0)
+                                : cv::Vec3w(Digitise(t[0], o.sensor, o.seed, pixel, 1),
+                                            Digitise(t[1], o.sensor, o.seed, pixel, 2),
+                                            Digitise(t[2], o.sensor, o.seed, pixel, 3));
     }
   });
   if (o.sensor.color_filter == ColorFilter::kRggb && o.images != RenderImages::kPattern)

@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/material.hpp"
 #include "sewer3d/sim/spot_truth.hpp"
+#include "sewer3d/sim/surface.hpp"
 #include "sewer3d/testing/small_module.hpp"
 
 namespace sewer3d {
@@ -189,6 +192,68 @@ TEST(Renderer, MotionBlurSmearsTheTextureAlongTheMotion) {
   const double still = anisotropy(0.0), moving = anisotropy(100.0);
   EXPECT_NEAR(still, 1.0, 0.15);
   EXPECT_GT(moving, 1.3 * still);
+}
+
+// A plane at z = 150 mm printed dark above y = 0 and light below: an edge across the image.
+class EdgePlane final : public Surface {
+ public:
+  std::optional<SurfaceHit> Intersect(const Eigen::Vector3d& origin,
+                                      const Eigen::Vector3d& direction) const override {
+    if (direction.z() <= 0) return std::nullopt;
+    SurfaceHit hit;
+    hit.t = (150.0 - origin.z()) / direction.z();
+    hit.point = origin + hit.t * direction;
+    hit.normal = -Eigen::Vector3d::UnitZ();
+    hit.surface_mm = hit.point.head<2>();
+    hit.albedo = Eigen::Vector3d::Constant(hit.point.y() < 0.0 ? 0.2 : 0.8);
+    return hit;
+  }
+  std::uint64_t MaterialSeed() const override { return 1; }
+};
+
+// 10–90 % rise (px) of the edge along v in the green channel, column `u` (the lens bends the
+// edge elsewhere).
+double EdgeWidthPx(const cv::Mat3f& texture, int u) {
+  std::vector<double> profile;
+  for (int v = 0; v < texture.rows; ++v) profile.push_back(texture(v, u)[1]);
+  // The edge is the largest rise; its levels are read 10 px to either side (the light's falloff
+  // changes them by under 1 % there).
+  int edge = 1;
+  for (int v = 1; v < texture.rows; ++v) {
+    if (profile[v] - profile[v - 1] > profile[edge] - profile[edge - 1]) edge = v;
+  }
+  const double lo = profile[std::max(0, edge - 10)];
+  const double hi = profile[std::min(texture.rows - 1, edge + 10)];
+  auto crossing = [&](double level) -> double {
+    for (int v = std::max(1, edge - 10); v <= std::min(texture.rows - 1, edge + 10); ++v) {
+      if (profile[v] >= level && profile[v - 1] < level)
+        return v - 1 + (level - profile[v - 1]) / (profile[v] - profile[v - 1]);
+    }
+    return NAN;
+  };
+  return crossing(lo + 0.9 * (hi - lo)) - crossing(lo + 0.1 * (hi - lo));
+}
+
+// With one sample per pixel the exposure cannot be sampled: the blur is applied afterwards
+// along each pixel's image path. A box of length L has a 10–90 % rise of 0.8 L (plus the
+// pixel's own step); 1 mm of travel at 150 mm is L = f / 150 px.
+TEST(Renderer, OneSampleRendersGetTheMotionBlurOfTheExposure) {
+  const ModuleDescription module = SmallModule();
+  RenderOptions options = RenderOptions::Ideal();
+  options.images = RenderImages::kTexture;
+  options.supersampling = 1;
+  options.exposure_ms = 10.0;
+  const EdgePlane edge;
+  auto width = [&](double speed_mm_s) {
+    options.speed_mm_s = speed_mm_s;
+    return EdgeWidthPx(RenderFrame(module, DefaultPatternArray(), edge, options).texture_signal,
+                       static_cast<int>(module.camera.cx));
+  };
+  const double length_px = module.camera.fy * 1.0 / 150.0;
+  const double still = width(0.0), moving = width(100.0);
+  RecordProperty("widths", std::to_string(still) + " " + std::to_string(moving));
+  EXPECT_LT(still, 1.0);
+  EXPECT_NEAR(moving, 0.8 * length_px, 0.5);
 }
 
 TEST(Materials, ConcreteVariesAndPlasticIsNearlyUniform) {

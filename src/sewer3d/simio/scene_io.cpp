@@ -140,12 +140,12 @@ void WritePatternImage(const std::filesystem::path& path, const RenderedFrame& f
 }
 
 void WriteTextureImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits) {
-  if (!frame.texture_raw.empty()) {  // Bayer raw: stored like the pattern image
+  if (!frame.texture_raw.empty()) {  // Bayer raw: 8 bits, or the full 16-bit range above 8
     cv::Mat raw;
     if (bits == 8)
       frame.texture_raw.convertTo(raw, CV_8U);
     else
-      raw = frame.texture_raw;
+      frame.texture_raw.convertTo(raw, CV_16U, 65535.0 / ((1 << bits) - 1));
     WriteImage(path, raw);
     return;
   }

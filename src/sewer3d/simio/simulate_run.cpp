@@ -124,7 +124,9 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
         (scenario.truth_depth == TruthDepth::kPattern && shot.kind == ImageKind::kPattern);
     o.truth_depth = truth;
     o.white_balance = white_balance[shot.module];
-    o.truth_albedo = scenario.truth_albedo && shot.kind != ImageKind::kPattern;
+    // Pattern images too: the colour the RGB-D stage gives at the pattern instant is judged
+    // against what the camera saw then.
+    o.truth_albedo = scenario.truth_albedo;
     const RenderedFrame frame =
         RenderFrame(m.module, pattern, PipeView(pipe, world_from_camera), o);
     const fs::path image = out / index[i].file;

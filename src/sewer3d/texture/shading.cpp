@@ -158,7 +158,29 @@ void ReferenceLightOptions::Check() const {
   CheckWithin("geometry.", [&] { geometry.Check(); });
 }
 
-void CorrectionOptions::Check() const { ValidatePositive("wall_level_linear", wall_level_linear); }
+void CorrectionOptions::Check() const {
+  ValidatePositive("wall_level_linear", wall_level_linear);
+  const bool grey = target_bgr == cv::Vec3d(0, 0, 0);
+  SEWER3D_VALIDATE(grey || (target_bgr[0] > 0 && target_bgr[1] > 0 && target_bgr[2] > 0),
+                   "target_bgr", "must be all positive, or all zero for grey");
+}
+
+cv::Vec3d CommonWallColour(const std::vector<cv::Vec3d>& levels_bgr, double wall_level_linear) {
+  SEWER3D_VALIDATE(!levels_bgr.empty(), "levels_bgr", "needs at least one module's level");
+  ValidatePositive("wall_level_linear", wall_level_linear);
+  cv::Vec3d log_sum(0, 0, 0);
+  for (const cv::Vec3d& level : levels_bgr) {
+    for (int c = 0; c < 3; ++c) {
+      ValidatePositive("levels_bgr", level[c]);
+      log_sum[c] += std::log(level[c]);
+    }
+  }
+  cv::Vec3d mean;
+  for (int c = 0; c < 3; ++c)
+    mean[c] = std::exp(log_sum[c] / static_cast<double>(levels_bgr.size()));
+  const double luminance = LinearRgbToXyz(Eigen::Vector3d(mean[2], mean[1], mean[0])).y();
+  return mean * (wall_level_linear / luminance);
+}
 
 cv::Mat2f NormalisedCoordinates(const CameraModel& camera) {
   const CameraIntrinsics& in = camera.intrinsics();
@@ -325,6 +347,11 @@ CorrectedTexture ShadingCorrector::Correct(const cv::Mat3f& linear_bgr,
   out.linear_bgr.create(linear_bgr.size());
   out.full_mask.create(linear_bgr.size());
   const double w = options_.wall_level_linear;
+  // The grey result given the common wall colour (von Kries): 1 for grey.
+  const cv::Vec3d tint = options_.target_bgr == cv::Vec3d(0, 0, 0)
+                             ? cv::Vec3d(1, 1, 1)
+                             : cv::Vec3d(options_.target_bgr[0] / w, options_.target_bgr[1] / w,
+                                         options_.target_bgr[2] / w);
   const auto rgb = [](const cv::Vec3d& bgr) { return Eigen::Vector3d(bgr[2], bgr[1], bgr[0]); };
   for (int r = 0; r < linear_bgr.rows; ++r) {
     for (int c = 0; c < linear_bgr.cols; ++c) {
@@ -337,9 +364,9 @@ CorrectedTexture ShadingCorrector::Correct(const cv::Mat3f& linear_bgr,
       const cv::Vec3d reference = cv::Vec3d(reference_bgr_(r, c)) * g;
       const cv::Vec3d observed = linear_bgr(r, c);
       if (options_.space == CorrectionSpace::kLinear) {
-        out.linear_bgr(r, c) =
-            cv::Vec3f(cv::Vec3d(w * observed[0] / reference[0], w * observed[1] / reference[1],
-                                w * observed[2] / reference[2]));
+        out.linear_bgr(r, c) = cv::Vec3f(cv::Vec3d(w * tint[0] * observed[0] / reference[0],
+                                                   w * tint[1] * observed[1] / reference[1],
+                                                   w * tint[2] * observed[2] / reference[2]));
         continue;
       }
       // Both scaled so that the reference has the luminance of the target grey: the observed
@@ -353,9 +380,9 @@ CorrectedTexture ShadingCorrector::Correct(const cv::Mat3f& linear_bgr,
       const Eigen::Vector3d lab(obs_lab.x(), obs_lab.y() - cast_lab.y(),
                                 obs_lab.z() - cast_lab.z());
       const Eigen::Vector3d corrected = LabToLinearRgb(lab);
-      out.linear_bgr(r, c) =
-          cv::Vec3f(static_cast<float>(corrected.z()), static_cast<float>(corrected.y()),
-                    static_cast<float>(corrected.x()));
+      out.linear_bgr(r, c) = cv::Vec3f(static_cast<float>(corrected.z() * tint[0]),
+                                       static_cast<float>(corrected.y() * tint[1]),
+                                       static_cast<float>(corrected.x() * tint[2]));
     }
   }
   return out;

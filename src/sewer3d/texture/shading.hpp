@@ -131,8 +131,20 @@ struct CorrectionOptions {
   CorrectionSpace space = CorrectionSpace::kLab;
   /// Linear grey level to which the run's median wall is mapped, common to all modules.
   double wall_level_linear = 0.2;
+  /// The colour (linear BGR) the run's median wall is given instead of that grey, the same for
+  /// every module; all zero: the grey. The RGB-D stage passes the modules' mean reference level
+  /// scaled to wall_level_linear's luminance (CommonWallColour), so that the run's own wall
+  /// colour (e.g. a clay pipe's) is kept and only what differs between modules is removed.
+  cv::Vec3d target_bgr{0.0, 0.0, 0.0};
   void Check() const;
 };
+
+/// The colour the median wall of every module is mapped to: the geometric mean of the
+/// modules' reference levels (ReferenceLight::level_bgr), scaled to the luminance of
+/// `wall_level_linear`. Under the assumption that the modules saw the same walls over the run,
+/// their levels differ only by each camera's white balance and light, and the mean keeps the
+/// walls' colour. Throws std::invalid_argument when `levels_bgr` is empty or not positive.
+cv::Vec3d CommonWallColour(const std::vector<cv::Vec3d>& levels_bgr, double wall_level_linear);
 
 struct CorrectionReport {
   int pixels_corrected = 0;      ///< depth known: shading, falloff and cast removed
