@@ -41,9 +41,9 @@ void WriteRegistrationPoses(const std::filesystem::path& path,
   for (const RegistrationPoseRow& r : rows) {
     const Eigen::Vector3d& p = r.world_from_camera.translation;
     const Eigen::Quaterniond& q = r.world_from_camera.rotation;
-    text += fmt::format("{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.12f},{:.12f},{:.12f},{:.12f}\n",
-                        r.module, r.counter, r.time_s, p.x(), p.y(), p.z(), q.x(), q.y(), q.z(),
-                        q.w());
+    text +=
+        fmt::format("{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.12f},{:.12f},{:.12f},{:.12f}\n", r.module,
+                    r.counter, r.time_s, p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
   }
   WriteTextFileAtomically(path, text);
 }
@@ -73,8 +73,8 @@ void WriteRegistrationEdges(const std::filesystem::path& path,
                             const std::vector<RegistrationEdgeRow>& rows) {
   std::string text = std::string(kEdgesHeader) + "\n";
   for (const RegistrationEdgeRow& r : rows) {
-    text += fmt::format("{},{},{},{},{},{},{},{},{:.6f}", RegistrationVertexId(r.from_module,
-                                                                                r.from_counter),
+    text += fmt::format("{},{},{},{},{},{},{},{},{:.6f}",
+                        RegistrationVertexId(r.from_module, r.from_counter),
                         RegistrationVertexId(r.to_module, r.to_counter), r.from_module,
                         r.from_counter, r.to_module, r.to_counter, r.type, r.inliers, r.rms_mm);
     for (int k = 0; k < 6; ++k) text += fmt::format(",{:.6g}", r.eigenvalues[k]);
@@ -114,17 +114,18 @@ void WritePairRecord(const std::filesystem::path& path, const PairRecord& r) {
     for (int k = 0; k < 6; ++k) info.push_back(r.information(i, k));
   const Eigen::Quaterniond& q = r.a_from_b.rotation;
   const Eigen::Vector3d& t = r.a_from_b.translation;
-  const json j = {{"a", {{"module", r.a_module}, {"counter", r.a_counter}}},
-                  {"b", {{"module", r.b_module}, {"counter", r.b_counter}}},
-                  {"kind", r.kind},
-                  {"method", r.method},
-                  {"a_from_b", {{"q_xyzw", {q.x(), q.y(), q.z(), q.w()}}, {"t_mm", {t.x(), t.y(), t.z()}}}},
-                  {"information", info},
-                  {"inliers", r.inliers},
-                  {"rms_mm", r.rms_mm},
-                  {"seconds", r.seconds},
-                  {"degenerate", r.degenerate},
-                  {"message", r.message}};
+  const json j = {
+      {"a", {{"module", r.a_module}, {"counter", r.a_counter}}},
+      {"b", {{"module", r.b_module}, {"counter", r.b_counter}}},
+      {"kind", r.kind},
+      {"method", r.method},
+      {"a_from_b", {{"q_xyzw", {q.x(), q.y(), q.z(), q.w()}}, {"t_mm", {t.x(), t.y(), t.z()}}}},
+      {"information", info},
+      {"inliers", r.inliers},
+      {"rms_mm", r.rms_mm},
+      {"seconds", r.seconds},
+      {"degenerate", r.degenerate},
+      {"message", r.message}};
   WriteTextFileAtomically(path, j.dump(1) + "\n");
 }
 
@@ -150,8 +151,8 @@ std::optional<PairRecord> ReadPairRecord(const std::filesystem::path& path) {
     r.message = j.at("message");
     return r;
   } catch (const json::exception& e) {
-    throw FileError(path, std::string("not a pair record (remove it to redo the pair): ") +
-                              e.what());
+    throw FileError(path,
+                    std::string("not a pair record (remove it to redo the pair): ") + e.what());
   }
 }
 
@@ -173,8 +174,9 @@ void WriteRegistrationGraphPicture(const std::filesystem::path& path,
   double lo = 0.0, hi = 1.0;
   if (!nodes.empty()) {
     const auto [min_it, max_it] = std::minmax_element(
-        nodes.begin(), nodes.end(),
-        [](const GraphPictureNode& x, const GraphPictureNode& y) { return x.station_mm < y.station_mm; });
+        nodes.begin(), nodes.end(), [](const GraphPictureNode& x, const GraphPictureNode& y) {
+          return x.station_mm < y.station_mm;
+        });
     lo = min_it->station_mm - 20.0;
     hi = std::max(max_it->station_mm + 20.0, lo + 1.0);
   }
@@ -184,8 +186,8 @@ void WriteRegistrationGraphPicture(const std::filesystem::path& path,
     return cv::Point(static_cast<int>(std::lround(x)), static_cast<int>(std::lround(y)));
   };
   cv::Mat3b image(height, width, cv::Vec3b(255, 255, 255));
-  const cv::Scalar colours[5] = {{60, 160, 40}, {200, 90, 20}, {0, 140, 255}, {140, 140, 140},
-                                 {200, 40, 200}};
+  const cv::Scalar colours[5] = {
+      {60, 160, 40}, {200, 90, 20}, {0, 140, 255}, {140, 140, 140}, {200, 40, 200}};
   const char* names[5] = {"feature", "projection", "rig", "odometry", "straightness"};
   for (int h = 0; h <= 12; h += 3) {  // clock grid
     const int y = pixel({lo, static_cast<double>(h)}).y;
@@ -210,12 +212,10 @@ void WriteRegistrationGraphPicture(const std::filesystem::path& path,
     cv::putText(image, names[t], at + cv::Point(36, 5), cv::FONT_HERSHEY_SIMPLEX, 0.5,
                 cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
-  cv::putText(image, fmt::format("station {:.0f} .. {:.0f} mm", lo, hi),
-              {width - 330, 22}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1,
-              cv::LINE_AA);
-  WriteFileAtomically(path, [&](const std::filesystem::path& temporary) {
-    WriteImage(temporary, image);
-  });
+  cv::putText(image, fmt::format("station {:.0f} .. {:.0f} mm", lo, hi), {width - 330, 22},
+              cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  WriteFileAtomically(
+      path, [&](const std::filesystem::path& temporary) { WriteImage(temporary, image); });
 }
 
 }  // namespace sewer3d

@@ -53,15 +53,15 @@ std::vector<RegistrationEdgeRow> ReadRegistrationEdges(const std::filesystem::pa
 /// The cached result of one pairwise registration.
 struct PairRecord {
   int a_module = 0, a_counter = 0, b_module = 0, b_counter = 0;
-  std::string kind;          ///< "along" or "around"
-  std::string method;        ///< "feature", "projection", or "none" (both failed)
-  Rigid3d a_from_b;          ///< valid unless method is "none"
+  std::string kind;    ///< "along" or "around"
+  std::string method;  ///< "feature", "projection", or "none" (both failed)
+  Rigid3d a_from_b;    ///< valid unless method is "none"
   Matrix6d information = Matrix6d::Zero();
   int inliers = 0;
   double rms_mm = 0.0;
   double seconds = 0.0;
-  bool degenerate = false;   ///< projection: the information's spectrum is degenerate
-  std::string message;       ///< why the feature registration (or both) failed
+  bool degenerate = false;  ///< projection: the information's spectrum is degenerate
+  std::string message;      ///< why the feature registration (or both) failed
 };
 /// `pairs_folder`/m<a>_<counter 6 digits>-m<b>_<counter 6 digits>.json.
 std::filesystem::path PairRecordFile(const std::filesystem::path& pairs_folder, int a_module,

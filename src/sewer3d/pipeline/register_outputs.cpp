@@ -17,7 +17,8 @@ int VertexOf(const AcquisitionNode& n) { return RegistrationVertexId(n.module, n
 /// The optimised graph with the acquisitions' vertex ids (accepted edges, in edges.csv order).
 PoseGraph ExportGraph(const std::vector<AcquisitionNode>& nodes, const FusionResult& fused) {
   PoseGraph graph;
-  for (size_t i = 0; i < nodes.size(); ++i) graph.SetNode(VertexOf(nodes[i]), fused.world_from_camera[i]);
+  for (size_t i = 0; i < nodes.size(); ++i)
+    graph.SetNode(VertexOf(nodes[i]), fused.world_from_camera[i]);
   for (PoseEdge e : fused.graph.edges()) {
     e.from = VertexOf(nodes[e.from]);
     e.to = VertexOf(nodes[e.to]);
@@ -136,13 +137,13 @@ std::string RegisterStageReportToJson(const RegisterStageReport& report) {
 
 void WriteRegistrationOutputs(const std::filesystem::path& folder, const Rig& rig,
                               const std::vector<AcquisitionNode>& nodes,
-                              const std::vector<RegistrationEdge>& edges,
-                              const FusionResult& fused, double length_scale_mm,
-                              const std::string& report_json) {
+                              const std::vector<RegistrationEdge>& edges, const FusionResult& fused,
+                              double length_scale_mm, const std::string& report_json) {
   std::vector<RegistrationPoseRow> poses;
   std::vector<GraphPictureNode> picture_nodes;
   for (size_t i = 0; i < nodes.size(); ++i) {
-    poses.push_back({nodes[i].module, nodes[i].counter, nodes[i].time_s, fused.world_from_camera[i]});
+    poses.push_back(
+        {nodes[i].module, nodes[i].counter, nodes[i].time_s, fused.world_from_camera[i]});
     picture_nodes.push_back(
         {fused.world_from_camera[i].translation.z(), rig.modules[nodes[i].module].clock_h});
   }

@@ -14,8 +14,7 @@ namespace sewer3d {
 
 void WriteRegistrationOutputs(const std::filesystem::path& folder, const Rig& rig,
                               const std::vector<AcquisitionNode>& nodes,
-                              const std::vector<RegistrationEdge>& edges,
-                              const FusionResult& fused, double length_scale_mm,
-                              const std::string& report_json);
+                              const std::vector<RegistrationEdge>& edges, const FusionResult& fused,
+                              double length_scale_mm, const std::string& report_json);
 
 }  // namespace sewer3d

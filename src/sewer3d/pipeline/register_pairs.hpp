@@ -12,8 +12,8 @@
 #include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/register/feature_registration.hpp"
 #include "sewer3d/register/neighbours.hpp"
-#include "sewer3d/register/projection_registration.hpp"
 #include "sewer3d/register/prior_edges.hpp"
+#include "sewer3d/register/projection_registration.hpp"
 #include "sewer3d/run/rig.hpp"
 
 namespace sewer3d {

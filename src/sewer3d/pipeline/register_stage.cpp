@@ -23,8 +23,8 @@ constexpr const char* kFolder = "registration";
 
 /// The nodes whose RGB-D acquisition is complete with depth; the others go to left_out.
 std::vector<AcquisitionNode> UsableNodes(const std::vector<AcquisitionNode>& all,
-                                         const std::filesystem::path& rgbd_folder,
-                                         int min_points, RegisterStageReport& report) {
+                                         const std::filesystem::path& rgbd_folder, int min_points,
+                                         RegisterStageReport& report) {
   std::vector<AcquisitionNode> usable;
   for (const AcquisitionNode& n : all) {
     const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, n.module, n.counter);
@@ -112,11 +112,11 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   report.neighbours = pairs.report;
   report.pairs = static_cast<int>(pairs.pairs.size());
 
-  const PairRegistrationOutcome outcome = RegisterPairs(
-      nodes, pairs.pairs, run.rig, rgbd_folder, folder / "pairs", options.pairs, options.threads,
-      [&](int finished) {
-        if (progress) progress("pairs", finished, report.pairs);
-      });
+  const PairRegistrationOutcome outcome =
+      RegisterPairs(nodes, pairs.pairs, run.rig, rgbd_folder, folder / "pairs", options.pairs,
+                    options.threads, [&](int finished) {
+                      if (progress) progress("pairs", finished, report.pairs);
+                    });
   report.pairs_done = outcome.done;
   report.pairs_skipped = outcome.skipped;
   if (outcome.done > 0) report.seconds_per_pair = outcome.seconds_now / outcome.done;

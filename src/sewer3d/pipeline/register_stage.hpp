@@ -56,9 +56,9 @@ struct RegisterStageReport {
   int feature_edges = 0, projection_edges = 0, degenerate_edges = 0;
   int prior_edges = 0;
   FusionReport fusion;
-  double seconds = 0.0;               ///< the whole stage now, wall clock
-  double seconds_per_pair = 0.0;      ///< mean over the pairs registered now (one worker)
-  double seconds_per_node = 0.0;      ///< seconds / nodes
+  double seconds = 0.0;           ///< the whole stage now, wall clock
+  double seconds_per_pair = 0.0;  ///< mean over the pairs registered now (one worker)
+  double seconds_per_node = 0.0;  ///< seconds / nodes
   int threads = 1;
 };
 

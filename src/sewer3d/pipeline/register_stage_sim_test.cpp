@@ -49,7 +49,9 @@ class RegisterStageTiny : public ::testing::Test {
     options.threads = 2;
     report_ = RunRegisterStage(run_, ws, options);
   }
-  static void TearDownTestSuite() { if (!std::getenv("SEWER3D_KEEP")) fs::remove_all(dir_); }
+  static void TearDownTestSuite() {
+    if (!std::getenv("SEWER3D_KEEP")) fs::remove_all(dir_);
+  }
 
   static fs::path dir_;
   static CaptureRun run_;
@@ -99,8 +101,9 @@ TEST_F(RegisterStageTiny, CameraCentresAgreeWithTheTruth) {
   const RegistrationEvaluation e = EvaluateRegistration(dir_ / "run", dir_ / "ws");
   RecordProperty("ate_rms_mm", std::to_string(e.ate.rms_mm));
   for (const auto& [type, f] : e.edges) {
-    RecordProperty(type, std::to_string(f.accepted) + " " + std::to_string(f.median_translation_mm) +
-                             " mm " + std::to_string(f.median_rotation_deg) + " deg nees " +
+    RecordProperty(type, std::to_string(f.accepted) + " " +
+                             std::to_string(f.median_translation_mm) + " mm " +
+                             std::to_string(f.median_rotation_deg) + " deg nees " +
                              std::to_string(f.mean_nees));
   }
   EXPECT_EQ(e.ate.nodes, 11);

@@ -22,7 +22,7 @@
 namespace sewer3d {
 
 struct FusionOptions {
-  double huber_delta = 3.0;  ///< Huber scale of the first solve, √χ² units (pairwise only)
+  double huber_delta = 3.0;   ///< Huber scale of the first solve, √χ² units (pairwise only)
   double gate_chi2 = 22.458;  ///< χ²(6) at 0.999
   int max_gate_rounds = 5;
   int max_iterations = 200;  ///< Levenberg–Marquardt, per solve

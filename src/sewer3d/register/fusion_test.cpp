@@ -147,9 +147,9 @@ TEST(Fusion, AThirtyMetreBendStaysBent) {
   std::vector<Rigid3d> truth;
   for (int i = 0; i < kNodes; ++i) {  // the arc turns toward +x (a yaw about −y)
     const double angle = kStep * i / kRadius;
-    truth.emplace_back(Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY())),
-                       Eigen::Vector3d(kRadius * (1 - std::cos(angle)), 0,
-                                       kRadius * std::sin(angle)));
+    truth.emplace_back(
+        Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY())),
+        Eigen::Vector3d(kRadius * (1 - std::cos(angle)), 0, kRadius * std::sin(angle)));
   }
   Vector6d sigma;
   sigma << 0.02, 0.02, 0.02, 0.01 * kDeg, 0.01 * kDeg, 0.01 * kDeg;
@@ -203,9 +203,9 @@ TEST(PriorEdges, RigEdgesFollowTheCarrierAndOddModulesFireLater) {
   cov(3, 3) = 1.0;  // unit variance about the carrier's x axis
   const Matrix6d c = CameraCovarianceFromCarrier(ca, motion, cb, cov);
   const double h = 1e-6;
-  const Rigid3d turned(Eigen::Quaterniond(Eigen::AngleAxisd(h, Eigen::Vector3d::UnitX())) *
-                           motion.rotation,
-                       motion.translation);
+  const Rigid3d turned(
+      Eigen::Quaterniond(Eigen::AngleAxisd(h, Eigen::Vector3d::UnitX())) * motion.rotation,
+      motion.translation);
   PoseEdge reference;
   reference.a_from_b = ca.Inverse() * motion * cb;
   const Vector6d r = EdgeResidual(reference, Rigid3d(), ca.Inverse() * turned * cb) / h;

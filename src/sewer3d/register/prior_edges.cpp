@@ -42,9 +42,8 @@ RegistrationEdge CarrierEdge(const std::vector<AcquisitionNode>& nodes, const Ri
   edge.b = b;
   edge.type = type;
   edge.a_from_b = ca.Inverse() * motion * cb;
-  edge.information =
-      Information(CameraCovarianceFromCarrier(ca, motion, cb, carrier_covariance) +
-                  camera_covariance);
+  edge.information = Information(CameraCovarianceFromCarrier(ca, motion, cb, carrier_covariance) +
+                                 camera_covariance);
   return edge;
 }
 
@@ -132,10 +131,9 @@ std::vector<RegistrationEdge> RigEdges(const std::vector<AcquisitionNode>& nodes
       const int a = list[k], b = list[k + 1];
       const double dt = std::abs(nodes[b].time_s - nodes[a].time_s);
       const double dd = std::abs(nodes[b].distance_mm - nodes[a].distance_mm);
-      const double along =
-          dt > 0.0 ? std::hypot(std::sqrt(2.0) * options.odometry_noise_mm,
-                                options.odometry_scale_sigma * dd)
-                   : 1e-3;
+      const double along = dt > 0.0 ? std::hypot(std::sqrt(2.0) * options.odometry_noise_mm,
+                                                 options.odometry_scale_sigma * dd)
+                                    : 1e-3;
       const Matrix6d motion = Diagonal(std::max(options.lateral_speed_mm_s * dt, 1e-3), along,
                                        std::max(options.turn_rate_deg_s * dt, 1e-4) * kDegToRad,
                                        std::max(options.turn_rate_deg_s * dt, 1e-4) * kDegToRad);
@@ -154,12 +152,12 @@ std::vector<RegistrationEdge> OdometryEdges(const std::vector<AcquisitionNode>& 
     for (size_t k = 0; k + 1 < list.size(); ++k) {
       const int a = list[k], b = list[k + 1];
       const double dd = std::abs(nodes[b].distance_mm - nodes[a].distance_mm);
-      const double along = std::hypot(std::sqrt(2.0) * options.odometry_noise_mm,
-                                      options.odometry_scale_sigma * dd);
+      const double along =
+          std::hypot(std::sqrt(2.0) * options.odometry_noise_mm, options.odometry_scale_sigma * dd);
       const double turn = options.odometry_rotation_sigma_deg * kDegToRad;
       const Matrix6d motion = Diagonal(options.odometry_lateral_sigma_mm, along, turn, turn);
-      edges.push_back(CarrierEdge(nodes, rig, a, b, RegistrationEdgeType::kOdometry, motion,
-                                  Matrix6d::Zero()));
+      edges.push_back(
+          CarrierEdge(nodes, rig, a, b, RegistrationEdgeType::kOdometry, motion, Matrix6d::Zero()));
     }
   }
   return edges;

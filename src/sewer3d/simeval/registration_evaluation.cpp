@@ -70,7 +70,8 @@ RegistrationEvaluation EvaluateRegistration(const std::filesystem::path& run_fol
   }
   for (size_t i = 0; i < poses.size(); ++i) {
     const Eigen::Vector3d c_world = world.col(static_cast<Eigen::Index>(i));
-    const double error = (e.truth_from_model * poses[i].world_from_camera.translation - c_world).norm();
+    const double error =
+        (e.truth_from_model * poses[i].world_from_camera.translation - c_world).norm();
     Add(e.ate, error);
     const int section = pipe.Locate(c_world).section;
     Add(e.ate_by_material[MaterialName(pipe.world().sections[section].material)], error);
@@ -120,8 +121,7 @@ std::string RegistrationEvaluationToJson(const RegistrationEvaluation& e) {
                    {"mean_nees", f.mean_nees},
                    {"median_nees", f.median_nees}};
   }
-  const nlohmann::json j = {
-      {"ate", ate(e.ate)}, {"ate_by_material", materials}, {"edges", edges}};
+  const nlohmann::json j = {{"ate", ate(e.ate)}, {"ate_by_material", materials}, {"edges", edges}};
   return j.dump(2) + "\n";
 }
 

@@ -34,9 +34,9 @@ struct EdgeErrorFigures {
 
 struct RegistrationEvaluation {
   AteFigures ate;
-  std::map<std::string, AteFigures> ate_by_material;    ///< by material name
-  std::map<std::string, EdgeErrorFigures> edges;        ///< by edge type
-  Rigid3d truth_from_model;                             ///< the alignment
+  std::map<std::string, AteFigures> ate_by_material;  ///< by material name
+  std::map<std::string, EdgeErrorFigures> edges;      ///< by edge type
+  Rigid3d truth_from_model;                           ///< the alignment
 };
 
 /// Reads the run (rig, truth/) and WS/registration/{poses.csv, edges.csv, graph.g2o}; FileError
