@@ -27,9 +27,9 @@ Command AddEvaluateCommand(CLI::App& app) {
       app.add_subcommand("evaluate",
                          "Accuracy against the truth: a plane or cylinder fitted to a cloud, or a "
                          "processing stage on a simulated run (rgbd)");
-  sub->add_option("what", args->surface, "plane, cylinder or rgbd")
+  sub->add_option("what", args->surface, "plane, cylinder, rgbd or registration")
       ->required()
-      ->check(CLI::IsMember({"plane", "cylinder", "rgbd"}));
+      ->check(CLI::IsMember({"plane", "cylinder", "rgbd", "registration"}));
   sub->add_option("--cloud", args->cloud, "plane, cylinder: point cloud (PLY, camera frame, mm)");
   sub->add_option("--run", args->run, "rgbd: the simulated capture run (with truth/)");
   sub->add_option("--workspace", args->workspace, "rgbd: the processing workspace WS");
@@ -46,6 +46,11 @@ Command AddEvaluateCommand(CLI::App& app) {
               if (args->run.empty() || args->workspace.empty())
                 throw CLI::RequiredError("evaluate rgbd needs --run and --workspace");
               return RunEvaluateRgbd(args->run, args->workspace, args->out);
+            }
+            if (args->surface == "registration") {
+              if (args->run.empty() || args->workspace.empty())
+                throw CLI::RequiredError("evaluate registration needs --run and --workspace");
+              return RunEvaluateRegistration(args->run, args->workspace, args->out);
             }
             if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
             const auto all = ReadPlyPoints(args->cloud);

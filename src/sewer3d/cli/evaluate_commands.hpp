@@ -10,4 +10,10 @@ namespace sewer3d::cli {
 /// writes DIR/evaluation.json and DIR/colour_montage.png; returns the exit code.
 int RunEvaluateRgbd(const std::string& run, const std::string& workspace, const std::string& out);
 
+/// `sewer3d evaluate registration --run RUN --workspace WS [--out DIR]`: prints the trajectory
+/// error (overall, per material) and the accepted edges' errors and NEES, writes
+/// DIR/evaluation.json (default WS/evaluation/registration); returns the exit code.
+int RunEvaluateRegistration(const std::string& run, const std::string& workspace,
+                            const std::string& out);
+
 }  // namespace sewer3d::cli

@@ -1,0 +1,38 @@
+// `sewer3d evaluate registration`: the registration stage's poses against a simulated run's
+// truth (docs/registration.md).
+
+#include <fmt/core.h>
+
+#include <filesystem>
+
+#include "sewer3d/cli/evaluate_commands.hpp"
+#include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/simeval/registration_evaluation.hpp"
+
+namespace sewer3d::cli {
+
+int RunEvaluateRegistration(const std::string& run_folder, const std::string& workspace,
+                            const std::string& out) {
+  const RegistrationEvaluation e = EvaluateRegistration(run_folder, workspace);
+  const std::filesystem::path folder =
+      out.empty() ? std::filesystem::path(workspace) / "evaluation" / "registration"
+                  : std::filesystem::path(out);
+  WriteTextFileAtomically(folder / "evaluation.json", RegistrationEvaluationToJson(e));
+  fmt::print("absolute trajectory error of {} camera centres (one rigid alignment): RMS {:.3f} mm, "
+             "max {:.3f} mm\n",
+             e.ate.nodes, e.ate.rms_mm, e.ate.max_mm);
+  for (const auto& [name, f] : e.ate_by_material)
+    fmt::print("  {:<16} {:>4} nodes  RMS {:.3f} mm  max {:.3f} mm\n", name, f.nodes, f.rms_mm,
+               f.max_mm);
+  fmt::print("accepted edges against the true relative poses:\n");
+  fmt::print("  {:<14} {:>6} {:>12} {:>12} {:>10} {:>10}\n", "type", "edges", "median mm",
+             "median deg", "mean NEES", "med NEES");
+  for (const auto& [type, f] : e.edges) {
+    fmt::print("  {:<14} {:>6} {:>12.4f} {:>12.4f} {:>10.2f} {:>10.2f}\n", type, f.accepted,
+               f.median_translation_mm, f.median_rotation_deg, f.mean_nees, f.median_nees);
+  }
+  fmt::print("wrote {}\n", (folder / "evaluation.json").string());
+  return 0;
+}
+
+}  // namespace sewer3d::cli

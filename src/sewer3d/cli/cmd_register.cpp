@@ -1,0 +1,77 @@
+// `sewer3d register RUN --out WS`: the registration stage over a whole capture run
+// (docs/registration.md).
+
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/progress_bar.hpp"
+#include "sewer3d/io/run_io.hpp"
+#include "sewer3d/pipeline/register_stage.hpp"
+#include "sewer3d/pipeline/workspace.hpp"
+
+namespace sewer3d::cli {
+
+Command AddRegisterCommand(CLI::App& app) {
+  struct Args {
+    std::string run, out;
+    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    bool quiet = false, force = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* sub = app.add_subcommand(
+      "register",
+      "Every acquisition of a run into one frame: WS/registration/poses.csv, graph.g2o, "
+      "edges.csv, report.json, graph.png (needs WS/rgbd from `sewer3d rgbd`)");
+  sub->add_option("RUN", args->run, "Capture run folder (docs/formats.md)")->required();
+  sub->add_option("--out", args->out, "Processing workspace folder WS")->required();
+  sub->add_option("--threads", args->threads, "Pairs registered at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  sub->add_flag("--force", args->force,
+                "Redo the stage from scratch, also when it was run with other options");
+  sub->add_flag("--quiet", args->quiet, "No progress bar");
+  return {sub, [args] {
+            const CaptureRun run = LoadRun(args->run);
+            RegisterStageOptions options;
+            options.threads = args->threads;
+            options.fusion.threads = args->threads;
+            options.force = args->force;
+            ProgressBar bar(args->quiet);
+            auto progress = [&](const std::string& pass, int done, int total) {
+              bar.Update("register " + pass, done, total, pass == "pairs" ? "pairs" : "steps");
+            };
+            RegisterStageReport report;
+            try {
+              Workspace workspace(args->out, run.folder);
+              report = RunRegisterStage(run, workspace, options, progress);
+            } catch (const WorkspaceConflict& e) {
+              fmt::print(stderr, "sewer3d: error: {}\n", e.what());
+              return 2;
+            }
+            const std::filesystem::path folder = std::filesystem::path(args->out) / "registration";
+            fmt::print(
+                "register: {} acquisitions, {} nodes, {} left out; {} pairs ({} done, {} from "
+                "an earlier run, {} failed): {} feature, {} projection ({} degenerate); {} rig/"
+                "odometry/straightness edges; {} rejected by the gate; {:.1f} s ({:.2f} s per "
+                "pair)\n",
+                report.acquisitions, report.nodes, report.left_out.size(), report.pairs,
+                report.pairs_done, report.pairs_skipped, report.pairs_failed, report.feature_edges,
+                report.projection_edges, report.degenerate_edges, report.prior_edges,
+                report.fusion.rejected, report.seconds, report.seconds_per_pair);
+            for (const LeftOutAcquisition& l : report.left_out)
+              fmt::print("left out: m{} counter {}: {}\n", l.module, l.counter, l.reason);
+            fmt::print("wrote {}\n", (folder / "poses.csv").string());
+            if (!report.fusion.usable) {
+              fmt::print(stderr, "sewer3d: error: the pose graph did not converge (see {})\n",
+                         (folder / "report.json").string());
+              return 1;
+            }
+            return 0;
+          }};
+}
+
+}  // namespace sewer3d::cli

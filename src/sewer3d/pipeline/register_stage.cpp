@@ -1,0 +1,154 @@
+#include "sewer3d/pipeline/register_stage.hpp"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+
+#include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/rgbd_io.hpp"
+#include "sewer3d/io/text_file.hpp"
+#include "sewer3d/pipeline/register_outputs.hpp"
+#include "sewer3d/register/depth_geometry.hpp"
+
+namespace sewer3d {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+// The stage's name in workspace.json (the command's) and its folder (the contract's).
+constexpr const char* kStage = "register";
+constexpr const char* kFolder = "registration";
+
+/// The nodes whose RGB-D acquisition is complete with depth; the others go to left_out.
+std::vector<AcquisitionNode> UsableNodes(const std::vector<AcquisitionNode>& all,
+                                         const std::filesystem::path& rgbd_folder, int min_points,
+                                         RegisterStageReport& report) {
+  std::vector<AcquisitionNode> usable;
+  for (const AcquisitionNode& n : all) {
+    const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, n.module, n.counter);
+    if (!RgbdAcquisitionDone(files)) {
+      report.left_out.push_back({n.module, n.counter,
+                                 "the rgbd stage did not finish it (no " +
+                                     files.report.filename().string() +
+                                     "; see WS/rgbd/report.json)"});
+      continue;
+    }
+    const json r = json::parse(ReadTextFile(files.report), nullptr, false);
+    if (!r.is_object()) throw FileError(files.report, "not a JSON object");
+    const long long points = r.value("points", 0LL);
+    if (points < min_points) {
+      report.left_out.push_back({n.module, n.counter,
+                                 "no depth: " + std::to_string(points) + " points (fewer than " +
+                                     std::to_string(min_points) + ")"});
+      continue;
+    }
+    usable.push_back(n);
+  }
+  return usable;
+}
+
+/// The carrier's offset from the pipe axis, from the depth maps of the first counter.
+CarrierOffsetEstimate FirstInstantOffset(const std::vector<AcquisitionNode>& nodes,
+                                         const CaptureRun& run,
+                                         const std::filesystem::path& rgbd_folder,
+                                         const RegisterStageOptions& options) {
+  int first = nodes.front().counter;
+  for (const AcquisitionNode& n : nodes) first = std::min(first, n.counter);
+  std::vector<ModuleWallPoints> walls;
+  for (const AcquisitionNode& n : nodes) {
+    if (n.counter != first) continue;
+    const RgbdPairInput in = ReadRgbdForRegistration(rgbd_folder, n.module, n.counter);
+    const CameraModel camera(run.rig.modules[n.module].module.camera);
+    walls.push_back({n.module, SampleDepthPoints(in.depth_mm, camera, options.wall_step_px)});
+  }
+  return EstimateCarrierOffset(run.rig, walls, options.carrier_offset);
+}
+
+}  // namespace
+
+void RegisterStageOptions::Check() const {
+  neighbours.Check();
+  pairs.features.Check();
+  pairs.projection.Check();
+  priors.Check();
+  fusion.Check();
+  carrier_offset.Check();
+  SEWER3D_VALIDATE(min_depth_points >= 0, "min_depth_points", "must not be negative");
+  SEWER3D_VALIDATE(wall_step_px >= 1, "wall_step_px", "must be at least 1");
+  ValidatePositive("length_scale_mm", length_scale_mm);
+  SEWER3D_VALIDATE(threads >= 1, "threads", "must be at least 1, got " << threads);
+}
+
+RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace,
+                                     const RegisterStageOptions& options,
+                                     const RegisterProgress& progress) {
+  options.Check();
+  const auto start = Clock::now();
+  workspace.BeginStage(kStage, RegisterOptionsJson(options), options.force);
+  // BeginStage's force clears WS/register; the files live in WS/registration.
+  const std::filesystem::path folder = workspace.StageFolder(kFolder);
+  if (options.force) RemoveFolder(folder);
+  const std::filesystem::path rgbd_folder = workspace.StageFolder("rgbd");
+
+  RegisterStageReport report;
+  report.threads = options.threads;
+  const InitialPosesResult initial = InitialPoses(run);
+  report.initial = initial.report;
+  report.acquisitions = static_cast<int>(initial.nodes.size());
+  const std::vector<AcquisitionNode> nodes =
+      UsableNodes(initial.nodes, rgbd_folder, options.min_depth_points, report);
+  report.nodes = static_cast<int>(nodes.size());
+  if (nodes.empty())
+    throw FileError(rgbd_folder, "no acquisition with depth to register (run the rgbd stage)");
+
+  NeighbourOptions neighbours = options.neighbours;
+  report.carrier_offset = FirstInstantOffset(nodes, run, rgbd_folder, options);
+  if (progress) progress("walls", 1, 1);
+  if (report.carrier_offset.valid)
+    neighbours.axis_in_model_mm = report.carrier_offset.axis_in_carrier_mm;
+  const NeighbourResult pairs = FindNeighbours(nodes, run.rig, neighbours);
+  report.neighbours = pairs.report;
+  report.pairs = static_cast<int>(pairs.pairs.size());
+
+  const PairRegistrationOutcome outcome =
+      RegisterPairs(nodes, pairs.pairs, run.rig, rgbd_folder, folder / "pairs", options.pairs,
+                    options.threads, [&](int finished) {
+                      if (progress) progress("pairs", finished, report.pairs);
+                    });
+  report.pairs_done = outcome.done;
+  report.pairs_skipped = outcome.skipped;
+  if (outcome.done > 0) report.seconds_per_pair = outcome.seconds_now / outcome.done;
+
+  std::vector<RegistrationEdge> edges;
+  for (size_t i = 0; i < pairs.pairs.size(); ++i) {
+    const PairRecord& r = outcome.records[i];
+    if (const std::optional<RegistrationEdge> e = PairEdge(r, pairs.pairs[i])) {
+      edges.push_back(*e);
+      ++(e->type == RegistrationEdgeType::kFeature ? report.feature_edges
+                                                   : report.projection_edges);
+      if (r.degenerate) ++report.degenerate_edges;
+    } else {
+      ++report.pairs_failed;
+    }
+  }
+  const std::vector<RegistrationEdge> priors = PriorEdges(nodes, run.rig, options.priors);
+  report.prior_edges = static_cast<int>(priors.size());
+  edges.insert(edges.end(), priors.begin(), priors.end());
+
+  const FusionResult fused = FuseRegistration(nodes, edges, options.fusion);
+  report.fusion = fused.report;
+  report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  report.seconds_per_node = report.seconds / report.nodes;
+  WriteRegistrationOutputs(folder, run.rig, nodes, edges, fused, options.length_scale_mm,
+                           RegisterStageReportToJson(report));
+  workspace.FinishStage(kStage, fused.report.usable,
+                        {{"nodes", std::to_string(report.nodes)},
+                         {"left_out", std::to_string(report.left_out.size())},
+                         {"edges", std::to_string(edges.size())},
+                         {"rejected", std::to_string(fused.report.rejected)}});
+  return report;
+}
+
+}  // namespace sewer3d
