@@ -13,6 +13,7 @@
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/model/fit.hpp"
+#include "sewer3d/simeval/rgbd_evaluation.hpp"
 #include "sewer3d/simio/scene_io.hpp"
 
 namespace sewer3d::cli {
@@ -20,6 +21,7 @@ namespace sewer3d::cli {
 Command AddEvaluateCommand(CLI::App& app) {
   struct Args {
     std::string surface, cloud, truth, run, workspace, out;
+    int smoothing_px = RgbdEvaluationOptions{}.colour_smoothing_px;
     double inner_fraction = 0.5;
   };
   auto args = std::make_shared<Args>();
@@ -32,6 +34,10 @@ Command AddEvaluateCommand(CLI::App& app) {
       ->check(CLI::IsMember({"plane", "cylinder", "rgbd", "registration"}));
   sub->add_option("--cloud", args->cloud, "plane, cylinder: point cloud (PLY, camera frame, mm)");
   sub->add_option("--run", args->run, "rgbd: the simulated capture run (with truth/)");
+  sub->add_option("--smoothing-px", args->smoothing_px,
+                  "rgbd: colours compared after a box mean of this side (1: per pixel)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 101));
   sub->add_option("--workspace", args->workspace, "rgbd: the processing workspace WS");
   sub->add_option("--out", args->out,
                   "rgbd: folder for evaluation.json and pictures (default WS/evaluation/rgbd)");
@@ -45,7 +51,7 @@ Command AddEvaluateCommand(CLI::App& app) {
             if (args->surface == "rgbd") {
               if (args->run.empty() || args->workspace.empty())
                 throw CLI::RequiredError("evaluate rgbd needs --run and --workspace");
-              return RunEvaluateRgbd(args->run, args->workspace, args->out);
+              return RunEvaluateRgbd(args->run, args->workspace, args->out, args->smoothing_px);
             }
             if (args->surface == "registration") {
               if (args->run.empty() || args->workspace.empty())

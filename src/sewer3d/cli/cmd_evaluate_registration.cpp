@@ -18,9 +18,10 @@ int RunEvaluateRegistration(const std::string& run_folder, const std::string& wo
       out.empty() ? std::filesystem::path(workspace) / "evaluation" / "registration"
                   : std::filesystem::path(out);
   WriteTextFileAtomically(folder / "evaluation.json", RegistrationEvaluationToJson(e));
-  fmt::print("absolute trajectory error of {} camera centres (one rigid alignment): RMS {:.3f} mm, "
-             "max {:.3f} mm\n",
-             e.ate.nodes, e.ate.rms_mm, e.ate.max_mm);
+  fmt::print(
+      "absolute trajectory error of {} camera centres (one rigid alignment): RMS {:.3f} mm, "
+      "max {:.3f} mm\n",
+      e.ate.nodes, e.ate.rms_mm, e.ate.max_mm);
   for (const auto& [name, f] : e.ate_by_material)
     fmt::print("  {:<16} {:>4} nodes  RMS {:.3f} mm  max {:.3f} mm\n", name, f.nodes, f.rms_mm,
                f.max_mm);

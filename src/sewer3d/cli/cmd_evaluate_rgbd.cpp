@@ -14,9 +14,11 @@
 namespace sewer3d::cli {
 
 int RunEvaluateRgbd(const std::string& run_folder, const std::string& workspace,
-                    const std::string& out) {
+                    const std::string& out, int smoothing_px) {
   const CaptureRun run = LoadRun(run_folder);
-  const RgbdEvaluation e = EvaluateRgbd(run, workspace, RgbdEvaluationOptions{});
+  RgbdEvaluationOptions options;
+  options.colour_smoothing_px = smoothing_px;
+  const RgbdEvaluation e = EvaluateRgbd(run, workspace, options);
   const std::filesystem::path folder =
       out.empty() ? std::filesystem::path(workspace) / "evaluation" / "rgbd"
                   : std::filesystem::path(out);
@@ -26,11 +28,12 @@ int RunEvaluateRgbd(const std::string& run_folder, const std::string& workspace,
       "rgbd colour over {} acquisitions (mean CIEDE2000 after one global gain; "
       "misregistration: median px)\n",
       e.acquisitions);
-  fmt::print("{:<16} {:>10} {:>10} {:>12} {:>12}\n", "material", "dE before", "dE after",
-             "naive px", "mapped px");
+  fmt::print("{:<16} {:>10} {:>10} {:>14} {:>10} {:>10}\n", "material", "dE before", "dE after",
+             "(gain/module)", "naive px", "mapped px");
   for (const auto& [name, m] : e.materials) {
-    fmt::print("{:<16} {:>10.2f} {:>10.2f} {:>12.2f} {:>12.2f}\n", name, m.delta_e_before,
-               m.delta_e_after, m.misregistration_naive_px, m.misregistration_mapped_px);
+    fmt::print("{:<16} {:>10.2f} {:>10.2f} {:>14.2f} {:>10.2f} {:>10.2f}\n", name, m.delta_e_before,
+               m.delta_e_after, m.delta_e_after_module_gains, m.misregistration_naive_px,
+               m.misregistration_mapped_px);
   }
   fmt::print("seams: {} neighbour pairs, {} wall points: dE before {:.2f}, after {:.2f}\n",
              e.seams.pairs, e.seams.points, e.seams.delta_e_before, e.seams.delta_e_after);

@@ -21,6 +21,7 @@ Command AddRgbdCommand(CLI::App& app) {
     double max_edge_steps = FrameReconstructionOptions{}.max_edge_steps;
     bool quiet = false, force = false, debug_images = false, no_deblur = false;
     int reference_frames = RgbdColourOptions{}.reference_frames;
+    std::string correction = "linear";
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -41,6 +42,12 @@ Command AddRgbdCommand(CLI::App& app) {
                   "from")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
+  sub->add_option("--correction", args->correction,
+                  "Shading and colour correction: linear (per-channel division by the reference "
+                  "light) or lab (the paper's: L* from the reference's lightness, its a*/b* cast "
+                  "removed)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"lab", "linear"}));
   sub->add_flag("--no-deblur", args->no_deblur, "Leave the texture images' motion blur as it is");
   sub->add_flag("--debug-images", args->debug_images,
                 "Also write WS/rgbd/debug/m<k>/<counter>_captured.png, _mapped.png, "
@@ -55,6 +62,8 @@ Command AddRgbdCommand(CLI::App& app) {
             options.threads = args->threads;
             options.colour.reference_frames = args->reference_frames;
             options.colour.deblur = !args->no_deblur;
+            options.colour.correction.space =
+                args->correction == "lab" ? CorrectionSpace::kLab : CorrectionSpace::kLinear;
             options.colour.debug_images = args->debug_images;
             options.force = args->force;
             ProgressBar bar(args->quiet);

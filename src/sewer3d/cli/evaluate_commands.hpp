@@ -8,7 +8,9 @@ namespace sewer3d::cli {
 
 /// `sewer3d evaluate rgbd --run RUN --workspace WS [--out DIR]`: prints the colour figures,
 /// writes DIR/evaluation.json and DIR/colour_montage.png; returns the exit code.
-int RunEvaluateRgbd(const std::string& run, const std::string& workspace, const std::string& out);
+/// `smoothing_px`: colours are compared after a box mean of this side (1: per pixel).
+int RunEvaluateRgbd(const std::string& run, const std::string& workspace, const std::string& out,
+                    int smoothing_px);
 
 /// `sewer3d evaluate registration --run RUN --workspace WS [--out DIR]`: prints the trajectory
 /// error (overall, per material) and the accepted edges' errors and NEES, writes

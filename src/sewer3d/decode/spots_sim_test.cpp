@@ -60,7 +60,12 @@ TEST(Spots, FindsRenderedSpotsWithSubpixelPrecision) {
   options.sensor.bits = 10;
   const RenderedFrame frame = RenderFrame(module, pattern, plane, options);
 
-  NiblackBinariser binariser(NiblackOptions{});
+  // The binariser's min_contrast is in image units, 4 for 8-bit images; this image has 10 bits,
+  // so 16. Left at 4 (0.4 % of full scale), the concrete's grains lit by the ambient light
+  // between the spots pass as ~200 faint spots (contrast 5-9 DN, real spots 40-540 DN).
+  NiblackOptions niblack;
+  niblack.min_contrast = 4.0 * 1023.0 / 255.0;
+  NiblackBinariser binariser(niblack);
   cv::Mat1b mask;
   binariser.Apply(frame.pattern, mask);
   const std::vector<Spot> spots = DetectSpots(mask, binariser.excess(), SpotOptions{});

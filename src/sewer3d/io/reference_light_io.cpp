@@ -57,4 +57,31 @@ ReferenceLight ReadReferenceLight(const std::filesystem::path& path) {
   return r;
 }
 
+void WriteModuleGains(const std::filesystem::path& path, const ModuleGains& gains) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const cv::Vec3d& g : gains.gains_bgr) list.push_back({g[0], g[1], g[2]});
+  const nlohmann::json j = {
+      {"gains_bgr", list}, {"seams", gains.seams}, {"rms_log_residual", gains.rms_log_residual}};
+  WriteTextFileAtomically(path, j.dump(2) + "\n");
+}
+
+ModuleGains ReadModuleGains(const std::filesystem::path& path, int modules) {
+  const JsonReader in(path);
+  const nlohmann::json j = in.ParseObject(ReadTextFile(path));
+  const nlohmann::json& list = in.Array(j, "gains_bgr", "");
+  if (static_cast<int>(list.size()) != modules)
+    in.Fail("gains_bgr", "must hold " + std::to_string(modules) + " modules");
+  ModuleGains gains;
+  for (const nlohmann::json& g : list) {
+    if (!g.is_array() || g.size() != 3 || !g[0].is_number() || !g[1].is_number() ||
+        !g[2].is_number() || g[0].get<double>() <= 0 || g[1].get<double>() <= 0 ||
+        g[2].get<double>() <= 0)
+      in.Fail("gains_bgr", "every module's gains must be 3 positive numbers");
+    gains.gains_bgr.emplace_back(g[0].get<double>(), g[1].get<double>(), g[2].get<double>());
+  }
+  gains.seams = in.Integer(j, "seams", "", 0);
+  gains.rms_log_residual = in.Number(j, "rms_log_residual", "", 0.0);
+  return gains;
+}
+
 }  // namespace sewer3d

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "sewer3d/texture/module_gains.hpp"
 #include "sewer3d/texture/shading.hpp"
 
 namespace sewer3d {
@@ -17,5 +18,11 @@ void WriteReferenceLight(const std::filesystem::path& path, const ReferenceLight
 
 /// Reads what WriteReferenceLight wrote; FileError naming the file and field.
 ReferenceLight ReadReferenceLight(const std::filesystem::path& path);
+
+/// The modules' colour gains (texture/module_gains.hpp) as `WS/rgbd/reference/module_gains.json`:
+/// {"gains_bgr": [[b, g, r], …], "seams": n, "rms_log_residual": x}.
+void WriteModuleGains(const std::filesystem::path& path, const ModuleGains& gains);
+/// Reads it; FileError naming the file and field, also when it holds another number of modules.
+ModuleGains ReadModuleGains(const std::filesystem::path& path, int modules);
 
 }  // namespace sewer3d

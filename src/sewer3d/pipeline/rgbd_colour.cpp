@@ -139,6 +139,9 @@ void RgbdColourOptions::Check() const {
   deblurring.Check();
   mapping.Check();
   correction.Check();
+  SEWER3D_VALIDATE(seam_counters >= 1, "seam_counters",
+                   "must be at least 1, got " << seam_counters);
+  seams.Check();
   ValidatePositive("nominal_diameter_mm", nominal_diameter_mm);
 }
 
@@ -149,13 +152,15 @@ std::string RgbdColourOptionsJson(const RgbdColourOptions& o) {
                   {"mapping_min_inliers", o.mapping.min_inliers},
                   {"correction", o.correction.space == CorrectionSpace::kLab ? "lab" : "linear"},
                   {"wall_level_linear", o.correction.wall_level_linear},
-                  {"nominal_diameter_mm", o.nominal_diameter_mm}};
+                  {"nominal_diameter_mm", o.nominal_diameter_mm},
+                  {"seam_counters", o.seam_counters}};
   return j.dump();
 }
 
 RgbdAcquisitionResult RgbdColourPass(const CaptureRun& run, const Acquisition& a,
                                      const std::filesystem::path& rgbd_folder,
                                      const ShadingCorrector* corrector,
+                                     const cv::Vec3d& module_gain,
                                      const RgbdColourOptions& options) {
   RgbdAcquisitionResult result;
   result.module = a.module;
@@ -211,7 +216,8 @@ RgbdAcquisitionResult RgbdColourPass(const CaptureRun& run, const Acquisition& a
     const CorrectedTexture corrected = corrector->Correct(mapped.color, depth);
     texture["correction"] = {{"pixels_corrected", corrected.report.pixels_corrected},
                              {"pixels_without_depth", corrected.report.pixels_without_depth}};
-    const cv::Mat3b color = Srgb8FromLinear(corrected.linear_bgr);
+    const cv::Mat3b color = Srgb8FromLinear(ApplyChannelGains(
+        corrected.linear_bgr, {1.0 / module_gain[0], 1.0 / module_gain[1], 1.0 / module_gain[2]}));
     if (options.debug_images) WriteDebugImages(rgbd_folder, a, before, before_sharp, mapped.color);
     json report = json::parse(geometry.report_json);
     report["texture"] = AcquisitionImageFile(run, a, ImageKind::kTextureBefore)

@@ -101,6 +101,12 @@ void Summarise(RgbdStageReport& report) {
   if (report.done > 0) report.seconds_per_acquisition /= report.done;
 }
 
+json GainsJson(const ModuleGains& gains) {
+  json list = json::array();
+  for (const cv::Vec3d& g : gains.gains_bgr) list.push_back({g[0], g[1], g[2]});
+  return list;
+}
+
 json PassJson(const RgbdAcquisitionResult& r) {
   json j = {{"status", StatusName(r.status)}};
   if (r.status == Status::kDone) j["seconds"] = r.seconds;
@@ -180,6 +186,10 @@ std::string RgbdStageReportToJson(const RgbdStageReport& report) {
       {"stage", kStage},
       {"color", kRgbdColorSource},
       {"references", references},
+      {"module_gains",
+       {{"seams", report.module_gains.seams},
+        {"rms_log_residual", report.module_gains.rms_log_residual},
+        {"gains_bgr", GainsJson(report.module_gains)}}},
       {"wall_colour_bgr",
        {report.wall_colour_bgr[0], report.wall_colour_bgr[1], report.wall_colour_bgr[2]}},
       {"acquisitions", report.acquisitions},
@@ -259,6 +269,9 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
                                                *report.references[k].reference, correction);
       },
       {});
+  std::vector<const ShadingCorrector*> corrector_list;
+  for (const auto& c : correctors) corrector_list.push_back(c.get());
+  report.module_gains = RgbdSeamPass(run, acquisitions, folder, corrector_list, options.colour);
   ForEachItem<int>(
       acquisitions.size(), options.threads, [] { return 0; },
       [&](size_t i, int&) {
@@ -267,8 +280,9 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
           s.colour.status = Status::kSkipped;
           return;
         }
-        s.colour = RgbdColourPass(run, acquisitions[i], folder,
-                                  correctors[acquisitions[i].module].get(), options.colour);
+        const int m = acquisitions[i].module;
+        s.colour = RgbdColourPass(run, acquisitions[i], folder, correctors[m].get(),
+                                  report.module_gains.gains_bgr[m], options.colour);
       },
       progress_of("colour"));
 

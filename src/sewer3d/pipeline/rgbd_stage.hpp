@@ -65,6 +65,8 @@ struct RgbdStageReport {
   int failed = 0;
   std::vector<RgbdAcquisitionSummary> results;  ///< ordered by (module, counter)
   std::vector<RgbdReferenceResult> references;  ///< one per module
+  /// The modules' relative colour gains from their seams (rgbd_colour.hpp, RgbdSeamPass).
+  ModuleGains module_gains;
   /// The colour (linear BGR) every module's median wall is mapped to (CommonWallColour).
   cv::Vec3d wall_colour_bgr{0, 0, 0};
   long long spots = 0;  ///< over every complete acquisition

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/register/information.hpp"
 #include "sewer3d/register/rigid_fit.hpp"
 
@@ -70,6 +71,20 @@ std::vector<int> Ransac(const std::vector<PointMatch>& matches, const PointRegis
   return best;
 }
 
+// The information of the covariance inverse(information) + diag(σt², σr²), in the residual
+// order [translation; 2 vec(rotation error)] (2 vec of a small rotation is its angle-axis
+// vector, so σr in radians).
+Matrix6d WithCovarianceFloor(const Matrix6d& information, double sigma_t_mm, double sigma_r_deg) {
+  if (sigma_t_mm <= 0.0 && sigma_r_deg <= 0.0) return information;
+  Matrix6d floor = Matrix6d::Zero();
+  const double sigma_r = sigma_r_deg * kRadPerDeg;
+  floor.diagonal() << Eigen::Vector3d::Constant(sigma_t_mm * sigma_t_mm),
+      Eigen::Vector3d::Constant(sigma_r * sigma_r);
+  const Matrix6d covariance = information.ldlt().solve(Matrix6d::Identity()) + floor;
+  const Matrix6d out = covariance.ldlt().solve(Matrix6d::Identity());
+  return 0.5 * (out + out.transpose());
+}
+
 }  // namespace
 
 void DepthNoiseModel::Check() const {
@@ -100,6 +115,8 @@ void PointRegistrationOptions::Check() const {
   ValidatePositive("gate_chi2", gate_chi2);
   ValidatePositive("min_variance_factor", min_variance_factor);
   ValidateNotNegative("max_effective_inliers", max_effective_inliers);
+  ValidateNotNegative("floor_translation_mm", floor_translation_mm);
+  ValidateNotNegative("floor_rotation_deg", floor_rotation_deg);
 }
 
 PointRegistrationResult RegisterPoints(const std::vector<PointMatch>& matches,
@@ -150,7 +167,8 @@ PointRegistrationResult RegisterPoints(const std::vector<PointMatch>& matches,
   const double cap = options.max_effective_inliers > 0
                          ? std::min(1.0, options.max_effective_inliers / n_inliers)
                          : 1.0;
-  out.information = ToResidualOrder(n.h * (cap / out.variance_factor));
+  out.information = WithCovarianceFloor(ToResidualOrder(n.h * (cap / out.variance_factor)),
+                                        options.floor_translation_mm, options.floor_rotation_deg);
   out.converged = converged && static_cast<int>(out.inliers.size()) >= options.min_inliers;
   return out;
 }

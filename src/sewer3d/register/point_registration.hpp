@@ -55,6 +55,11 @@ struct PointRegistrationOptions {
   /// thousands of matches do not give √n-times better poses (measured in
   /// docs/registration.md). 0: no cap.
   int max_effective_inliers = 400;
+  /// Errors that no number of matches averages away (the module's calibration, a depth bias
+  /// shared by the whole overlap) as a covariance floor added to the estimate's: σ of each
+  /// translation axis (mm) and of each rotation axis (degrees). 0: none.
+  double floor_translation_mm = 0.03;
+  double floor_rotation_deg = 0.01;
 
   void Check() const;
 };

@@ -67,6 +67,7 @@ class Truth {
 struct ColourSample {
   cv::Vec3f value, truth;  // linear BGR
   int material = 0;
+  int module = 0;
 };
 
 struct Images {
@@ -223,9 +224,9 @@ void Sample(const CaptureRun& run, const Truth& truth, const fs::path& rgbd, con
       if (material < 0) continue;
       ++votes[material];
       if (std::isfinite(truth_pattern_smooth(v, u)[0]))
-        out.after.push_back({colour(v, u), truth_pattern_smooth(v, u), material});
+        out.after.push_back({colour(v, u), truth_pattern_smooth(v, u), material, a.module});
       if (std::isfinite(truth_before(v, u)[0]))
-        out.before.push_back({captured(v, u), truth_before(v, u), material});
+        out.before.push_back({captured(v, u), truth_before(v, u), material, a.module});
     }
   }
   if (votes.empty()) return;
@@ -320,11 +321,25 @@ RgbdEvaluation EvaluateRgbd(const CaptureRun& run, const fs::path& workspace,
     after[s.material].first += DeltaE(s.value, e.gains_after_bgr, s.truth, {1, 1, 1});
     ++after[s.material].second;
   }
+  // Diagnostic: one gain per module instead of one for the run separates the shading's shape
+  // from the modules' consistency.
+  std::map<int, std::vector<ColourSample>> by_module;
+  for (const ColourSample& s : figures.after) by_module[s.module].push_back(s);
+  std::map<int, std::pair<double, long long>> after_module_gain;
+  for (const auto& [module, samples] : by_module) {
+    const cv::Vec3d gains = MedianRatioGains(samples);
+    for (const ColourSample& s : samples) {
+      after_module_gain[s.material].first += DeltaE(s.value, gains, s.truth, {1, 1, 1});
+      ++after_module_gain[s.material].second;
+    }
+  }
   std::vector<cv::Mat> rows;
   for (const auto& [material, sum] : after) {
     MaterialColourFigures& m = e.materials[MaterialName(static_cast<Material>(material))];
     m.pixels = sum.second;
     m.delta_e_after = sum.first / static_cast<double>(sum.second);
+    m.delta_e_after_module_gains =
+        after_module_gain[material].first / static_cast<double>(after_module_gain[material].second);
     if (before.count(material))
       m.delta_e_before = before[material].first / static_cast<double>(before[material].second);
     m.acquisitions = static_cast<int>(figures.mapped_px[material].size());

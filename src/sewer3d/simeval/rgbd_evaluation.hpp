@@ -38,6 +38,9 @@ struct MaterialColourFigures {
   int acquisitions = 0;
   double delta_e_before = 0.0;  ///< mean ΔE00, texture_before as captured vs its albedo truth
   double delta_e_after = 0.0;   ///< mean ΔE00, the stage's colour vs the pattern instant's truth
+  /// The same with one gain per module instead of one for the run (diagnostic: what is left
+  /// when the modules' levels are taken as right).
+  double delta_e_after_module_gains = 0.0;
   double misregistration_naive_px = 0.0;   ///< median over acquisitions
   double misregistration_mapped_px = 0.0;  ///< median over acquisitions
 };

@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/texture/colour.hpp"
+#include "sewer3d/texture/light_model.hpp"
 
 namespace sewer3d {
 namespace {
@@ -126,6 +128,35 @@ void SmoothQuadratic(Grid& g, int cols, int rows, int half_width) {
   pass(rows, cols, cols, 1);
 }
 
+// The mean of the histogram's values between its trim and 1 − trim quantiles (bins counted
+// fractionally at the cut; trim 0.5: the median), in bins from the first real bin; nullopt
+// when the kept part reaches a censored bin (under- or overflow). Unlike the median, the
+// trimmed mean moves continuously when a cell's frames mix two walls.
+std::optional<double> TrimmedMeanLog2(const std::uint32_t* h, int bins, std::uint64_t total,
+                                      double trim) {
+  const double lo = trim * static_cast<double>(total);
+  const double hi = std::max(lo, (1.0 - trim) * static_cast<double>(total));
+  if (hi == lo) {  // the median
+    double below = 0.0;
+    int b = 0;
+    while (below + h[b] < lo) below += h[b++];
+    if (b == 0 || b == bins - 1) return std::nullopt;
+    return b - 1 + (lo - below) / h[b];
+  }
+  double below = 0.0, mass = 0.0, sum = 0.0;
+  for (int b = 0; b < bins && below < hi; ++b) {
+    const double from = std::max(below, lo), to = std::min(below + h[b], hi);
+    if (to > from) {
+      if (b == 0 || b == bins - 1) return std::nullopt;
+      mass += to - from;
+      sum += (to - from) * (b - 0.5);  // bin b covers [b − 1, b) in bins from log2_min
+    }
+    below += h[b];
+  }
+  if (mass <= 0.0) return std::nullopt;
+  return sum / mass;
+}
+
 // Continuous cell coordinate of a pixel, split into the left cell centre and the weight of the
 // right one (outside [0, 1] beyond the outermost centres: linear extrapolation).
 std::pair<int, double> CellWeight(double pixel, int image_size, int cells) {
@@ -155,6 +186,10 @@ void ReferenceLightOptions::Check() const {
   SEWER3D_VALIDATE(min_samples_per_cell >= 1, "min_samples_per_cell",
                    "must be >= 1, got " << min_samples_per_cell);
   ValidateNotNegative("smoothing_cells", smoothing_cells);
+  SEWER3D_VALIDATE(trim_fraction > 0.0 && trim_fraction <= 0.5, "trim_fraction",
+                   "must be in (0, 0.5], got " << trim_fraction);
+  SEWER3D_VALIDATE(model_degree >= 0 && model_degree <= 6, "model_degree",
+                   "must be 0..6, got " << model_degree);
   CheckWithin("geometry.", [&] { geometry.Check(); });
 }
 
@@ -299,20 +334,21 @@ ReferenceLightResult ReferenceLightEstimator::Estimate() const {
       std::uint64_t total = 0;
       for (int b = 0; b < bins; ++b) total += h[b];
       if (total < static_cast<std::uint64_t>(options_.min_samples_per_cell)) continue;
-      // Median, interpolated linearly inside its bin; censored medians are unknown.
-      const double half = 0.5 * static_cast<double>(total);
-      double below = 0.0;
-      int b = 0;
-      while (below + h[b] < half) below += h[b++];
-      if (b == 0 || b == bins - 1) continue;
-      grid[cell] = options_.log2_min + (b - 1 + (half - below) / h[b]) / options_.bins_per_stop;
+      const auto value = TrimmedMeanLog2(h, bins, total, options_.trim_fraction);
+      if (!value) continue;
+      grid[cell] = options_.log2_min + *value / options_.bins_per_stop;
       known[cell] = true;
     }
     const auto estimated = static_cast<int>(std::count(known.begin(), known.end(), true));
     if (estimated == 0) return result;
     result.report.cells_filled += static_cast<int>(cells) - estimated;
-    FillHoles(grid, known, cols, rows);
-    if (options_.smoothing_cells > 0) SmoothQuadratic(grid, cols, rows, options_.smoothing_cells);
+    if (options_.model_degree > 0 &&
+        FitSmoothLight(grid, known, cols, rows, options_.model_degree) >= 0.0) {
+      // The smooth model fills and smooths at once.
+    } else {
+      FillHoles(grid, known, cols, rows);
+      if (options_.smoothing_cells > 0) SmoothQuadratic(grid, cols, rows, options_.smoothing_cells);
+    }
     double sum = 0.0;
     for (size_t cell = 0; cell < cells; ++cell) {
       reference.log2_bgr[cell][k] = static_cast<float>(grid[cell]);

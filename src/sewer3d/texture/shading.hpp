@@ -78,6 +78,14 @@ struct ReferenceLightOptions {
   int min_samples_per_cell = 100;  ///< fewer: the cell is filled from its neighbours
   /// Half-width (cells) of the local quadratic fit smoothing the log grid; 0 = none.
   int smoothing_cells = 3;
+  /// > 0: per channel, the cells are replaced by a robust polynomial fit of this total degree
+  /// over the image (light_model.hpp) instead of hole filling and local smoothing: the light is
+  /// smooth, while the wall content a short or mixed run leaves in the per-cell medians is not.
+  int model_degree = 4;
+  /// Per cell, the mean of log2(observed / G) between the trim and 1 − trim quantiles of its
+  /// frames' values (0.5: the median). 0.25 keeps the median's robustness to spots and pores
+  /// but moves continuously when a cell's frames mix walls of two materials.
+  double trim_fraction = 0.25;
   GeometryOptions geometry;
   void Check() const;
 };
@@ -123,12 +131,15 @@ class ReferenceLightEstimator {
 
 /// How the correction combines observation and reference.
 enum class CorrectionSpace {
-  kLab,     ///< the paper's: L* from the luminance ratio, the reference's a*/b* cast removed
-  kLinear,  ///< per-channel division in linear RGB (von Kries), for comparison
+  kLab,  ///< the paper's: L* from the luminance ratio, the reference's a*/b* cast removed
+  /// Per-channel division in linear RGB (von Kries). The default: the cast is removed as a
+  /// gain, so walls of another colour than the reference's keep their colour; the Lab form
+  /// removes it as an a*/b* offset, which tints them (docs/texture.md, measured).
+  kLinear,
 };
 
 struct CorrectionOptions {
-  CorrectionSpace space = CorrectionSpace::kLab;
+  CorrectionSpace space = CorrectionSpace::kLinear;
   /// Linear grey level to which the run's median wall is mapped, common to all modules.
   double wall_level_linear = 0.2;
   /// The colour (linear BGR) the run's median wall is given instead of that grey, the same for

@@ -1,13 +1,12 @@
 // Fusion of a synthetic registration graph with known truth: an outlier edge is rejected by the
 // χ² gate; the straightness prior keeps a straight run straight where the pairwise edges barely
 // see the tilt (plastic pipe), and lets a 30 m bend stay bent where they see it (texture).
-#include "sewer3d/register/fusion.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
+#include "sewer3d/register/fusion.hpp"
 #include "sewer3d/sim/rig.hpp"
 #include "sewer3d/testing/matchers.hpp"
 #include "sewer3d/testing/small_module.hpp"
