@@ -195,15 +195,19 @@ void WriteRegistrationGraphPicture(const std::filesystem::path& path,
     cv::putText(image, fmt::format("{}h", h == 0 ? 12 : h), {8, y + 5}, cv::FONT_HERSHEY_SIMPLEX,
                 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
-  for (const GraphPictureEdge& e : edges) {
-    if (e.a < 0 || e.b < 0 || e.a >= static_cast<int>(nodes.size()) ||
-        e.b >= static_cast<int>(nodes.size()) || e.type < 0 || e.type > 4)
-      continue;
-    const cv::Point pa = pixel(nodes[e.a]), pb = pixel(nodes[e.b]);
-    // Edges across 12 o'clock would cross the whole picture: drawn only within the strip.
-    if (std::abs(nodes[e.a].clock_h - nodes[e.b].clock_h) > 6.0) continue;
-    cv::line(image, pa, pb, e.accepted ? colours[e.type] : cv::Scalar(0, 0, 230),
-             e.accepted ? 2 : 1, cv::LINE_AA);
+  // Priors first, measurements last: the feature and projection edges stay visible where a
+  // straightness or odometry edge runs along the same row.
+  for (int type = 4; type >= 0; --type) {
+    for (const GraphPictureEdge& e : edges) {
+      if (e.type != type || e.a < 0 || e.b < 0 || e.a >= static_cast<int>(nodes.size()) ||
+          e.b >= static_cast<int>(nodes.size()))
+        continue;
+      const cv::Point pa = pixel(nodes[e.a]), pb = pixel(nodes[e.b]);
+      // Edges across 12 o'clock would cross the whole picture: drawn only within the strip.
+      if (std::abs(nodes[e.a].clock_h - nodes[e.b].clock_h) > 6.0) continue;
+      cv::line(image, pa, pb, e.accepted ? colours[e.type] : cv::Scalar(0, 0, 230),
+               e.accepted ? 2 : 1, cv::LINE_AA);
+    }
   }
   for (const GraphPictureNode& n : nodes) cv::circle(image, pixel(n), 3, cv::Scalar(0, 0, 0), -1);
   for (int t = 0; t < 5; ++t) {

@@ -25,7 +25,7 @@ const CameraIntrinsics& CameraOf(const CaptureRun& run, const Acquisition& a) {
 
 std::filesystem::path ExistingImageFile(const CaptureRun& run, const Acquisition& a,
                                         ImageKind kind) {
-  const std::filesystem::path file = AcquisitionImageFile(run, a, kind);
+  std::filesystem::path file = AcquisitionImageFile(run, a, kind);
   if (a.Image(kind) < 0)
     throw FileError(file, std::string("no ") + ImageKindName(kind) + " image in acquisitions.csv");
   return file;

@@ -89,7 +89,7 @@ ModuleGains RgbdSeamPass(const CaptureRun& run, const std::vector<Acquisition>& 
       if (ratio) seams.push_back({a, b, *ratio});
     }
   }
-  const ModuleGains gains = SolveModuleGains(modules, seams);
+  ModuleGains gains = SolveModuleGains(modules, seams);
   WriteModuleGains(file, gains);
   return gains;
 }

@@ -28,6 +28,7 @@ void CheckImage(const RgbdImage& image, const CameraModel& camera, const char* n
 Features Detect(const RgbdImage& image, const FeatureRegistrationOptions& options) {
   cv::Mat1b gray;
   cv::cvtColor(image.color_bgr, gray, cv::COLOR_BGR2GRAY);
+  // NOLINTNEXTLINE(misc-redundant-expression): NaN compares unequal to itself
   cv::Mat1b mask = (image.depth == image.depth);  // false where NaN
   const cv::Ptr<cv::SIFT> sift =
       cv::SIFT::create(options.max_keypoints, 3, options.contrast_threshold, 10.0, 1.6);

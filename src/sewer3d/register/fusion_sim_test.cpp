@@ -75,7 +75,7 @@ TEST(Fusion, TheGateRejectsAnOutlierEdgeAndKeepsTheOthers) {
   }
   const size_t outlier = 10;
   edges[outlier].a_from_b.translation += Eigen::Vector3d(3.0, -2.0, 4.0);  // a wrong match
-  for (RegistrationEdge e : OdometryEdges(nodes, OneModuleRig(), PriorEdgeOptions{}))
+  for (const RegistrationEdge& e : OdometryEdges(nodes, OneModuleRig(), PriorEdgeOptions{}))
     edges.push_back(e);
 
   const FusionResult result = FuseRegistration(nodes, edges, FusionOptions{});
@@ -114,7 +114,7 @@ double EndLateralError(bool straightness, std::uint32_t seed) {
   PriorEdgeOptions priors;
   priors.rig = false;
   priors.straightness = straightness;
-  for (RegistrationEdge e : PriorEdges(nodes, OneModuleRig(), priors)) edges.push_back(e);
+  for (const RegistrationEdge& e : PriorEdges(nodes, OneModuleRig(), priors)) edges.push_back(e);
   FusionOptions options;
   options.certify = false;
   const FusionResult result = FuseRegistration(nodes, edges, options);
@@ -155,7 +155,7 @@ TEST(Fusion, AThirtyMetreBendStaysBent) {
   std::vector<RegistrationEdge> edges;
   for (int i = 0; i + 1 < kNodes; ++i)
     edges.push_back(Measured(i, i + 1, truth, sigma, RegistrationEdgeType::kFeature, rng));
-  for (RegistrationEdge e : PriorEdges(nodes, OneModuleRig(), PriorEdgeOptions{}))
+  for (const RegistrationEdge& e : PriorEdges(nodes, OneModuleRig(), PriorEdgeOptions{}))
     edges.push_back(e);
   const FusionResult result = FuseRegistration(nodes, edges, FusionOptions{});
   ASSERT_TRUE(result.report.usable);

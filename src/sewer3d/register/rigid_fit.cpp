@@ -57,7 +57,7 @@ std::optional<Rigid3d> UmeyamaFit(const std::vector<Eigen::Vector3d>& src,
     cov += w * (dst[i] - c_dst) * (src[i] - c_src).transpose();
   }
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Vector3d s = svd.singularValues();
+  const Eigen::Vector3d& s = svd.singularValues();
   if (!(s(1) > 1e-12 * std::max(1.0, s(0)))) return std::nullopt;  // collinear points
   Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
   if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0) d(2, 2) = -1.0;

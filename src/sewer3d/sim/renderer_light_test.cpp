@@ -107,7 +107,8 @@ void CompareTruthAlbedo(double distance_mm, double tilt_deg, Compare compare) {
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
       int hits = 0;
       for (int k = 0; k < n * n; ++k) {
-        const Eigen::Vector2d uv(u - 0.5 + (k % n + 0.5) / n, v - 0.5 + (k / n + 0.5) / n);
+        const int row = k / n;  // the sample's row in the pixel
+        const Eigen::Vector2d uv(u - 0.5 + (k % n + 0.5) / n, v - 0.5 + (row + 0.5) / n);
         const auto xy = camera.Unproject(uv);
         const auto hit = surface.Intersect(Eigen::Vector3d::Zero(), {xy->x(), xy->y(), 1.0});
         if (!hit) continue;

@@ -146,8 +146,8 @@ cv::Mat1f RedOverBlue(const cv::Mat& image_bgr, const cv::Mat& albedo_bgr16) {
   cv::Mat1f ratio(image_bgr.size(), NAN);
   for (int v = 0; v < image_bgr.rows; ++v) {
     for (int u = 0; u < image_bgr.cols; ++u) {
-      const cv::Vec3w a = albedo_bgr16.at<cv::Vec3w>(v, u);
-      const cv::Vec3b p = image_bgr.at<cv::Vec3b>(v, u);
+      const cv::Vec3w& a = albedo_bgr16.at<cv::Vec3w>(v, u);
+      const cv::Vec3b& p = image_bgr.at<cv::Vec3b>(v, u);
       if (std::min(p[0], p[2]) < 40 || std::max(p[0], p[2]) > 250 || std::min(a[0], a[2]) == 0)
         continue;
       ratio(v, u) = static_cast<float>((double(p[2]) / a[2]) / (double(p[0]) / a[0]));

@@ -67,7 +67,7 @@ cv::Mat1f PipePriorDepth(const cv::Mat2f& normalised, const Rigid3d& carrier_fro
   cv::parallel_for_(cv::Range(0, depth.rows), [&](const cv::Range& rows) {
     for (int v = rows.start; v < rows.end; ++v) {
       for (int u = 0; u < depth.cols; ++u) {
-        const cv::Vec2f xy = normalised(v, u);
+        const cv::Vec2f& xy = normalised(v, u);
         if (!std::isfinite(xy[0])) continue;
         const Eigen::Vector3d d = rotation * Eigen::Vector3d(xy[0], xy[1], 1.0);
         const double a = d.x() * d.x() + d.y() * d.y();

@@ -44,7 +44,8 @@ std::optional<SeamRatio> MeasureSeamRatio(const cv::Mat3f& colour_a, const cv::M
       const int vb = static_cast<int>(std::lround(px->y()));
       if (ub < 0 || vb < 0 || ub >= depth_b.cols || vb >= depth_b.rows) continue;
       if (!(std::abs(depth_b(vb, ub) - p_b.z()) < options.max_depth_step_mm)) continue;
-      const cv::Vec3f a = colour_a(v, u), b = colour_b(vb, ub);
+      const cv::Vec3f& a = colour_a(v, u);
+      const cv::Vec3f& b = colour_b(vb, ub);
       bool bright = true;
       for (int c = 0; c < 3; ++c)
         bright = bright && a[c] > options.min_linear && b[c] > options.min_linear;

@@ -34,7 +34,7 @@ struct SyntheticModule {
     const double half_diag = 0.5 * std::hypot(out.cols, out.rows);
     for (int r = 0; r < out.rows; ++r) {
       for (int c = 0; c < out.cols; ++c) {
-        const cv::Vec2f xy = normalised(r, c);
+        const cv::Vec2f& xy = normalised(r, c);
         const double cos_theta = 1.0 / std::sqrt(1.0 + xy.dot(xy));
         const double rho2 =
             std::pow(std::hypot(c - 0.5 * out.cols, r - 0.5 * out.rows) / half_diag, 2);
@@ -352,7 +352,7 @@ TEST_F(ShadingTest, CorrectionWithTheTrueLightIsExactInLinearAndCloseInLab) {
   cv::Mat3f observed(light.size());
   for (int r = 0; r < light.rows; ++r) {
     for (int c = 0; c < light.cols; ++c) {
-      const cv::Vec3f l = light(r, c);
+      const cv::Vec3f& l = light(r, c);
       reference.log2_bgr.emplace_back(std::log2(l[0]), std::log2(l[1]), std::log2(l[2]));
       observed(r, c) = albedo(r, c).mul(l) * wall.g(r, c);
     }

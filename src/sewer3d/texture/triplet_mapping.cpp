@@ -9,6 +9,7 @@
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
+#include <tuple>
 #include <vector>
 
 #include "sewer3d/core/check.hpp"
@@ -95,8 +96,23 @@ std::optional<Rigid3d> MotionFromFeatures(const cv::Mat3f& before, const cv::Mat
       cv::AKAZE::create(cv::AKAZE::DESCRIPTOR_MLDB, 0, 3, static_cast<float>(o.akaze_threshold));
   std::vector<cv::KeyPoint> kp_b, kp_a;
   cv::Mat desc_b, desc_a;
-  akaze->detectAndCompute(grey_b, cv::noArray(), kp_b, desc_b);
-  akaze->detectAndCompute(grey_a, cv::noArray(), kp_a, desc_a);
+  // Wide images are searched at a reduced size (the motion needs hundreds of features, not
+  // tens of thousands); the keypoints are scaled back to full-size pixels.
+  const double shrink = grey_b.cols > o.max_detect_width_px
+                            ? static_cast<double>(o.max_detect_width_px) / grey_b.cols
+                            : 1.0;
+  for (auto [grey, kp, desc] : {std::tie(grey_b, kp_b, desc_b), std::tie(grey_a, kp_a, desc_a)}) {
+    cv::Mat1b small = grey;
+    if (shrink < 1.0) cv::resize(grey, small, cv::Size(), shrink, shrink, cv::INTER_AREA);
+    akaze->detectAndCompute(small, cv::noArray(), kp, desc);
+    if (shrink < 1.0) {
+      // Pixel centres at integers: x_full = (x_small + 0.5) / shrink − 0.5.
+      for (cv::KeyPoint& k : kp) {
+        k.pt.x = static_cast<float>((k.pt.x + 0.5) / shrink - 0.5);
+        k.pt.y = static_cast<float>((k.pt.y + 0.5) / shrink - 0.5);
+      }
+    }
+  }
   report.features_before = static_cast<int>(kp_b.size());
   report.features_after = static_cast<int>(kp_a.size());
   const std::vector<cv::DMatch> matches = MatchFeatures(desc_b, desc_a, o.ratio);
@@ -183,6 +199,8 @@ void TripletMappingOptions::Check() const {
   ValidatePositive("ransac_px", ransac_px);
   SEWER3D_VALIDATE(min_inliers >= 6, "min_inliers", "must be >= 6, got " << min_inliers);
   ValidatePositive("max_motion_mm", max_motion_mm);
+  SEWER3D_VALIDATE(max_detect_width_px >= 64, "max_detect_width_px",
+                   "must be >= 64, got " << max_detect_width_px);
 }
 
 Rigid3d InterpolatePose(const Rigid3d& start, const Rigid3d& end, double s) {
