@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <filesystem>
+#include <string>
 
 #include "sewer3d/cli/evaluate_commands.hpp"
 #include "sewer3d/io/atomic_file.hpp"
@@ -31,9 +32,13 @@ int RunEvaluateRgbd(const std::string& run_folder, const std::string& workspace,
   fmt::print("{:<16} {:>10} {:>10} {:>14} {:>10} {:>10}\n", "material", "dE before", "dE after",
              "(gain/module)", "naive px", "mapped px");
   for (const auto& [name, m] : e.materials) {
-    fmt::print("{:<16} {:>10.2f} {:>10.2f} {:>14.2f} {:>10.2f} {:>10.2f}\n", name, m.delta_e_before,
-               m.delta_e_after, m.delta_e_after_module_gains, m.misregistration_naive_px,
-               m.misregistration_mapped_px);
+    // Misregistration is measured on acquisitions where the material covers most of the view.
+    const auto px = [&](double v) {
+      return m.acquisitions > 0 ? fmt::format("{:.2f}", v) : std::string("-");
+    };
+    fmt::print("{:<16} {:>10.2f} {:>10.2f} {:>14.2f} {:>10} {:>10}\n", name, m.delta_e_before,
+               m.delta_e_after, m.delta_e_after_module_gains, px(m.misregistration_naive_px),
+               px(m.misregistration_mapped_px));
   }
   fmt::print("seams: {} neighbour pairs, {} wall points: dE before {:.2f}, after {:.2f}\n",
              e.seams.pairs, e.seams.points, e.seams.delta_e_before, e.seams.delta_e_after);
