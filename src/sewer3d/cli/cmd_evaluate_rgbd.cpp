@@ -33,8 +33,9 @@ int RunEvaluateRgbd(const std::string& run_folder, const std::string& workspace,
              "(gain/module)", "naive px", "mapped px");
   for (const auto& [name, m] : e.materials) {
     // Misregistration is measured on acquisitions where the material covers most of the view.
-    const auto px = [&](double v) {
-      return m.acquisitions > 0 ? fmt::format("{:.2f}", v) : std::string("-");
+    const bool measured = m.acquisitions > 0;
+    const auto px = [measured](double v) {
+      return measured ? fmt::format("{:.2f}", v) : std::string("-");
     };
     fmt::print("{:<16} {:>10.2f} {:>10.2f} {:>14.2f} {:>10} {:>10}\n", name, m.delta_e_before,
                m.delta_e_after, m.delta_e_after_module_gains, px(m.misregistration_naive_px),
