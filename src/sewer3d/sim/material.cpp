@@ -33,17 +33,9 @@ double ValueNoise(std::uint64_t seed, double x, double y) {
   return (a * (1 - u) + b * u) * (1 - v) + (c * (1 - u) + d * u) * v;
 }
 
-// Fractal sum of octaves, result roughly in [0, 1].
+// Fractal sum of this file's value noise (the geometry's SmoothNoise keeps its values).
 double Fbm(std::uint64_t seed, double x, double y, int octaves) {
-  double sum = 0.0, amplitude = 0.5, norm = 0.0;
-  for (int o = 0; o < octaves; ++o) {
-    sum += amplitude * ValueNoise(seed + 1000 * o, x, y);
-    norm += amplitude;
-    x *= 2.03;
-    y *= 2.03;
-    amplitude *= 0.5;
-  }
-  return sum / norm;
+  return material_noise::FractalSum(ValueNoise, seed, x, y, octaves);
 }
 
 }  // namespace

@@ -41,17 +41,24 @@ inline double ValueNoise(std::uint64_t seed, double x, double y) {
   return (a * (1 - u) + b * u) * (1 - v) + (c * (1 - u) + d * u) * v;
 }
 
-/// Fractal sum of `octaves` value noises (lacunarity 2.03, gain 0.5), roughly in [0, 1].
-inline double Fbm(std::uint64_t seed, double x, double y, int octaves) {
+/// Fractal sum of `octaves` octaves of `noise(seed, x, y)` ∈ [0, 1] (lacunarity 2.03, gain
+/// 0.5, each octave its own seed), roughly in [0, 1].
+template <typename Noise>
+double FractalSum(Noise noise, std::uint64_t seed, double x, double y, int octaves) {
   double sum = 0.0, amplitude = 0.5, norm = 0.0;
   for (int o = 0; o < octaves; ++o) {
-    sum += amplitude * ValueNoise(seed + 1000 * o, x, y);
+    sum += amplitude * noise(seed + 1000 * o, x, y);
     norm += amplitude;
     x *= 2.03;
     y *= 2.03;
     amplitude *= 0.5;
   }
   return sum / norm;
+}
+
+/// FractalSum of ValueNoise.
+inline double Fbm(std::uint64_t seed, double x, double y, int octaves) {
+  return FractalSum(ValueNoise, seed, x, y, octaves);
 }
 
 /// The Voronoi cell of a jittered grid (one site per unit cell) that contains a point.

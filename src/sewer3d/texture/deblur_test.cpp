@@ -10,19 +10,15 @@
 #include <opencv2/core.hpp>
 #include <random>
 
+#include "sewer3d/testing/pinhole.hpp"
+
 namespace sewer3d {
 namespace {
 
 constexpr double kFocalPx = 500.0, kDepthMm = 150.0, kExposureMs = 4.0;
 
 CameraModel Pinhole(int width, int height) {
-  CameraIntrinsics in;
-  in.width = width;
-  in.height = height;
-  in.fx = in.fy = kFocalPx;
-  in.cx = 0.5 * (width - 1);
-  in.cy = 0.5 * (height - 1);
-  return CameraModel(in);
+  return testing::PinholeCamera(width, height, kFocalPx);
 }
 
 // Camera velocity (along camera y) giving a blur of `length_px` on the plane.

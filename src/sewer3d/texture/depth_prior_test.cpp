@@ -8,18 +8,12 @@
 #include <limits>
 #include <opencv2/core.hpp>
 
+#include "sewer3d/testing/pinhole.hpp"
+
 namespace sewer3d {
 namespace {
 
-CameraModel Pinhole(int width, int height) {
-  CameraIntrinsics in;
-  in.width = width;
-  in.height = height;
-  in.fx = in.fy = 500.0;
-  in.cx = 0.5 * (width - 1);
-  in.cy = 0.5 * (height - 1);
-  return CameraModel(in);
-}
+CameraModel Pinhole(int width, int height) { return testing::PinholeCamera(width, height, 500.0); }
 
 // A camera 40 mm above the carrier axis looking up (12 o'clock), y along the axis: a DN300
 // wall is 110 mm away on the optical axis, and every prior point lies on the circle.

@@ -9,18 +9,12 @@
 #include <limits>
 #include <random>
 
+#include "sewer3d/testing/pinhole.hpp"
+
 namespace sewer3d {
 namespace {
 
-CameraModel Pinhole(int width, int height) {
-  CameraIntrinsics in;
-  in.width = width;
-  in.height = height;
-  in.fx = in.fy = 200.0;
-  in.cx = 0.5 * (width - 1);
-  in.cy = 0.5 * (height - 1);
-  return CameraModel(in);
-}
+CameraModel Pinhole(int width, int height) { return testing::PinholeCamera(width, height, 200.0); }
 
 // Six modules in a ring with known gains (Σ log = 0): seams measured with 1 % noise give the
 // gains back within the noise (≈ 1 % / √2 per seam over a ring of six).
