@@ -9,6 +9,7 @@
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/texture/colour.hpp"
 #include "sewer3d/texture/light_model.hpp"
+#include "sewer3d/texture/reference_grid.hpp"
 
 namespace sewer3d {
 namespace {
@@ -58,103 +59,6 @@ void ComputeGeometry(const cv::Mat1f& depth_mm, const cv::Mat2f& normalised,
       falloff(r, c) = static_cast<float>(d_ref2 / d2);
     }
   }
-}
-
-// log2 grid values, one channel: cell (i, j) at index j * cols + i.
-using Grid = std::vector<double>;
-
-// Harmonic fill of the cells that have no estimate (Gauss–Seidel on the 4-neighbour mean).
-void FillHoles(Grid& g, const std::vector<bool>& known, int cols, int rows) {
-  double sum = 0.0;
-  int n = 0;
-  for (size_t i = 0; i < g.size(); ++i) {
-    if (known[i]) sum += g[i], ++n;
-  }
-  for (size_t i = 0; i < g.size(); ++i) {
-    if (!known[i]) g[i] = sum / n;
-  }
-  if (n == static_cast<int>(g.size())) return;
-  for (int iteration = 0; iteration < 10000; ++iteration) {
-    double change = 0.0;
-    for (int j = 0; j < rows; ++j) {
-      for (int i = 0; i < cols; ++i) {
-        if (known[j * cols + i]) continue;
-        double s = 0.0;
-        int m = 0;
-        if (i > 0) s += g[j * cols + i - 1], ++m;
-        if (i + 1 < cols) s += g[j * cols + i + 1], ++m;
-        if (j > 0) s += g[(j - 1) * cols + i], ++m;
-        if (j + 1 < rows) s += g[(j + 1) * cols + i], ++m;
-        if (m == 0) continue;
-        change = std::max(change, std::abs(s / m - g[j * cols + i]));
-        g[j * cols + i] = s / m;
-      }
-    }
-    if (change < 1e-6) break;
-  }
-}
-
-// Local quadratic regression (Savitzky–Golay) along rows, then along columns: each value is
-// replaced by the quadratic least-squares fit over the 2h + 1 nearest cells (a window shifted
-// inwards at the borders), so that fields quadratic in each coordinate — vignetting, emission
-// fall-off — pass unbiased while cell noise is averaged.
-void SmoothQuadratic(Grid& g, int cols, int rows, int half_width) {
-  const auto pass = [&](int n, int lines, int stride, int line_stride) {
-    const int window = std::min(n, 2 * half_width + 1);
-    if (window < 2) return;
-    const int degree = std::min(2, window - 1);
-    // Weights of the fitted value at k (the constant term of the fit centred on k).
-    std::vector<int> first(n);
-    std::vector<Eigen::VectorXd> weights(n);
-    for (int k = 0; k < n; ++k) {
-      first[k] = std::clamp(k - half_width, 0, n - window);
-      Eigen::MatrixXd a(window, degree + 1);
-      for (int i = 0; i < window; ++i) {
-        for (int d = 0; d <= degree; ++d) a(i, d) = std::pow(first[k] + i - k, d);
-      }
-      weights[k] = (a.transpose() * a).ldlt().solve(a.transpose()).row(0).transpose();
-    }
-    std::vector<double> out(n);
-    for (int line = 0; line < lines; ++line) {
-      double* base = g.data() + static_cast<std::ptrdiff_t>(line) * line_stride;
-      for (int k = 0; k < n; ++k) {
-        out[k] = 0.0;
-        for (int i = 0; i < window; ++i) out[k] += weights[k][i] * base[(first[k] + i) * stride];
-      }
-      for (int k = 0; k < n; ++k) base[k * stride] = out[k];
-    }
-  };
-  pass(cols, rows, 1, cols);
-  pass(rows, cols, cols, 1);
-}
-
-// The mean of the histogram's values between its trim and 1 − trim quantiles (bins counted
-// fractionally at the cut; trim 0.5: the median), in bins from the first real bin; nullopt
-// when the kept part reaches a censored bin (under- or overflow). Unlike the median, the
-// trimmed mean moves continuously when a cell's frames mix two walls.
-std::optional<double> TrimmedMeanLog2(const std::uint32_t* h, int bins, std::uint64_t total,
-                                      double trim) {
-  const double lo = trim * static_cast<double>(total);
-  const double hi = std::max(lo, (1.0 - trim) * static_cast<double>(total));
-  if (hi == lo) {  // the median
-    double below = 0.0;
-    int b = 0;
-    while (below + h[b] < lo) below += h[b++];
-    if (b == 0 || b == bins - 1) return std::nullopt;
-    return b - 1 + (lo - below) / h[b];
-  }
-  double below = 0.0, mass = 0.0, sum = 0.0;
-  for (int b = 0; b < bins && below < hi; ++b) {
-    const double from = std::max(below, lo), to = std::min(below + h[b], hi);
-    if (to > from) {
-      if (b == 0 || b == bins - 1) return std::nullopt;
-      mass += to - from;
-      sum += (to - from) * (b - 0.5);  // bin b covers [b − 1, b) in bins from log2_min
-    }
-    below += h[b];
-  }
-  if (mass <= 0.0) return std::nullopt;
-  return sum / mass;
 }
 
 // Continuous cell coordinate of a pixel, split into the left cell centre and the weight of the
@@ -327,14 +231,14 @@ ReferenceLightResult ReferenceLightEstimator::Estimate() const {
   reference.geometry = options_.geometry;
   reference.log2_bgr.assign(cells, cv::Vec3f());
   for (int k = 0; k < 3; ++k) {
-    Grid grid(cells, 0.0);
+    reference_grid::Grid grid(cells, 0.0);
     std::vector<bool> known(cells, false);
     for (size_t cell = 0; cell < cells; ++cell) {
       const std::uint32_t* h = histograms_.data() + (cell * 3 + k) * bins;
       std::uint64_t total = 0;
       for (int b = 0; b < bins; ++b) total += h[b];
       if (total < static_cast<std::uint64_t>(options_.min_samples_per_cell)) continue;
-      const auto value = TrimmedMeanLog2(h, bins, total, options_.trim_fraction);
+      const auto value = reference_grid::TrimmedMeanLog2(h, bins, total, options_.trim_fraction);
       if (!value) continue;
       grid[cell] = options_.log2_min + *value / options_.bins_per_stop;
       known[cell] = true;
@@ -346,8 +250,9 @@ ReferenceLightResult ReferenceLightEstimator::Estimate() const {
         FitSmoothLight(grid, known, cols, rows, options_.model_degree) >= 0.0) {
       // The smooth model fills and smooths at once.
     } else {
-      FillHoles(grid, known, cols, rows);
-      if (options_.smoothing_cells > 0) SmoothQuadratic(grid, cols, rows, options_.smoothing_cells);
+      reference_grid::FillHoles(grid, known, cols, rows);
+      if (options_.smoothing_cells > 0)
+        reference_grid::SmoothQuadratic(grid, cols, rows, options_.smoothing_cells);
     }
     double sum = 0.0;
     for (size_t cell = 0; cell < cells; ++cell) {
