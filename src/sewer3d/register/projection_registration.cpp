@@ -139,7 +139,11 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
   for (int it = 0; it < options.max_iterations && !converged; ++it) {
     s = Associate(a, b, pose, gate);
     out.report.iterations = it + 1;
-    if (static_cast<int>(s.size()) < options.min_correspondences) return out;
+    if (static_cast<int>(s.size()) < options.min_correspondences) {
+      out.correspondences = out.report.correspondences = static_cast<int>(s.size());
+      out.report.gate_mm = gate;
+      return out;
+    }
     const double sigma = std::max(RobustSigma(s), 1e-6);
     const Normal n = Accumulate(s, options.huber_k * sigma);
     const Vector6d delta = ObservableStep(n, length_mm, options.freeze_ratio);
