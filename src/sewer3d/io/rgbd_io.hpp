@@ -3,8 +3,8 @@
 /// The files of one RGB-D acquisition in a processing workspace (DESIGN.md contract
 /// "processing workspace"; docs/rgbd.md): `WS/rgbd/m<k>/<counter>_color.png`, `_depth.tiff`,
 /// `_depth_preview.png`, `_cloud.ply`, `_geometry.json` and `_report.json`, each written
-/// atomically. The stage writes them in two passes: geometry (depth map, preview, cloud with
-/// the raw texture's colours, `_geometry.json` last) and colour (colour image, the cloud
+/// atomically. The stage writes them in two passes: geometry (depth map, preview, cloud without
+/// colours, `_geometry.json` last) and colour (colour image, the cloud
 /// recoloured, `_report.json` last). An acquisition whose report exists is complete; one whose
 /// geometry file exists has its depth map and cloud. Errors are FileError.
 

@@ -70,4 +70,10 @@ cv::Mat3b ReadTextureImage(const CaptureRun& run, const Acquisition& a, ImageKin
   return bgr;
 }
 
+cv::Mat3f ReadLinearTexture(const CaptureRun& run, const Acquisition& a, ImageKind kind) {
+  cv::Mat3f linear;
+  ReadTextureImage(run, a, kind).convertTo(linear, CV_32F, 1.0 / 255);
+  return linear;
+}
+
 }  // namespace sewer3d

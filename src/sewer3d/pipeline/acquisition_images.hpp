@@ -24,4 +24,8 @@ cv::Mat ReadPatternImage(const CaptureRun& run, const Acquisition& a);
 /// colour PNGs as stored, raw mosaics (run.json `color_filter` "RGGB") demosaiced.
 cv::Mat3b ReadTextureImage(const CaptureRun& run, const Acquisition& a, ImageKind kind);
 
+/// The same as linear float BGR in [0, 1]: a run's texture values are linear sensor values
+/// (docs/formats.md), so only scaled.
+cv::Mat3f ReadLinearTexture(const CaptureRun& run, const Acquisition& a, ImageKind kind);
+
 }  // namespace sewer3d

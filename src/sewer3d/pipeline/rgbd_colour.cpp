@@ -24,13 +24,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 
-// The run's texture images hold linear sensor values (docs/formats.md).
-cv::Mat3f LinearTexture(const CaptureRun& run, const Acquisition& a, ImageKind kind) {
-  cv::Mat3f linear;
-  ReadTextureImage(run, a, kind).convertTo(linear, CV_32F, 1.0 / 255);
-  return linear;
-}
-
 // The wall's diameter seen by this frame: twice the median distance of its points from the
 // carrier axis (carrier z); the nominal diameter when it has too few points.
 double WallDiameterMm(const std::vector<Eigen::Vector3d>& points,
@@ -182,8 +175,8 @@ RgbdAcquisitionResult RgbdColourPass(const CaptureRun& run, const Acquisition& a
   const auto start = Clock::now();
   try {
     const RgbdGeometry geometry = ReadRgbdGeometry(files);
-    const cv::Mat3f before = LinearTexture(run, a, ImageKind::kTextureBefore);
-    const cv::Mat3f after = LinearTexture(run, a, ImageKind::kTextureAfter);
+    const cv::Mat3f before = ReadLinearTexture(run, a, ImageKind::kTextureBefore);
+    const cv::Mat3f after = ReadLinearTexture(run, a, ImageKind::kTextureAfter);
     const RigModule& m = run.rig.modules.at(a.module);
     const CameraModel camera(m.module.camera);
     const double diameter =

@@ -51,9 +51,9 @@ RgbdAcquisitionResult RgbdGeometryPass(const CaptureRun& run, const Acquisition&
   const auto start = Clock::now();
   const std::filesystem::path pattern_file = AcquisitionImageFile(run, a, ImageKind::kPattern);
   try {
-    const cv::Mat pattern = ReadPatternImage(run, a);
-    const cv::Mat3b texture = ReadTextureImage(run, a, ImageKind::kTextureBefore);
-    const FrameReconstruction frame = reconstructors.For(a.module).Reconstruct(pattern, &texture);
+    // No texture here: the colour pass colours the cloud from the corrected image.
+    const FrameReconstruction frame =
+        reconstructors.For(a.module).Reconstruct(ReadPatternImage(run, a));
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     const nlohmann::json extra = {{"module", a.module},
                                   {"counter", a.counter},

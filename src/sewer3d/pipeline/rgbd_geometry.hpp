@@ -2,8 +2,7 @@
 /// \file
 /// The RGB-D stage's geometry pass over one acquisition: decode and triangulate the pattern
 /// image with its module's FrameReconstructor and write the depth map, its preview, the cloud
-/// (coloured from texture_before as captured; the colour pass recolours it) and the geometry
-/// report (io/rgbd_io.hpp).
+/// (without colour: the colour pass colours it) and the geometry report (io/rgbd_io.hpp).
 
 #include <filesystem>
 #include <memory>

@@ -67,8 +67,7 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
   for (int k = 0; k < n; ++k) {
     const Acquisition& a = *usable[(2 * k + 1) * usable.size() / (2 * n)];
     try {
-      cv::Mat3f linear;
-      ReadTextureImage(run, a, ImageKind::kTextureBefore).convertTo(linear, CV_32F, 1.0 / 255);
+      const cv::Mat3f linear = ReadLinearTexture(run, a, ImageKind::kTextureBefore);
       const RgbdGeometry geometry =
           ReadRgbdGeometry(RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter));
       estimator.Add(linear, geometry.depth_mm);

@@ -35,8 +35,7 @@ std::optional<SeamImage> ReadSeamImage(const CaptureRun& run, const Acquisition&
   try {
     SeamImage s;
     s.depth = ReadRgbdGeometry(files).depth_mm;
-    cv::Mat3f linear;
-    ReadTextureImage(run, a, ImageKind::kTextureBefore).convertTo(linear, CV_32F, 1.0 / 255);
+    const cv::Mat3f linear = ReadLinearTexture(run, a, ImageKind::kTextureBefore);
     // Colour is compared over regions: 9 px of box mean hide the ~0.5 mm between texture and
     // pattern instants and the fine texture.
     cv::blur(corrector.Correct(linear, s.depth).linear_bgr, s.colour, cv::Size(9, 9));

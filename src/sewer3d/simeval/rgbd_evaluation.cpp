@@ -79,8 +79,7 @@ struct Images {
 Images ReadImages(const CaptureRun& run, const fs::path& rgbd, const Acquisition& a) {
   const RgbdFiles files = RgbdAcquisitionFiles(rgbd, a.module, a.counter);
   Images im;
-  // The run's textures hold linear sensor values (docs/formats.md).
-  ReadTextureImage(run, a, ImageKind::kTextureBefore).convertTo(im.captured, CV_32F, 1.0 / 255);
+  im.captured = ReadLinearTexture(run, a, ImageKind::kTextureBefore);
   im.colour = LinearFromSrgb8(ReadImage(files.color, cv::IMREAD_COLOR));
   im.depth = ReadImage(files.depth, cv::IMREAD_UNCHANGED);
   return im;
