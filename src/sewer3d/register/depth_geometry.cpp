@@ -1,6 +1,7 @@
 #include "sewer3d/register/depth_geometry.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -29,6 +30,31 @@ bool Corners(int rows, int cols, const Eigen::Vector2d& pixel, int* u0, int* v0,
   return true;
 }
 
+// The mean of each smooth_px × smooth_px box that holds no NaN; NaN elsewhere. (OpenCV's box
+// filter keeps running sums, so one NaN would poison the rest of its row and column.)
+cv::Mat3f BoxMeanOfFullBoxes(const cv::Mat3f& points, int smooth_px) {
+  cv::Mat3f zeroed(points.size(), cv::Vec3f(0, 0, 0));
+  cv::Mat1f valid(points.size(), 0.0f);
+  for (int v = 0; v < points.rows; ++v) {
+    for (int u = 0; u < points.cols; ++u) {
+      if (!Finite(points(v, u))) continue;
+      zeroed(v, u) = points(v, u);
+      valid(v, u) = 1.0f;
+    }
+  }
+  const cv::Size box(smooth_px, smooth_px);
+  cv::Mat3f sums;
+  cv::Mat1f counts;
+  cv::boxFilter(zeroed, sums, -1, box, cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+  cv::boxFilter(valid, counts, -1, box, cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+  const float full = static_cast<float>(smooth_px * smooth_px) - 0.5f;
+  cv::Mat3f out(points.size(), cv::Vec3f(kNaN, kNaN, kNaN));
+  for (int v = 0; v < points.rows; ++v)
+    for (int u = 0; u < points.cols; ++u)
+      if (counts(v, u) > full) out(v, u) = sums(v, u) / counts(v, u);
+  return out;
+}
+
 }  // namespace
 
 cv::Mat3f PointMap(const cv::Mat1f& depth, const CameraModel& camera) {
@@ -51,11 +77,7 @@ cv::Mat3f PointMap(const cv::Mat1f& depth, const CameraModel& camera) {
 
 cv::Mat3f NormalMap(const cv::Mat3f& points_in, int step_px, int smooth_px, double max_step_mm) {
   SEWER3D_CHECK(step_px >= 1 && smooth_px >= 1);
-  cv::Mat3f points = points_in;
-  if (smooth_px > 1) {  // NaN spreads over the box: no normal next to a hole
-    cv::boxFilter(points_in, points, -1, cv::Size(smooth_px, smooth_px), cv::Point(-1, -1), true,
-                  cv::BORDER_REPLICATE);
-  }
+  const cv::Mat3f points = smooth_px > 1 ? BoxMeanOfFullBoxes(points_in, smooth_px) : points_in;
   cv::Mat3f out(points.size(), cv::Vec3f(kNaN, kNaN, kNaN));
   for (int v = step_px; v + step_px < points.rows; ++v) {
     for (int u = step_px; u + step_px < points.cols; ++u) {
@@ -78,6 +100,28 @@ cv::Mat3f NormalMap(const cv::Mat3f& points_in, int step_px, int smooth_px, doub
     }
   }
   return out;
+}
+
+double NormalNoiseVariance(const cv::Mat3f& normals, int offset_px) {
+  SEWER3D_CHECK(offset_px >= 1);
+  const int k = offset_px;
+  std::vector<double> d2;
+  for (int v = k; v + k < normals.rows; v += k) {
+    for (int u = k; u + k < normals.cols; u += k) {
+      const cv::Vec3f* n[5] = {&normals(v, u), &normals(v, u - k), &normals(v, u + k),
+                               &normals(v - k, u), &normals(v + k, u)};
+      if (!std::all_of(std::begin(n), std::end(n), [](const cv::Vec3f* x) { return Finite(*x); }))
+        continue;
+      const Eigen::Vector3d mean =
+          0.25 * (ToEigen(*n[1]) + ToEigen(*n[2]) + ToEigen(*n[3]) + ToEigen(*n[4]));
+      d2.push_back((ToEigen(*n[0]) - mean).squaredNorm());
+    }
+  }
+  if (d2.size() < 10) return 0.0;
+  std::nth_element(d2.begin(), d2.begin() + static_cast<std::ptrdiff_t>(d2.size() / 2), d2.end());
+  // d = e₀ − mean(e₁..e₄) has per-component variance σ² (1 + 1/4); |d|² over the two tangential
+  // components is exponential with mean 2 · 1.25 σ² and median 2 · 1.25 σ² · ln 2.
+  return d2[d2.size() / 2] / (2.0 * 1.25 * std::log(2.0));
 }
 
 std::optional<double> SampleBilinear(const cv::Mat1f& map, const Eigen::Vector2d& pixel,

@@ -26,6 +26,13 @@ cv::Mat3f PointMap(const cv::Mat1f& depth, const CameraModel& camera);
 /// (a depth discontinuity).
 cv::Mat3f NormalMap(const cv::Mat3f& points, int step_px, int smooth_px, double max_step_mm);
 
+/// The variance (rad², per tangent direction) of the noise in a normal map: each normal is
+/// compared with the mean of its four neighbours `offset_px` away along rows and columns (so a
+/// smooth surface's curvature cancels to first order) and the median squared difference is
+/// turned into the variance of one tangential component, assuming Gaussian noise independent
+/// between normals `offset_px` apart. 0 when fewer than 10 normals can be compared.
+double NormalNoiseVariance(const cv::Mat3f& normals, int offset_px);
+
 /// Bilinear interpolation of a one-channel map at a pixel position (pixel centres at integer
 /// coordinates); nullopt outside the image, where one of the four pixels is NaN, or where they
 /// spread over more than max_spread (a step between them).

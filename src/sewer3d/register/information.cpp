@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
 namespace {
@@ -62,6 +63,32 @@ double RelativeInformationAlong(const InformationSpectrum& spectrum, const Matri
   const Vector6d v = s.cwiseProduct(unit_scaled);  // back in (mm, rad)
   const double largest = spectrum.eigenvalues(5);
   return largest > 0.0 ? v.dot(information * v) / largest : 0.0;
+}
+
+Matrix6d WithCovarianceFloor(const Matrix6d& information, double sigma_t_mm, double sigma_r_deg) {
+  if (sigma_t_mm <= 0.0 && sigma_r_deg <= 0.0) return information;
+  // Ω = S⁻¹ V Λ Vᵀ S⁻¹ with S the arc metric (any L: the range does not depend on it, only
+  // the threshold's sense of "small" does). y = Vᵀ S⁻¹ δ has covariance Λ⁻¹ on the kept
+  // eigenvectors; the floor F on δ adds Vᵀ S⁻¹ F S⁻¹ V there.
+  constexpr double kLengthMm = 100.0;
+  const Vector6d s = Scales(kLengthMm);
+  const Matrix6d scaled = s.asDiagonal() * information * s.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(0.5 * (scaled + scaled.transpose()));
+  const double largest = eig.eigenvalues()(5);
+  if (!(largest > 0.0)) return Matrix6d::Zero();
+  int first = 0;
+  while (first < 6 && !(eig.eigenvalues()(first) > 1e-12 * largest)) ++first;
+  const int k = 6 - first;
+  const Eigen::MatrixXd v = eig.eigenvectors().rightCols(k);
+  const double arc_mm = kLengthMm * sigma_r_deg * kRadPerDeg;
+  Vector6d floor_scaled;
+  floor_scaled << Eigen::Vector3d::Constant(sigma_t_mm * sigma_t_mm),
+      Eigen::Vector3d::Constant(arc_mm * arc_mm);
+  const Eigen::MatrixXd cov = Eigen::MatrixXd(eig.eigenvalues().tail(k).cwiseInverse().asDiagonal()) +
+                              v.transpose() * floor_scaled.asDiagonal() * v;
+  const Eigen::MatrixXd w = s.cwiseInverse().asDiagonal() * v;  // S⁻¹ V
+  const Matrix6d out = w * cov.inverse() * w.transpose();
+  return 0.5 * (out + out.transpose());
 }
 
 }  // namespace sewer3d

@@ -33,6 +33,13 @@ Eigen::Matrix3d Skew(const Eigen::Vector3d& v);
 /// graph's residual (see the file comment). Symmetrised.
 Matrix6d ToResidualOrder(const Matrix6d& hessian);
 
+/// The information of covariance Ω⁺ + diag(σt², σt², σt², σr², σr², σr²) within the range of
+/// Ω (residual order, σr in degrees as a small rotation's angle): U (Λ⁻¹ + Uᵀ F U)⁻¹ Uᵀ with
+/// U, Λ the eigenvectors and eigenvalues of Ω above 1e-12 of the largest. Directions without
+/// information keep none; where Ω has full rank this is (Ω⁻¹ + F)⁻¹. A floor stands for what
+/// more measurements do not average away (biases shared by the whole overlap).
+Matrix6d WithCovarianceFloor(const Matrix6d& information, double sigma_t_mm, double sigma_r_deg);
+
 /// Eigen-decomposition of an information matrix with rotations expressed as arc lengths at a
 /// characteristic distance L (the scene's distance from the camera), so that translation and
 /// rotation are comparable: Ω_s = S Ω S, S = diag(1, 1, 1, 1/L, 1/L, 1/L) (units 1/mm²).

@@ -71,20 +71,6 @@ std::vector<int> Ransac(const std::vector<PointMatch>& matches, const PointRegis
   return best;
 }
 
-// The information of the covariance inverse(information) + diag(σt², σr²), in the residual
-// order [translation; 2 vec(rotation error)] (2 vec of a small rotation is its angle-axis
-// vector, so σr in radians).
-Matrix6d WithCovarianceFloor(const Matrix6d& information, double sigma_t_mm, double sigma_r_deg) {
-  if (sigma_t_mm <= 0.0 && sigma_r_deg <= 0.0) return information;
-  Matrix6d floor = Matrix6d::Zero();
-  const double sigma_r = sigma_r_deg * kRadPerDeg;
-  floor.diagonal() << Eigen::Vector3d::Constant(sigma_t_mm * sigma_t_mm),
-      Eigen::Vector3d::Constant(sigma_r * sigma_r);
-  const Matrix6d covariance = information.ldlt().solve(Matrix6d::Identity()) + floor;
-  const Matrix6d out = covariance.ldlt().solve(Matrix6d::Identity());
-  return 0.5 * (out + out.transpose());
-}
-
 }  // namespace
 
 void DepthNoiseModel::Check() const {

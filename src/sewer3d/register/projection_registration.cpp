@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct SurfaceA {
   const CameraModel& camera;
   cv::Mat3f points, normals;
   double max_spread_mm;
+  double normal_variance = 0.0;  ///< NormalNoiseVariance of `normals`, rad²
 };
 
 // Projective association of every sample of b at the pose; residuals beyond the gate dropped.
@@ -59,9 +61,11 @@ struct Normal {
   Matrix6d h = Matrix6d::Zero();
   Vector6d g = Vector6d::Zero();
   double weighted_r2 = 0.0, weights = 0.0, r2 = 0.0;
+  /// What the normals' noise alone puts into every direction of h (scaled metric): Σ w σ_n².
+  double noise_floor = 0.0;
 };
 
-Normal Accumulate(const std::vector<Association>& s, double huber_mm) {
+Normal Accumulate(const std::vector<Association>& s, double huber_mm, double normal_variance) {
   Normal n;
   for (const Association& x : s) {
     const double w = std::abs(x.r) <= huber_mm ? 1.0 : huber_mm / std::abs(x.r);
@@ -71,24 +75,58 @@ Normal Accumulate(const std::vector<Association>& s, double huber_mm) {
     n.weights += w;
     n.r2 += x.r * x.r;
   }
+  n.noise_floor = n.weights * normal_variance;
   return n;
 }
 
-// −H⁻¹ g restricted to the eigenvectors of S H S above ratio · λ_max (S as information.hpp).
-Vector6d ObservableStep(const Normal& n, double length_mm, double ratio) {
-  Vector6d s;
-  s << 1, 1, 1, 1 / length_mm, 1 / length_mm, 1 / length_mm;
-  const Matrix6d hs = s.asDiagonal() * n.h * s.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(0.5 * (hs + hs.transpose()));
-  const Vector6d gs = s.cwiseProduct(n.g);
-  Vector6d step_s = Vector6d::Zero();
-  const double largest = eig.eigenvalues()(5);
+// The eigen-decomposition of S H S (S as information.hpp) and which eigenvectors the data
+// constrain: above ratio · λ_max and clearly above the normals' noise floor.
+struct ObservableSpace {
+  Vector6d scale;
+  Eigen::SelfAdjointEigenSolver<Matrix6d> eig;
+  std::array<bool, 6> kept{};
+  double floor = 0.0;
+};
+
+ObservableSpace Observable(const Normal& n, double length_mm,
+                           const ProjectionRegistrationOptions& o) {
+  ObservableSpace out;
+  out.scale << 1, 1, 1, 1 / length_mm, 1 / length_mm, 1 / length_mm;
+  const Matrix6d hs = out.scale.asDiagonal() * n.h * out.scale.asDiagonal();
+  out.eig.compute(0.5 * (hs + hs.transpose()));
+  out.floor = n.noise_floor;
+  const double threshold =
+      std::max(o.freeze_ratio * out.eig.eigenvalues()(5), o.noise_floor_factor * out.floor);
   for (int i = 0; i < 6; ++i) {
-    const double lambda = eig.eigenvalues()(i);
-    if (!(lambda > ratio * largest) || !(lambda > 0.0)) continue;
-    step_s -= (eig.eigenvectors().col(i).dot(gs) / lambda) * eig.eigenvectors().col(i);
+    const double lambda = out.eig.eigenvalues()(i);
+    out.kept[i] = lambda > threshold && lambda > 0.0;
   }
-  return s.cwiseProduct(step_s);
+  return out;
+}
+
+// −H⁻¹ g restricted to the constrained eigenvectors.
+Vector6d ObservableStep(const Normal& n, const ObservableSpace& o) {
+  const Vector6d gs = o.scale.cwiseProduct(n.g);
+  Vector6d step_s = Vector6d::Zero();
+  for (int i = 0; i < 6; ++i) {
+    if (!o.kept[i]) continue;
+    const Vector6d v = o.eig.eigenvectors().col(i);
+    step_s -= (v.dot(gs) / o.eig.eigenvalues()(i)) * v;
+  }
+  return o.scale.cwiseProduct(step_s);
+}
+
+// H over the same eigenvectors, each less the noise floor (the part of its eigenvalue the
+// normals' noise alone would give); what the step did not estimate carries no information.
+Matrix6d ObservableInformation(const ObservableSpace& o) {
+  Matrix6d kept = Matrix6d::Zero();
+  for (int i = 0; i < 6; ++i) {
+    if (!o.kept[i]) continue;
+    const Vector6d v = o.eig.eigenvectors().col(i);
+    kept += (o.eig.eigenvalues()(i) - o.floor) * v * v.transpose();
+  }
+  const Vector6d inv = o.scale.cwiseInverse();
+  return inv.asDiagonal() * kept * inv.asDiagonal();
 }
 
 }  // namespace
@@ -98,6 +136,9 @@ void ProjectionRegistrationOptions::Check() const {
   SEWER3D_VALIDATE(normal_step_px >= 1, "normal_step_px", "must be >= 1, got " << normal_step_px);
   SEWER3D_VALIDATE(normal_smooth_px >= 1, "normal_smooth_px",
                    "must be >= 1, got " << normal_smooth_px);
+  ValidatePositive("noise_floor_factor", noise_floor_factor);
+  ValidateNotNegative("floor_translation_mm", floor_translation_mm);
+  ValidateNotNegative("floor_rotation_deg", floor_rotation_deg);
   SEWER3D_VALIDATE(freeze_ratio >= 0.0 && freeze_ratio < 1.0, "freeze_ratio",
                    "must lie in [0, 1), got " << freeze_ratio);
   ValidatePositive("max_depth_step_mm", max_depth_step_mm);
@@ -106,6 +147,7 @@ void ProjectionRegistrationOptions::Check() const {
   ValidatePositive("huber_k", huber_k);
   SEWER3D_VALIDATE(max_iterations >= 1, "max_iterations", "must be >= 1");
   ValidatePositive("convergence_chi2", convergence_chi2);
+  ValidatePositive("convergence_step_mm", convergence_step_mm);
   SEWER3D_VALIDATE(degeneracy_ratio > 0.0 && degeneracy_ratio < 1.0, "degeneracy_ratio",
                    "must lie in (0, 1), got " << degeneracy_ratio);
   SEWER3D_VALIDATE(min_correspondences >= 6, "min_correspondences", "must be >= 6");
@@ -121,6 +163,9 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
   SurfaceA a{camera_a, PointMap(depth_a, camera_a), {}, options.max_depth_step_mm};
   a.normals = NormalMap(a.points, options.normal_step_px, options.normal_smooth_px,
                         options.max_depth_step_mm);
+  // Normals this far apart share no pixel of their boxes and differences.
+  a.normal_variance =
+      NormalNoiseVariance(a.normals, 2 * options.normal_step_px + options.normal_smooth_px);
   SEWER3D_VALIDATE(
       depth_b.cols == camera_b.intrinsics().width && depth_b.rows == camera_b.intrinsics().height,
       "depth_b", "is not the camera's size");
@@ -145,10 +190,13 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
       return out;
     }
     const double sigma = std::max(RobustSigma(s), 1e-6);
-    const Normal n = Accumulate(s, options.huber_k * sigma);
-    const Vector6d delta = ObservableStep(n, length_mm, options.freeze_ratio);
+    const Normal n = Accumulate(s, options.huber_k * sigma, a.normal_variance);
+    const Vector6d delta = ObservableStep(n, Observable(n, length_mm, options));
     pose = ApplyUpdate(pose, delta);
-    converged = delta.dot(n.h * delta) / (sigma * sigma) < options.convergence_chi2;
+    const double step_mm =
+        std::max(delta.head<3>().norm(), delta.tail<3>().norm() * length_mm);
+    converged = delta.dot(n.h * delta) / (sigma * sigma) < options.convergence_chi2 ||
+                step_mm < options.convergence_step_mm;
     gate = std::clamp(4.0 * sigma, options.min_gate_mm, options.max_distance_mm);
   }
   s = Associate(a, b, pose, gate);
@@ -156,12 +204,15 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
   out.correspondences = out.report.correspondences = static_cast<int>(s.size());
   if (out.correspondences < options.min_correspondences) return out;
   const double sigma = std::max(RobustSigma(s), 1e-6);
-  const Normal n = Accumulate(s, options.huber_k * sigma);
+  const Normal n = Accumulate(s, options.huber_k * sigma, a.normal_variance);
   // σ² of the residuals as the Huber-weighted mean square, 6 parameters estimated.
   out.sigma_mm = std::sqrt(n.weighted_r2 / std::max(1.0, n.weights - 6.0));
   out.rms_mm = std::sqrt(n.r2 / static_cast<double>(s.size()));
   out.a_from_b = pose;
-  out.information = ToResidualOrder(n.h / std::max(out.sigma_mm * out.sigma_mm, 1e-12));
+  out.information = WithCovarianceFloor(
+      ToResidualOrder(ObservableInformation(Observable(n, length_mm, options)) /
+                      std::max(out.sigma_mm * out.sigma_mm, 1e-12)),
+      options.floor_translation_mm, options.floor_rotation_deg);
   out.report.spectrum = AnalyseInformation(out.information, length_mm, options.degeneracy_ratio);
   out.degenerate = out.report.spectrum.degenerate;
   out.weak_direction = out.report.spectrum.weak_direction;

@@ -14,7 +14,8 @@
 /// the directions the geometry does not constrain — translation along a cylinder's axis and
 /// rotation about it — carry near-zero information. Those directions are also left where the
 /// initial guess put them: each step is solved only in the span of the Hessian's eigenvectors
-/// above a (small) ratio of the largest. Neighbouring samples share depth-map interpolation; take
+/// above a (small) ratio of the largest, and Ω keeps only that span (zero information in the
+/// directions not estimated). Neighbouring samples share depth-map interpolation; take
 /// sample_step_px at least the spacing of the measured spots, or Ω is over-confident.
 
 #include <opencv2/core.hpp>
@@ -39,6 +40,10 @@ struct ProjectionRegistrationOptions {
   /// Done when a step's Mahalanobis length δᵀ Ω δ (in the information of the current
   /// correspondences) falls below this: the step is far inside the estimate's own uncertainty.
   double convergence_chi2 = 1e-4;
+  /// Or when the step moves no point of the scene by more than this (translation, and rotation
+  /// as arc at the scene's mean distance): where only a few edges constrain a direction,
+  /// re-association walks it by µm per iteration long after the estimate is settled.
+  double convergence_step_mm = 2e-3;
   /// Degenerate when the smallest / largest eigenvalue (rotation as arc at L) is below this.
   /// A bare cylinder gives ~1e-5 (only the normals' noise constrains its symmetries); a bump of
   /// 3 mm × 8 mm σ in a 648 × 486 view ~5e-4.
@@ -47,7 +52,17 @@ struct ProjectionRegistrationOptions {
   /// information stay at the initial guess instead of following the normals' noise (which
   /// otherwise walks a cylinder's slide and turn by ~0.03 mm / 0.03° per iteration).
   double freeze_ratio = 5e-5;
+  /// Noise in a's normals tilts every sample's constraint a little, which reads as information
+  /// in every direction, the unconstrained ones included: Σ w σ_n² (σ_n² from
+  /// NormalNoiseVariance). Directions below this many times that floor are frozen and get no
+  /// information; the others get their eigenvalue less the floor.
+  double noise_floor_factor = 3.0;
   int min_correspondences = 100;
+  /// Covariance floor (WithCovarianceFloor) over the constrained directions: depth-map errors
+  /// shared by the whole overlap (calibration, the decoder's interpolation between spots) that
+  /// thousands of samples do not average away.
+  double floor_translation_mm = 0.03;
+  double floor_rotation_deg = 0.01;
 
   void Check() const;
 };
