@@ -17,10 +17,9 @@ struct CircleFitOptions {
   /// stays a circle and ovality stays in the displacement.
   bool model_ovality = true;
   double min_scale_mm = 0.05;  ///< floor of the robust residual scale (noise-free data)
-  double huber_k = 1.345;      ///< Huber threshold in scales
   double tukey_c = 4.685;      ///< Tukey cut-off in scales
-  int huber_iterations = 8;
-  int tukey_iterations = 12;
+  int lmeds_samples = 150;     ///< minimal subsets tried for the least-median start
+  int iterations = 20;         ///< IRLS iterations at most
 
   void Check() const;
 };
