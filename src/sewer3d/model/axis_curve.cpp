@@ -45,9 +45,8 @@ std::vector<Eigen::Vector3d> SmoothAxis(const std::vector<AxisSample>& samples,
     }
     double h = half_width_mm;
     auto in_window = [&] {
-      return std::count_if(samples.begin(), samples.end(), [&](const AxisSample& a) {
-        return std::abs(a.station_mm - s) < h;
-      });
+      return std::count_if(samples.begin(), samples.end(),
+                           [&](const AxisSample& a) { return std::abs(a.station_mm - s) < h; });
     };
     while (in_window() < 4 && h < 4.0 * (span + std::abs(s) + 1.0)) h *= 1.5;
     curve.push_back(LocalPolynomial(samples, s, h, in_window() >= 4 ? 2 : 1));
@@ -59,13 +58,14 @@ std::optional<Centreline> ResampleAxis(const std::vector<Eigen::Vector3d>& curve
   SEWER3D_CHECK(step_mm > 0.0);
   if (curve.size() < 2) return std::nullopt;
   std::vector<double> arc(curve.size(), 0.0);
-  for (std::size_t j = 1; j < curve.size(); ++j) arc[j] = arc[j - 1] + (curve[j] - curve[j - 1]).norm();
+  for (std::size_t j = 1; j < curve.size(); ++j)
+    arc[j] = arc[j - 1] + (curve[j] - curve[j - 1]).norm();
   if (!(arc.back() > 0.0)) return std::nullopt;
   // Arc length where the curve passes z = 0.
   double zero_arc = 0.0;
-  const auto cross = std::adjacent_find(curve.begin(), curve.end(), [](const auto& a, const auto& b) {
-    return (a.z() <= 0.0) != (b.z() <= 0.0);
-  });
+  const auto cross = std::adjacent_find(
+      curve.begin(), curve.end(),
+      [](const auto& a, const auto& b) { return (a.z() <= 0.0) != (b.z() <= 0.0); });
   if (cross != curve.end()) {
     const auto j = static_cast<std::size_t>(cross - curve.begin());
     const double w = curve[j].z() / (curve[j].z() - curve[j + 1].z());

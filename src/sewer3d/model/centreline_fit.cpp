@@ -98,7 +98,8 @@ CentrelineFit FitCentreline(const std::vector<Eigen::Vector3d>& points_model,
   // The initial axis as a two-point curve covering the points' extent along it.
   const Eigen::Vector3d a = options.initial_axis.normalized();
   double t_lo = 1e300, t_hi = -1e300;
-  for (const auto& p : points_model) t_lo = std::min(t_lo, p.dot(a)), t_hi = std::max(t_hi, p.dot(a));
+  for (const auto& p : points_model)
+    t_lo = std::min(t_lo, p.dot(a)), t_hi = std::max(t_hi, p.dot(a));
   auto line = ResampleAxis({(t_lo - 1.0) * a, (t_hi + 1.0) * a}, options.step_mm);
   if (!line) return result;
   std::vector<double> stations(points_model.size(), 0.0);
@@ -107,8 +108,8 @@ CentrelineFit FitCentreline(const std::vector<Eigen::Vector3d>& points_model,
   for (report.iterations = 1; report.iterations <= options.max_iterations; ++report.iterations) {
     report.slices = FitSlices(*line, points_model, stations, options);
     std::vector<double> at;
-    const double s0 = std::floor(report.slices.front().station_mm / options.step_mm - 3) *
-                      options.step_mm;
+    const double s0 =
+        std::floor(report.slices.front().station_mm / options.step_mm - 3) * options.step_mm;
     for (double s = s0; s < report.slices.back().station_mm + 3 * options.step_mm;
          s += options.step_mm)
       at.push_back(s);
@@ -117,7 +118,8 @@ CentrelineFit FitCentreline(const std::vector<Eigen::Vector3d>& points_model,
     auto curve = SmoothAxis(samples, at, options.smoothing_half_width_mm, options.straight);
     // Slices whose centre is off the smooth axis (a displaced joint, a poor fit) are dropped.
     std::vector<double> off;
-    for (const auto& s : samples) off.push_back((s.centre - CurveAt(curve, s0, options.step_mm, s.station_mm)).norm());
+    for (const auto& s : samples)
+      off.push_back((s.centre - CurveAt(curve, s0, options.step_mm, s.station_mm)).norm());
     const double limit =
         std::max(options.slice_outlier_mm, options.slice_outlier_scales * 1.4826 * Median(off));
     for (auto& s : report.slices) {
@@ -130,7 +132,8 @@ CentrelineFit FitCentreline(const std::vector<Eigen::Vector3d>& points_model,
     report.last_move_mm = 0.0;
     for (std::size_t j = 0; j < at.size(); ++j) {
       if (at[j] < samples.front().station_mm || at[j] > samples.back().station_mm) continue;
-      report.last_move_mm = std::max(report.last_move_mm, (curve[j] - line->FrameAt(at[j]).origin).norm());
+      report.last_move_mm =
+          std::max(report.last_move_mm, (curve[j] - line->FrameAt(at[j]).origin).norm());
     }
     line = ResampleAxis(curve, options.step_mm);
     if (!line) return result;

@@ -28,13 +28,13 @@ struct CentrelineFitOptions {
   /// slices; narrower follows tighter bends and joint deflections.
   double smoothing_half_width_mm = 600.0;
   int min_slice_points = 40;
-  double min_slice_coverage_deg = 180.0;   ///< angular extent of a slice's inliers
-  double min_inlier_fraction = 0.5;        ///< of a slice's points
-  double slice_outlier_mm = 2.0;           ///< a slice centre this far off the axis is dropped,
-  double slice_outlier_scales = 5.0;       ///< or this many robust scales, whichever is more
+  double min_slice_coverage_deg = 180.0;  ///< angular extent of a slice's inliers
+  double min_inlier_fraction = 0.5;       ///< of a slice's points
+  double slice_outlier_mm = 2.0;          ///< a slice centre this far off the axis is dropped,
+  double slice_outlier_scales = 5.0;      ///< or this many robust scales, whichever is more
   int max_iterations = 6;
-  double convergence_mm = 0.005;           ///< largest axis move of an iteration to stop
-  double bend_min_sagitta_mm = 0.5;        ///< below this the centreline has no bend radius
+  double convergence_mm = 0.005;     ///< largest axis move of an iteration to stop
+  double bend_min_sagitta_mm = 0.5;  ///< below this the centreline has no bend radius
   CircleFitOptions circle;
 
   void Check() const;
@@ -42,7 +42,7 @@ struct CentrelineFitOptions {
 
 /// One slice as the last iteration fitted it.
 struct SliceReport {
-  double station_mm = 0.0;                          ///< centre of the slice
+  double station_mm = 0.0;                           ///< centre of the slice
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< circle centre, model frame
   double radius_mm = 0.0;
   double ovality_mm = 0.0;  ///< amplitude of the 2θ term (CircleFit)
@@ -56,10 +56,10 @@ struct SliceReport {
 struct CentrelineFitReport {
   int slices_used = 0;
   int slices_rejected = 0;
-  double radius_mm = 0.0;       ///< median of the used slices' radii (the fitted radius)
-  double rms_mm = 0.0;          ///< RMS of the used slices' inlier residuals
-  double axis_rms_mm = 0.0;     ///< RMS distance of the used slice centres to the axis
-  double last_move_mm = 0.0;    ///< largest axis move of the last iteration
+  double radius_mm = 0.0;     ///< median of the used slices' radii (the fitted radius)
+  double rms_mm = 0.0;        ///< RMS of the used slices' inlier residuals
+  double axis_rms_mm = 0.0;   ///< RMS distance of the used slice centres to the axis
+  double last_move_mm = 0.0;  ///< largest axis move of the last iteration
   int iterations = 0;
   std::optional<double> bend_radius_mm;  ///< a single circular bend's radius, if any
   std::vector<SliceReport> slices;

@@ -47,13 +47,13 @@ struct TruePipe {
 double Defects(double s, double theta) {
   double d = 0.0;
   const double wall = 151.2;
-  d += 0.03 * wall * std::cos(2 * theta);                                        // 6 % ovality
+  d += 0.03 * wall * std::cos(2 * theta);  // 6 % ovality
   d -= 3.0 * std::exp(-(std::pow(s - 800, 2) + std::pow(wall * (theta - 1.0), 2)) / 450.0);  // bump
-  if (s > 1500 && s < 1515) d += 5.0;                                            // joint gap
-  if (s > 1515 && s < 1600 && std::abs(theta - kPi / 2) < kPi / 4) d -= 2.5;     // joint step
-  if (s > 2000 && s < 2400 && std::abs(theta - kPi) < 0.6) d -= 12.0;            // deposit
-  if (std::hypot(s - 1000, wall * (theta - 0.8)) < 40.0) d -= 35.0;              // intrusion
-  if (s > 400 && s < 500 && theta > 2.0 && theta < 2.6) d += 4.0;                // spalling
+  if (s > 1500 && s < 1515) d += 5.0;                                         // joint gap
+  if (s > 1515 && s < 1600 && std::abs(theta - kPi / 2) < kPi / 4) d -= 2.5;  // joint step
+  if (s > 2000 && s < 2400 && std::abs(theta - kPi) < 0.6) d -= 12.0;         // deposit
+  if (std::hypot(s - 1000, wall * (theta - 0.8)) < 40.0) d -= 35.0;           // intrusion
+  if (s > 400 && s < 500 && theta > 2.0 && theta < 2.6) d += 4.0;             // spalling
   return d;
 }
 
@@ -104,11 +104,11 @@ TEST(FitCentreline, FollowsABendThroughDefectsAndOvality) {
   const AxisFrame f = fit.centreline.FrameAt(0.0);
   const Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
   EXPECT_LT((f.crown - (up - up.dot(f.tangent) * f.tangent).normalized()).norm(), 1e-9);
-  std::printf("bent: lateral %.4f mm, station %.4f mm, radius %.4f mm, bend %.0f mm, rms %.4f, "
-              "slices %d/%d, iterations %d\n",
-              error.lateral_mm, error.station_mm, fit.report.radius_mm,
-              *fit.report.bend_radius_mm, fit.report.rms_mm, fit.report.slices_used,
-              fit.report.slices_rejected, fit.report.iterations);
+  std::printf(
+      "bent: lateral %.4f mm, station %.4f mm, radius %.4f mm, bend %.0f mm, rms %.4f, "
+      "slices %d/%d, iterations %d\n",
+      error.lateral_mm, error.station_mm, fit.report.radius_mm, *fit.report.bend_radius_mm,
+      fit.report.rms_mm, fit.report.slices_used, fit.report.slices_rejected, fit.report.iterations);
 }
 
 TEST(FitCentreline, StraightCylinderAndStartStation) {

@@ -65,7 +65,8 @@ bool LmedsStart(const std::vector<Eigen::Vector2d>& points, int n, int samples, 
     rho(row) = v.norm();
     const double values[5] = {1.0, std::cos(t), std::sin(t), std::cos(2 * t), std::sin(2 * t)};
     for (int k = 0; k < n; ++k) basis(row, k) = values[k];
-    const auto sector = static_cast<std::size_t>((t + std::numbers::pi) / (2 * std::numbers::pi) * n);
+    const auto sector =
+        static_cast<std::size_t>((t + std::numbers::pi) / (2 * std::numbers::pi) * n);
     sectors[std::min(sector, sectors.size() - 1)].push_back(i);
   }
   std::mt19937 rng(1);  // deterministic: the same slice gives the same fit
@@ -85,7 +86,8 @@ bool LmedsStart(const std::vector<Eigen::Vector2d>& points, int n, int samples, 
     if (!lu.isInvertible()) continue;
     const Eigen::VectorXd params = lu.solve(rhs);
     const Eigen::VectorXd e = rho - basis * params;
-    for (std::size_t i = 0; i < points.size(); ++i) abs_e[i] = std::abs(e(static_cast<Eigen::Index>(i)));
+    for (std::size_t i = 0; i < points.size(); ++i)
+      abs_e[i] = std::abs(e(static_cast<Eigen::Index>(i)));
     const double median = Median(abs_e);
     if (median < best) {
       best = median;

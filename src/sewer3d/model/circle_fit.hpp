@@ -32,7 +32,7 @@ struct CircleFit {
   double rms_mm = 0.0;         ///< RMS residual of the inliers
   double inlier_fraction = 0;  ///< points with a non-zero Tukey weight
   double coverage_deg = 0.0;   ///< angular extent of the inliers (36 bins of 10°)
-  bool converged = false;  ///< usable: finite, with enough inliers (IRLS stops at |Δ| < 1e-7)
+  bool converged = false;      ///< usable: finite, with enough inliers (IRLS stops at |Δ| < 1e-7)
 };
 
 /// Fits `points` (2D, mm). Needs ≥ 8 points; fewer, or a degenerate configuration, gives

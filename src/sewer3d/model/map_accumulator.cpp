@@ -40,8 +40,9 @@ MapAccumulator::MapAccumulator(const Centreline& centreline, const MapGrid& tile
   SEWER3D_CHECK(centreline.points.size() >= 2);
   // The margin holds every cell a hole that reaches into the tile can span, its neighbours
   // the fill reads, and the cells a splat of a point beyond the tile reaches.
-  halo_ = static_cast<int>(std::ceil((options.max_hole_mm + options.splat_radius_mm) /
-                                     tile.resolution_mm)) + 2;
+  halo_ = static_cast<int>(
+              std::ceil((options.max_hole_mm + options.splat_radius_mm) / tile.resolution_mm)) +
+          2;
   ext_ = tile;
   ext_.station0_mm = tile.station0_mm - halo_ * tile.resolution_mm;
   ext_.rows = tile.rows + 2 * halo_;
@@ -114,10 +115,12 @@ PipeMaps MapAccumulator::Finish() const {
       coverage(r, c) = static_cast<unsigned char>(Coverage::kMeasured);
     }
   }
-  const int max_rows = static_cast<int>(std::floor(options_.max_hole_mm / ext_.resolution_mm + 1e-9));
+  const int max_rows =
+      static_cast<int>(std::floor(options_.max_hole_mm / ext_.resolution_mm + 1e-9));
   const double col_mm = 2.0 * std::numbers::pi * centreline_.radius_mm / ext_.cols;
   const int max_cols = static_cast<int>(std::floor(options_.max_hole_mm / col_mm + 1e-9));
-  if (max_rows > 0 && max_cols > 0) FillSmallHoles(max_rows, max_cols, displacement, colour, coverage);
+  if (max_rows > 0 && max_cols > 0)
+    FillSmallHoles(max_rows, max_cols, displacement, colour, coverage);
   const cv::Range rows(halo_, halo_ + tile_.rows), all = cv::Range::all();
   PipeMaps maps;
   maps.grid = tile_;

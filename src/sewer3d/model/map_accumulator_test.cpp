@@ -49,7 +49,8 @@ TEST(MapAccumulator, RecoversABumpAndColourFromDenseNoisySamples) {
       const double radius = kRadius + Bump(st, clock) + noise(rng);
       const cv::Vec3f bgr(static_cast<float>(120 + 60 * std::sin(clock) + colour_noise(rng)), 80.f,
                           static_cast<float>(30 + 2 * st));
-      ASSERT_TRUE(acc.Add(PointAt(line, {st, clock, radius}), bgr, DepthWeight(150.0, 0.05, 150.0)));
+      ASSERT_TRUE(
+          acc.Add(PointAt(line, {st, clock, radius}), bgr, DepthWeight(150.0, 0.05, 150.0)));
     }
   }
   const PipeMaps maps = acc.Finish();
@@ -65,7 +66,8 @@ TEST(MapAccumulator, RecoversABumpAndColourFromDenseNoisySamples) {
       const double e = maps.displacement_mm(r, c) - Bump(cell.station_mm, cell.clock_rad);
       sum2 += e * e, worst = std::max(worst, std::abs(e));
       peak = std::max(peak, static_cast<double>(maps.displacement_mm(r, c)));
-      colour_worst = std::max(colour_worst, std::abs(maps.texture(r, c)[2] - (30 + 2 * cell.station_mm)));
+      colour_worst =
+          std::max(colour_worst, std::abs(maps.texture(r, c)[2] - (30 + 2 * cell.station_mm)));
     }
   }
   const double rms = std::sqrt(sum2 / (grid.rows * grid.cols));
@@ -88,7 +90,8 @@ void FeedCellCentres(MapAccumulator& acc, const Centreline& line, const MapGrid&
       if (skip(r, c)) continue;
       const CylPoint cell = CellCentre(grid, r, c, kRadius);
       const auto [displacement, bgr] = value(cell);
-      acc.Add(PointAt(line, {cell.station_mm, cell.clock_rad, kRadius + displacement}), bgr, weight);
+      acc.Add(PointAt(line, {cell.station_mm, cell.clock_rad, kRadius + displacement}), bgr,
+              weight);
     }
   }
 }
@@ -100,8 +103,10 @@ TEST(MapAccumulator, BlendsOverlappingModulesByWeight) {
   auto a = [](const CylPoint&) { return std::pair{0.1, cv::Vec3f(100, 100, 100)}; };
   auto b = [](const CylPoint&) { return std::pair{-0.1, cv::Vec3f(200, 0, 60)}; };
   const int split_a = grid.cols * 6 / 10, split_b = grid.cols / 2;
-  FeedCellCentres(acc, line, grid, [&](int, int c) { return c >= split_a; }, a, 1.0);
-  FeedCellCentres(acc, line, grid, [&](int, int c) { return c < split_b; }, b, 3.0);
+  FeedCellCentres(
+      acc, line, grid, [&](int, int c) { return c >= split_a; }, a, 1.0);
+  FeedCellCentres(
+      acc, line, grid, [&](int, int c) { return c < split_b; }, b, 3.0);
   const PipeMaps maps = acc.Finish();
   for (int r = 0; r < grid.rows; ++r) {
     EXPECT_NEAR(maps.displacement_mm(r, 10), 0.1, 1e-6);
@@ -127,8 +132,8 @@ TEST(MapAccumulator, FillsSmallHolesOnlyAcrossTheClockSeamToo) {
     return std::pair{0.05 * p.station_mm, cv::Vec3f(static_cast<float>(5 * p.station_mm), 50, 9)};
   };
   FeedCellCentres(
-      acc, line, grid, [&](int r, int c) { return in_small(r, c) || in_seam(r, c) || in_large(r, c); },
-      linear, 1.0);
+      acc, line, grid,
+      [&](int r, int c) { return in_small(r, c) || in_seam(r, c) || in_large(r, c); }, linear, 1.0);
   const PipeMaps maps = acc.Finish();
   for (int r = 0; r < grid.rows; ++r) {
     for (int c = 0; c < cols; ++c) {
@@ -139,7 +144,8 @@ TEST(MapAccumulator, FillsSmallHolesOnlyAcrossTheClockSeamToo) {
         EXPECT_EQ(maps.texture(r, c), cv::Vec3b(0, 0, 0));
         continue;
       }
-      EXPECT_EQ(coverage, in_small(r, c) || in_seam(r, c) ? Coverage::kFilled : Coverage::kMeasured);
+      EXPECT_EQ(coverage,
+                in_small(r, c) || in_seam(r, c) ? Coverage::kFilled : Coverage::kMeasured);
       EXPECT_NEAR(maps.displacement_mm(r, c), 0.05 * grid.RowStationMm(r), 1e-5);  // linear: exact
       EXPECT_NEAR(maps.texture(r, c)[0], 5 * grid.RowStationMm(r), 0.5 + 1e-3);
     }
@@ -159,7 +165,7 @@ TEST(MapAccumulator, TilesSideBySideEqualOneGrid) {
     const double s = station(rng), t = clock(rng);
     const double arc = kRadius * t;
     if (std::abs(s - 14.0) < 0.9 && std::abs(arc - 40.0) < 0.9) continue;  // small hole, boundary
-    if (std::abs(s - 14.0) < 4.0 && std::abs(arc - 90.0) < 4.0) continue;   // large hole, boundary
+    if (std::abs(s - 14.0) < 4.0 && std::abs(arc - 90.0) < 4.0) continue;  // large hole, boundary
     const double radius = kRadius + Bump(s, t);
     const Eigen::Vector3d p = PointAt(line, {s, t, radius});
     const cv::Vec3f bgr(static_cast<float>(100 + 20 * std::cos(3 * t)), 60, 70);
@@ -183,8 +189,8 @@ TEST(MapAccumulator, TilesSideBySideEqualOneGrid) {
   }
   EXPECT_EQ(mismatches, 0);
   auto at = [&](double station, double arc) {
-    return static_cast<Coverage>(all.coverage(static_cast<int>(station / 0.2),
-                                              static_cast<int>(arc / kRadius / (2 * kPi) * grid.cols)));
+    return static_cast<Coverage>(all.coverage(
+        static_cast<int>(station / 0.2), static_cast<int>(arc / kRadius / (2 * kPi) * grid.cols)));
   };
   EXPECT_EQ(at(14.0, 40.0), Coverage::kFilled);  // the small hole on the tiles' boundary
   EXPECT_EQ(at(14.0, 90.0), Coverage::kNone);    // the large hole on it

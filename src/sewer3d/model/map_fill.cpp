@@ -19,8 +19,8 @@ struct Hole {
   bool small = true;
 };
 
-Hole FloodHole(const cv::Mat1b& coverage, cv::Mat1b& seen, int seed_row, int seed_col,
-               int max_rows, int max_cols) {
+Hole FloodHole(const cv::Mat1b& coverage, cv::Mat1b& seen, int seed_row, int seed_col, int max_rows,
+               int max_cols) {
   Hole hole;
   const int rows = coverage.rows, cols = coverage.cols;
   int row_lo = seed_row, row_hi = seed_row, col_lo = seed_col, col_hi = seed_col;
@@ -84,7 +84,8 @@ void FillSmallHoles(int max_rows, int max_cols, cv::Mat1f& displacement_mm, cv::
     }
   }
   for (const Hole& hole : small) {
-    for (const auto& [r, c] : hole.cells) coverage(r, c) = static_cast<unsigned char>(Coverage::kFilled);
+    for (const auto& [r, c] : hole.cells)
+      coverage(r, c) = static_cast<unsigned char>(Coverage::kFilled);
   }
 }
 

@@ -65,9 +65,9 @@ MapGrid MapGrid::Tile(int first_row, int tile_rows) const {
 MapGrid MakeMapGrid(double begin_mm, double end_mm, double radius_mm, double resolution_mm) {
   ValidatePositive("resolution_mm", resolution_mm);
   ValidatePositive("radius_mm", radius_mm);
-  SEWER3D_VALIDATE(end_mm > begin_mm, "stations",
-                   "the end (" << end_mm << " mm) must lie beyond the begin (" << begin_mm
-                               << " mm)");
+  SEWER3D_VALIDATE(
+      end_mm > begin_mm, "stations",
+      "the end (" << end_mm << " mm) must lie beyond the begin (" << begin_mm << " mm)");
   MapGrid grid;
   grid.resolution_mm = resolution_mm;
   grid.station0_mm = begin_mm;

@@ -75,10 +75,10 @@ enum class Coverage : unsigned char { kNone = 0, kMeasured = 1, kFilled = 2 };
 /// One tile (or the whole) of the maps, rows × cols of `grid`.
 struct PipeMaps {
   MapGrid grid;
-  cv::Mat3b texture;            ///< BGR, mean colour per cell (black where none)
-  cv::Mat1f displacement_mm;    ///< measured − model radius, positive outward; NaN = none
-  cv::Mat1w samples;            ///< points that fell in the cell (saturating)
-  cv::Mat1b coverage;           ///< Coverage values
+  cv::Mat3b texture;          ///< BGR, mean colour per cell (black where none)
+  cv::Mat1f displacement_mm;  ///< measured − model radius, positive outward; NaN = none
+  cv::Mat1w samples;          ///< points that fell in the cell (saturating)
+  cv::Mat1b coverage;         ///< Coverage values
 };
 
 }  // namespace sewer3d

@@ -48,8 +48,9 @@ TEST(Unroll, RoundTripOnABentTiltedAxis) {
   double worst_station = 0, worst_clock = 0, worst_radius = 0;
   for (int i = 0; i < 20000; ++i) {
     const CylPoint truth{station(rng), clock(rng), radius(rng)};
-    const Eigen::Vector3d p = line.FrameAt(truth.station_mm).origin +
-                              truth.radius_mm * line.FrameAt(truth.station_mm).Direction(truth.clock_rad);
+    const Eigen::Vector3d p =
+        line.FrameAt(truth.station_mm).origin +
+        truth.radius_mm * line.FrameAt(truth.station_mm).Direction(truth.clock_rad);
     EXPECT_LT((PointAt(line, truth) - p).norm(), 1e-12);
     const CylPoint back = Unroll(line, p, i % 2 == 0 ? 0.0 : truth.station_mm + 30.0);
     worst_station = std::max(worst_station, std::abs(back.station_mm - truth.station_mm));
