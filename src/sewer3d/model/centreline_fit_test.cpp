@@ -105,7 +105,7 @@ TEST(FitCentreline, FollowsABendThroughDefectsAndOvality) {
   const Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
   EXPECT_LT((f.crown - (up - up.dot(f.tangent) * f.tangent).normalized()).norm(), 1e-9);
   std::printf(
-      "bent: lateral %.4f mm, station %.4f mm, radius %.4f mm, bend %.0f mm, rms %.4f, "
+      "bent: lateral %.4f mm, station %.5f mm, radius %.4f mm, bend %.0f mm, rms %.4f, "
       "slices %d/%d, iterations %d\n",
       error.lateral_mm, error.station_mm, fit.report.radius_mm, *fit.report.bend_radius_mm,
       fit.report.rms_mm, fit.report.slices_used, fit.report.slices_rejected, fit.report.iterations);
@@ -128,7 +128,7 @@ TEST(FitCentreline, StraightCylinderAndStartStation) {
   EXPECT_NEAR(fit.report.radius_mm, pipe.radius_mm, 0.05);
   EXPECT_NEAR(Unroll(fit.centreline, pipe.Axis(0.0) + 100.0 * pipe.Normal(0.0), 0.0).station_mm,
               1000.0, 0.05);
-  std::printf("straight: lateral %.4f mm, station %.4f mm, radius %.4f mm\n", error.lateral_mm,
+  std::printf("straight: lateral %.4f mm, station %.5f mm, radius %.4f mm\n", error.lateral_mm,
               error.station_mm, fit.report.radius_mm);
 }
 

@@ -47,7 +47,11 @@ double Residual(const Eigen::Vector2d& p, const Vector5d& x, Vector5d* gradient)
   return rho - x(2) - x(3) * c2 - x(4) * s2;
 }
 
-double Median(std::vector<double> values);
+double Median(std::vector<double> values) {
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
 
 // Least median of squares start (Rousseeuw 1984). About the Kåsa centre c0 the wall is, to
 // first order in |Δc|/R, linear in (R, Δc, a, b): ρ = R + Δcx cos θ + Δcy sin θ + a cos 2θ +
@@ -97,12 +101,6 @@ bool LmedsStart(const std::vector<Eigen::Vector2d>& points, int n, int samples, 
     }
   }
   return std::isfinite(best);
-}
-
-double Median(std::vector<double> values) {
-  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
 }
 
 }  // namespace

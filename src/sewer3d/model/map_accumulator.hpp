@@ -38,8 +38,9 @@ double BorderFeather(double u_px, double v_px, int width, int height, double ram
 
 class MapAccumulator {
  public:
-  /// Accumulates the rows of `tile` (a grid over the centreline's stations). Throws
-  /// InvalidValue for bad options or an empty tile.
+  /// Accumulates the rows of `tile` (a grid over the centreline's stations); `centreline` is
+  /// referenced and must outlive the accumulator. Throws InvalidValue for bad options or an
+  /// empty tile.
   MapAccumulator(const Centreline& centreline, const MapGrid& tile,
                  const MapAccumulatorOptions& options);
 
