@@ -10,6 +10,7 @@
 /// - a map point is centreline(station) + (radius + displacement) · direction(clock).
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
@@ -40,7 +41,12 @@ struct Centreline {
   double radius_mm = 150.0;  ///< the model radius: the nominal round pipe
 
   [[nodiscard]] double EndStationMm() const;
-  /// The frame at `station_mm`, interpolated between samples (clamped to the ends).
+  /// The unit tangent at sample `i` (central difference, one-sided at the ends).
+  [[nodiscard]] Eigen::Vector3d TangentAt(std::size_t i) const;
+  /// The frame at `station_mm`: origin interpolated linearly between samples, tangent
+  /// interpolated between the samples' tangents (so the frame turns continuously and a point
+  /// has one station, see unroll.hpp); beyond the ends the axis goes on straight along the
+  /// end tangent.
   [[nodiscard]] AxisFrame FrameAt(double station_mm) const;
 };
 
@@ -56,17 +62,23 @@ struct MapGrid {
     return station0_mm + (row + 0.5) * resolution_mm;
   }
   [[nodiscard]] double ColClockRad(int col) const;
+  /// Rows [first_row, first_row + rows) of this grid as a grid of their own (a tile).
+  [[nodiscard]] MapGrid Tile(int first_row, int tile_rows) const;
 };
+
+/// The grid over stations [begin_mm, end_mm) (rows = ceil(length / resolution)) of a pipe of
+/// model radius `radius_mm`: cols = round(2π radius / resolution).
+MapGrid MakeMapGrid(double begin_mm, double end_mm, double radius_mm, double resolution_mm);
 
 enum class Coverage : unsigned char { kNone = 0, kMeasured = 1, kFilled = 2 };
 
 /// One tile (or the whole) of the maps, rows × cols of `grid`.
 struct PipeMaps {
   MapGrid grid;
-  cv::Mat3b texture;            ///< BGR, mean colour per cell (black where none)
-  cv::Mat1f displacement_mm;    ///< measured − model radius, positive outward; NaN = none
-  cv::Mat1w samples;            ///< points that fell in the cell (saturating)
-  cv::Mat1b coverage;           ///< Coverage values
+  cv::Mat3b texture;          ///< BGR, mean colour per cell (black where none)
+  cv::Mat1f displacement_mm;  ///< measured − model radius, positive outward; NaN = none
+  cv::Mat1w samples;          ///< points that fell in the cell (saturating)
+  cv::Mat1b coverage;         ///< Coverage values
 };
 
 }  // namespace sewer3d
