@@ -1,5 +1,6 @@
 #include "sewer3d/model/pipe_map.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
