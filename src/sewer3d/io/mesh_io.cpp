@@ -20,10 +20,10 @@ namespace {
 using nlohmann::json;
 
 // glTF 2.0 constants (Khronos glTF 2.0 specification, §3.6 and §4.4).
-constexpr std::uint32_t kGlbMagic = 0x46546C67;      // "glTF"
-constexpr std::uint32_t kChunkJson = 0x4E4F534A;     // "JSON"
-constexpr std::uint32_t kChunkBin = 0x004E4942;      // "BIN\0"
-constexpr int kFloat = 5126, kUnsignedInt = 5125;    // accessor component types
+constexpr std::uint32_t kGlbMagic = 0x46546C67;    // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534A;   // "JSON"
+constexpr std::uint32_t kChunkBin = 0x004E4942;    // "BIN\0"
+constexpr int kFloat = 5126, kUnsignedInt = 5125;  // accessor component types
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 
 static_assert(std::endian::native == std::endian::little,
@@ -113,19 +113,19 @@ void WriteGlb(const std::filesystem::path& path, const TriangleMesh& mesh,
   views.push_back(AppendView(bin, mesh.positions.data(), n, kArrayBuffer));
   views.push_back(AppendView(bin, mesh.normals.data(), n, kArrayBuffer));
   views.push_back(AppendView(bin, mesh.uvs.data(), n, kArrayBuffer));
-  views.push_back(AppendView(bin, mesh.triangles.data(), mesh.triangles.size(),
-                             kElementArrayBuffer));
+  views.push_back(
+      AppendView(bin, mesh.triangles.data(), mesh.triangles.size(), kElementArrayBuffer));
   views.push_back(AppendView(bin, texture_png.data(), texture_png.size(), 0));
   static_assert(sizeof(Eigen::Vector3f) == 12 && sizeof(Eigen::Vector2f) == 8 &&
                 sizeof(std::array<std::uint32_t, 3>) == 12);
-  const json accessors = json::array({
-      PositionAccessor(mesh),
-      {{"bufferView", 1}, {"componentType", kFloat}, {"count", n}, {"type", "VEC3"}},
-      {{"bufferView", 2}, {"componentType", kFloat}, {"count", n}, {"type", "VEC2"}},
-      {{"bufferView", 3},
-       {"componentType", kUnsignedInt},
-       {"count", 3 * mesh.triangles.size()},
-       {"type", "SCALAR"}}});
+  const json accessors =
+      json::array({PositionAccessor(mesh),
+                   {{"bufferView", 1}, {"componentType", kFloat}, {"count", n}, {"type", "VEC3"}},
+                   {{"bufferView", 2}, {"componentType", kFloat}, {"count", n}, {"type", "VEC2"}},
+                   {{"bufferView", 3},
+                    {"componentType", kUnsignedInt},
+                    {"count", 3 * mesh.triangles.size()},
+                    {"type", "SCALAR"}}});
   const json primitive = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
                           {"indices", 3},
                           {"material", 0},

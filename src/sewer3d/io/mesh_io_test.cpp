@@ -103,7 +103,8 @@ TEST_F(MeshIoTest, GlbReadsBackAsWritten) {
   EXPECT_NEAR(position["max"][2].get<float>(), 50.0f, 1e-4);  // the pipe's 50 mm of stations
   const json& image_view = gltf["bufferViews"][gltf["images"][0]["bufferView"].get<int>()];
   const std::string png = bin.substr(image_view["byteOffset"], image_view["byteLength"]);
-  const cv::Mat decoded = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
+  const cv::Mat decoded =
+      cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
   ASSERT_EQ(decoded.size(), texture.size());
   EXPECT_EQ(decoded.at<cv::Vec3b>(10, 10), cv::Vec3b(40, 80, 120));
   EXPECT_EQ(gltf["images"][0]["mimeType"], "image/png");
@@ -118,7 +119,8 @@ TEST_F(MeshIoTest, GlbShrinksAnOversizedTexture) {
   const std::size_t bin_at = 20 + U32(bytes, 12) + 8;
   const std::string png = bytes.substr(bin_at + view["byteOffset"].get<std::size_t>(),
                                        view["byteLength"].get<std::size_t>());
-  const cv::Mat decoded = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
+  const cv::Mat decoded =
+      cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
   EXPECT_EQ(decoded.cols, 250);
   EXPECT_EQ(decoded.rows, 25);
 }

@@ -34,8 +34,7 @@ void CheckGrid(const MapGrid& grid) {
 // Two triangles per lattice quad (ring i → i + 1, column j → j + 1), counter-clockwise seen
 // from inside: along the pipe × around the clock points toward the axis (see mesh.hpp).
 template <typename Emit>
-void ForEachQuadTriangle(std::size_t a, std::size_t b, std::size_t c, std::size_t d,
-                         Emit&& emit) {
+void ForEachQuadTriangle(std::size_t a, std::size_t b, std::size_t c, std::size_t d, Emit&& emit) {
   emit(a, b, c);  // (i, j), (i + 1, j), (i, j + 1)
   emit(c, b, d);  // (i, j + 1), (i + 1, j), (i + 1, j + 1)
 }
@@ -73,12 +72,12 @@ TriangleMesh BuildBaseCylinder(const Centreline& centreline, const MapGrid& grid
   const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(i * (n + 1) + j); };
   for (int i = 0; i < rings; ++i) {
     for (int j = 0; j < n; ++j) {
-      ForEachQuadTriangle(at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1),
-                          [&](std::size_t a, std::size_t b, std::size_t c) {
-                            mesh.triangles.push_back({static_cast<std::uint32_t>(a),
-                                                      static_cast<std::uint32_t>(b),
-                                                      static_cast<std::uint32_t>(c)});
-                          });
+      ForEachQuadTriangle(
+          at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1),
+          [&](std::size_t a, std::size_t b, std::size_t c) {
+            mesh.triangles.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+                                      static_cast<std::uint32_t>(c)});
+          });
     }
   }
   return mesh;
@@ -123,8 +122,7 @@ void DisplacementDecimator::Add(const PipeMaps& tile) {
   const double offset_rows = (g.station0_mm - grid_.station0_mm) / grid_.resolution_mm;
   const int row0 = static_cast<int>(std::lround(offset_rows));
   SEWER3D_CHECK(std::abs(g.resolution_mm - grid_.resolution_mm) < 1e-9 && g.cols == grid_.cols &&
-                    std::abs(offset_rows - row0) < 1e-6 && row0 >= 0 &&
-                    row0 + g.rows <= grid_.rows,
+                    std::abs(offset_rows - row0) < 1e-6 && row0 >= 0 && row0 + g.rows <= grid_.rows,
                 "tile rows " << row0 << " + " << g.rows << " outside the run's " << grid_.rows);
   SEWER3D_CHECK(tile.displacement_mm.rows == g.rows && tile.displacement_mm.cols == g.cols);
   // The nearest lattice column of each map column (wrapping at the crown) and ring of each row.

@@ -79,11 +79,12 @@ TEST(BaseCylinder, VerticesOnTheRadiusWithWrappingUvs) {
     ASSERT_EQ(mesh.VertexCount(), 11u * 257u);
     ASSERT_EQ(mesh.triangles.size(), 10u * 256u * 2u);
     for (std::size_t k = 0; k < mesh.VertexCount(); ++k) {
-      const auto [radial, axial] = RadialAndAxial(line, StationOf(grid, mesh.uvs[k]), mesh.positions[k]);
+      const auto [radial, axial] =
+          RadialAndAxial(line, StationOf(grid, mesh.uvs[k]), mesh.positions[k]);
       ASSERT_NEAR(radial, kRadius, 1e-4) << "vertex " << k << " bend " << bend_mm;
       ASSERT_NEAR(axial, 0.0, 1e-4);
-      const Eigen::Vector3d inward = line.FrameAt(StationOf(grid, mesh.uvs[k])).origin -
-                                     mesh.positions[k].cast<double>();
+      const Eigen::Vector3d inward =
+          line.FrameAt(StationOf(grid, mesh.uvs[k])).origin - mesh.positions[k].cast<double>();
       ASSERT_GT(mesh.normals[k].cast<double>().dot(inward.normalized()), 1.0 - 1e-6);
     }
     // The seam: the first and last vertex of a ring coincide, with u = 0 and u = 1; v spans
@@ -128,11 +129,12 @@ TEST(DisplacedMesh, VerticesAtRadiusPlusDisplacementWithHolesOpen) {
   // whose three vertices all have data.
   EXPECT_EQ(mesh.triangles.size(), 50u * 471u * 2u - 10u * 10u * 2u + 2u);
   for (std::size_t k = 0; k < mesh.VertexCount(); ++k) {
-    const auto [radial, axial] = RadialAndAxial(line, StationOf(grid, mesh.uvs[k]), mesh.positions[k]);
+    const auto [radial, axial] =
+        RadialAndAxial(line, StationOf(grid, mesh.uvs[k]), mesh.positions[k]);
     ASSERT_NEAR(radial, kRadius + 3.0, 1e-4) << "vertex " << k;
     ASSERT_NEAR(axial, 0.0, 1e-4);
-    const Eigen::Vector3d inward = line.FrameAt(StationOf(grid, mesh.uvs[k])).origin -
-                                   mesh.positions[k].cast<double>();
+    const Eigen::Vector3d inward =
+        line.FrameAt(StationOf(grid, mesh.uvs[k])).origin - mesh.positions[k].cast<double>();
     ASSERT_GT(mesh.normals[k].cast<double>().dot(inward.normalized()), 0.999) << "vertex " << k;
   }
 }
@@ -206,8 +208,8 @@ TEST(DisplacedMesh, OptionsAreChecked) {
 TEST(SurfacePoints, OnePointPerCoveredCellAtRadiusPlusDisplacement) {
   const Centreline line = MakeCentreline(2000.0);
   PipeMaps maps = MapsWith(SmallGrid(), -1.25);
-  maps.coverage(cv::Rect(0, 0, 300, 10)).setTo(0);                  // 3000 cells not covered
-  maps.displacement_mm(cv::Rect(500, 50, 10, 10)).setTo(kNaN);      // 100 covered, no value
+  maps.coverage(cv::Rect(0, 0, 300, 10)).setTo(0);              // 3000 cells not covered
+  maps.displacement_mm(cv::Rect(500, 50, 10, 10)).setTo(kNaN);  // 100 covered, no value
   maps.coverage(cv::Rect(0, 90, 942, 10)).setTo(static_cast<unsigned char>(Coverage::kFilled));
   const SurfacePoints surface = MapSurfacePoints(line, maps);
   ASSERT_EQ(surface.points.size(), 100u * 942u - 3000u - 100u);
@@ -216,8 +218,8 @@ TEST(SurfacePoints, OnePointPerCoveredCellAtRadiusPlusDisplacement) {
   const MapGrid& g = maps.grid;
   const AxisFrame f = line.FrameAt(g.RowStationMm(0));  // first point: row 0, column 300
   EXPECT_NEAR((surface.points[0] - f.origin).norm(), kRadius - 1.25, 1e-9);
-  EXPECT_NEAR((surface.points[0] - f.origin).normalized().dot(f.Direction(g.ColClockRad(300))),
-              1.0, 1e-12);
+  EXPECT_NEAR((surface.points[0] - f.origin).normalized().dot(f.Direction(g.ColClockRad(300))), 1.0,
+              1e-12);
 }
 
 }  // namespace
