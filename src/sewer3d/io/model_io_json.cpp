@@ -14,12 +14,13 @@ namespace sewer3d {
 namespace {
 
 using nlohmann::json;
+using ojson = nlohmann::ordered_json;
 
 constexpr int kVersion = 1;
 
-json Array3(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+ojson Array3(const Eigen::Vector3d& v) { return ojson::array({v.x(), v.y(), v.z()}); }
 
-json FileNames(const ModelMapFiles& files, const std::filesystem::path& model_dir) {
+ojson FileNames(const ModelMapFiles& files, const std::filesystem::path& model_dir) {
   const auto rel = [&](const std::filesystem::path& p) {
     return p.lexically_relative(model_dir).generic_string();
   };
@@ -66,21 +67,21 @@ Centreline ReadCentreline(const JsonReader& in, const json& j, double radius_mm)
 void WriteModelJson(const std::filesystem::path& path, const PipeModelInfo& info) {
   const MapGrid& g = info.grid;
   const std::filesystem::path dir = path.parent_path();
-  json samples = json::array();
+  ojson samples = ojson::array();
   for (std::size_t k = 0; k < info.centreline.points.size(); ++k) {
     samples.push_back({{"station_mm", info.centreline.station0_mm +
                                           static_cast<double>(k) * info.centreline.step_mm},
                        {"point_mm", Array3(info.centreline.points[k])},
                        {"crown", Array3(info.centreline.crowns[k])}});
   }
-  json tiles = json::array();
+  ojson tiles = ojson::array();
   for (const ModelTile& t : info.tiles) {
     tiles.push_back({{"index", t.index},
                      {"row0", t.row0},
                      {"rows", t.rows},
                      {"files", FileNames(TileMapFiles(dir, t.index), dir)}});
   }
-  json j;
+  ojson j;  // members in the order written, for people reading the file
   j["format"] = "sewer3d pipe model";
   j["version"] = kVersion;
   j["units"] = "mm";
