@@ -27,21 +27,6 @@ void WriteImageAtomically(const std::filesystem::path& path, const Mat& image) {
   WriteFileAtomically(path, [&](const std::filesystem::path& t) { WriteImage(t, image); });
 }
 
-// Diverging colours for people: inward (negative) blue, 0 white, outward red, no data black.
-cv::Mat3b DisplacementView(const cv::Mat1f& displacement_mm, double range_mm) {
-  cv::Mat3b view(displacement_mm.size(), cv::Vec3b(0, 0, 0));
-  for (int r = 0; r < view.rows; ++r) {
-    for (int c = 0; c < view.cols; ++c) {
-      const float d = displacement_mm(r, c);
-      if (!std::isfinite(d)) continue;
-      const double t = std::clamp(d / range_mm, -1.0, 1.0);
-      const auto fade = cv::saturate_cast<std::uint8_t>(255.0 * (1.0 - std::abs(t)));
-      view(r, c) = t < 0.0 ? cv::Vec3b(255, fade, fade) : cv::Vec3b(fade, fade, 255);  // BGR
-    }
-  }
-  return view;
-}
-
 template <typename Mat>
 Mat ReadTyped(const std::filesystem::path& path, int type, const MapGrid& grid, const char* what) {
   const cv::Mat image = ReadImage(path, cv::IMREAD_UNCHANGED);
@@ -92,6 +77,20 @@ PipeMaps AssembleTiles(const std::filesystem::path& model_dir, const PipeModelIn
 }
 
 }  // namespace
+
+cv::Mat3b DisplacementView(const cv::Mat1f& displacement_mm, double range_mm) {
+  cv::Mat3b view(displacement_mm.size(), cv::Vec3b(0, 0, 0));
+  for (int r = 0; r < view.rows; ++r) {
+    for (int c = 0; c < view.cols; ++c) {
+      const float d = displacement_mm(r, c);
+      if (!std::isfinite(d)) continue;
+      const double t = std::clamp(d / range_mm, -1.0, 1.0);
+      const auto fade = cv::saturate_cast<std::uint8_t>(255.0 * (1.0 - std::abs(t)));
+      view(r, c) = t < 0.0 ? cv::Vec3b(255, fade, fade) : cv::Vec3b(fade, fade, 255);  // BGR
+    }
+  }
+  return view;
+}
 
 void DisplacementEncoding::Check() const {
   ValidatePositive("displacement_png.scale_mm", scale_mm);

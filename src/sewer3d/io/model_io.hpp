@@ -36,6 +36,10 @@ struct DisplacementEncoding {
   [[nodiscard]] float Decode(std::uint16_t value) const;  ///< NaN for 0
 };
 
+/// displacement_view.png's colours for people: inward (negative) blue, 0 white, outward red
+/// (saturating at ±range_mm), no data black. BGR.
+cv::Mat3b DisplacementView(const cv::Mat1f& displacement_mm, double range_mm);
+
 struct ModelFileOptions {
   DisplacementEncoding encoding;
   double view_range_mm = 10.0;  ///< displacement_view.png saturates at ± this

@@ -84,8 +84,9 @@ Matrix6d WithCovarianceFloor(const Matrix6d& information, double sigma_t_mm, dou
   Vector6d floor_scaled;
   floor_scaled << Eigen::Vector3d::Constant(sigma_t_mm * sigma_t_mm),
       Eigen::Vector3d::Constant(arc_mm * arc_mm);
-  const Eigen::MatrixXd cov = Eigen::MatrixXd(eig.eigenvalues().tail(k).cwiseInverse().asDiagonal()) +
-                              v.transpose() * floor_scaled.asDiagonal() * v;
+  const Eigen::MatrixXd cov =
+      Eigen::MatrixXd(eig.eigenvalues().tail(k).cwiseInverse().asDiagonal()) +
+      v.transpose() * floor_scaled.asDiagonal() * v;
   const Eigen::MatrixXd w = s.cwiseInverse().asDiagonal() * v;  // S⁻¹ V
   const Matrix6d out = w * cov.inverse() * w.transpose();
   return 0.5 * (out + out.transpose());

@@ -193,8 +193,7 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
     const Normal n = Accumulate(s, options.huber_k * sigma, a.normal_variance);
     const Vector6d delta = ObservableStep(n, Observable(n, length_mm, options));
     pose = ApplyUpdate(pose, delta);
-    const double step_mm =
-        std::max(delta.head<3>().norm(), delta.tail<3>().norm() * length_mm);
+    const double step_mm = std::max(delta.head<3>().norm(), delta.tail<3>().norm() * length_mm);
     converged = delta.dot(n.h * delta) / (sigma * sigma) < options.convergence_chi2 ||
                 step_mm < options.convergence_step_mm;
     gate = std::clamp(4.0 * sigma, options.min_gate_mm, options.max_distance_mm);
@@ -209,10 +208,10 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
   out.sigma_mm = std::sqrt(n.weighted_r2 / std::max(1.0, n.weights - 6.0));
   out.rms_mm = std::sqrt(n.r2 / static_cast<double>(s.size()));
   out.a_from_b = pose;
-  out.information = WithCovarianceFloor(
-      ToResidualOrder(ObservableInformation(Observable(n, length_mm, options)) /
-                      std::max(out.sigma_mm * out.sigma_mm, 1e-12)),
-      options.floor_translation_mm, options.floor_rotation_deg);
+  out.information =
+      WithCovarianceFloor(ToResidualOrder(ObservableInformation(Observable(n, length_mm, options)) /
+                                          std::max(out.sigma_mm * out.sigma_mm, 1e-12)),
+                          options.floor_translation_mm, options.floor_rotation_deg);
   out.report.spectrum = AnalyseInformation(out.information, length_mm, options.degeneracy_ratio);
   out.degenerate = out.report.spectrum.degenerate;
   out.weak_direction = out.report.spectrum.weak_direction;

@@ -1,0 +1,96 @@
+// `sewer3d model RUN --out WS`: the pipe model from the registered acquisitions
+// (docs/model.md).
+
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/progress_bar.hpp"
+#include "sewer3d/io/run_io.hpp"
+#include "sewer3d/pipeline/model_stage.hpp"
+#include "sewer3d/pipeline/workspace.hpp"
+
+namespace sewer3d::cli {
+
+void AddModelStageOptions(CLI::App& sub, ModelStageOptions& o) {
+  sub.add_option("--resolution-mm", o.resolution_mm, "Map cell size along and around the pipe")
+      ->capture_default_str();
+  sub.add_option("--start-station-mm", o.start_station_mm,
+                 "Station of the run's first carrier position (where the run began)")
+      ->capture_default_str();
+  sub.add_option("--nominal-diameter-mm", o.nominal_diameter_mm,
+                 "Model diameter (the round pipe the displacement is measured from); 0: the "
+                 "fitted diameter rounded to 5 mm")
+      ->capture_default_str();
+  sub.add_flag("--straight", o.straight, "One straight cylinder instead of a bending centreline");
+  sub.add_option("--tile-length-mm", o.tile_length_mm, "Tile along the pipe (bounds memory)")
+      ->capture_default_str();
+  sub.add_option("--pixel-step", o.pixel_step, "Every n-th depth-map pixel into the maps")
+      ->capture_default_str();
+  sub.add_option("--mesh-step-mm", o.displaced.step_mm, "Vertex spacing of mesh.glb")
+      ->capture_default_str();
+}
+
+Command AddModelCommand(CLI::App& app) {
+  struct Args {
+    std::string run, out;
+    ModelStageOptions options;
+    bool quiet = false;
+  };
+  auto args = std::make_shared<Args>();
+  args->options.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  CLI::App* sub = app.add_subcommand(
+      "model",
+      "The pipe model: WS/model/texture.png, displacement.png/.tiff, coverage.png, model.json, "
+      "surface.ply, mesh.obj, mesh.glb (needs WS/registration from `sewer3d register`)");
+  sub->add_option("RUN", args->run, "Capture run folder (docs/formats.md)")->required();
+  sub->add_option("--out", args->out, "Processing workspace folder WS")->required();
+  AddModelStageOptions(*sub, args->options);
+  sub->add_option("--threads", args->options.threads, "Tiles made at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  sub->add_flag("--force", args->options.force,
+                "Redo the stage from scratch, also when it was run with other options");
+  sub->add_flag("--quiet", args->quiet, "No progress bar");
+  return {sub, [args] {
+            const CaptureRun run = LoadRun(args->run);
+            ProgressBar bar(args->quiet);
+            auto progress = [&](const std::string& pass, int done, int total) {
+              bar.Update("model " + pass, done, total, pass == "tiles" ? "tiles" : "items");
+            };
+            ModelStageReport r;
+            try {
+              Workspace workspace(args->out, run.folder);
+              r = RunModelStage(run, workspace, args->options, progress);
+            } catch (const WorkspaceConflict& e) {
+              fmt::print(stderr, "sewer3d: error: {}\n", e.what());
+              return 2;
+            }
+            const std::filesystem::path folder = std::filesystem::path(args->out) / "model";
+            if (!r.ok) {
+              fmt::print(stderr, "sewer3d: error: {}: {}\n", folder.string(), r.message);
+              return 1;
+            }
+            fmt::print(
+                "model: {} acquisitions; centreline from {}/{} slices, fitted diameter {:.2f} mm "
+                "(model {:.0f} mm){}; maps {} x {} cells at {} mm ({} tiles, {} from an earlier "
+                "run), {:.1f} % measured, {:.1f} % filled; mesh.glb {} vertices at {:.1f} mm; "
+                "{:.1f} s ({:.2f} s per acquisition)\n",
+                r.acquisitions, r.centreline.slices_used,
+                r.centreline.slices_used + r.centreline.slices_rejected,
+                2.0 * r.centreline.radius_mm, r.nominal_diameter_mm,
+                r.centreline.bend_radius_mm
+                    ? fmt::format(", bend radius {:.1f} m", *r.centreline.bend_radius_mm / 1000.0)
+                    : std::string(),
+                r.grid.rows, r.grid.cols, r.grid.resolution_mm, r.tiles, r.tiles_from_earlier_run,
+                100.0 * r.measured_fraction, 100.0 * r.filled_fraction, r.displaced_vertices,
+                r.displaced_step_mm, r.seconds, r.seconds_per_acquisition);
+            fmt::print("wrote {}\n", (folder / "model.json").string());
+            return 0;
+          }};
+}
+
+}  // namespace sewer3d::cli

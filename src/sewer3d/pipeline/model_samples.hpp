@@ -1,0 +1,43 @@
+#pragma once
+/// \file
+/// What the model stage takes from one registered RGB-D acquisition (model_stage.hpp): depth
+/// samples in the model frame for the centreline fit, and every pixel with depth (and its
+/// corrected colour) for the maps.
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/model/map_accumulator.hpp"
+
+namespace sewer3d {
+
+/// An acquisition with its registered pose and the stations its samples span.
+struct ModelAcquisition {
+  int module = 0;
+  int counter = 0;
+  Rigid3d world_from_camera;
+  double station_min_mm = 0.0, station_max_mm = 0.0;
+};
+
+/// About `target` points of the depth map (a regular pixel grid) in the model frame.
+std::vector<Eigen::Vector3d> FitSamples(const cv::Mat1f& depth_mm, const CameraModel& camera,
+                                        const Rigid3d& world_from_camera, int target);
+
+/// How pixels become weighted map samples.
+struct PixelWeighting {
+  int pixel_step = 1;
+  double feather_px = 50.0;
+  double depth_sigma_ref_mm = 0.03;
+  double depth_ref_mm = 150.0;
+};
+
+/// Adds every pixel_step-th pixel with depth of the acquisition (colour from `color_bgr`) to
+/// `maps`, weighted by DepthWeight × BorderFeather. Returns the samples the tile took.
+long long AddAcquisitionPixels(MapAccumulator& maps, const cv::Mat1f& depth_mm,
+                               const cv::Mat3b& color_bgr, const CameraModel& camera,
+                               const Rigid3d& world_from_camera, const PixelWeighting& weighting);
+
+}  // namespace sewer3d

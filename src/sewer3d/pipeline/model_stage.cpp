@@ -1,0 +1,205 @@
+#include "sewer3d/pipeline/model_stage.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/registration_io.hpp"
+#include "sewer3d/model/unroll.hpp"
+#include "sewer3d/pipeline/model_outputs.hpp"
+#include "sewer3d/pipeline/model_samples.hpp"
+#include "sewer3d/pipeline/parallel_items.hpp"
+
+namespace sewer3d {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr const char* kStage = "model";
+
+/// The registered acquisitions, each with its fit samples (model frame).
+std::vector<ModelAcquisition> RegisteredAcquisitions(
+    const CaptureRun& run, const std::filesystem::path& ws, int samples_per_acquisition,
+    int threads, std::vector<std::vector<Eigen::Vector3d>>& samples,
+    const ModelProgress& progress) {
+  const std::filesystem::path poses_file = ws / "registration" / "poses.csv";
+  if (!std::filesystem::exists(poses_file))
+    throw FileError(poses_file, "missing: run the register stage first");
+  std::vector<ModelAcquisition> acquisitions;
+  for (const RegistrationPoseRow& row : ReadRegistrationPoses(poses_file)) {
+    if (row.module < 0 || row.module >= static_cast<int>(run.rig.modules.size()))
+      throw FileError(poses_file, "module " + std::to_string(row.module) + " is not in the rig");
+    acquisitions.push_back({row.module, row.counter, row.world_from_camera});
+  }
+  if (acquisitions.empty()) throw FileError(poses_file, "no registered acquisition");
+  samples.assign(acquisitions.size(), {});
+  ForEachItem<int>(
+      acquisitions.size(), threads, [] { return 0; },
+      [&](std::size_t i, int&) {
+        const ModelAcquisition& a = acquisitions[i];
+        const RgbdPairInput in = ReadRgbdForRegistration(ws / "rgbd", a.module, a.counter);
+        const CameraModel camera(run.rig.modules[a.module].module.camera);
+        samples[i] = FitSamples(in.depth_mm, camera, a.world_from_camera, samples_per_acquisition);
+      },
+      [&](int finished) {
+        if (progress) progress("samples", finished, static_cast<int>(acquisitions.size()));
+      });
+  return acquisitions;
+}
+
+/// Each acquisition's station span from its samples; the grid over all of them.
+MapGrid StationGrid(const Centreline& centreline,
+                    const std::vector<std::vector<Eigen::Vector3d>>& samples,
+                    std::vector<ModelAcquisition>& acquisitions, double resolution_mm) {
+  double begin = std::numeric_limits<double>::infinity(), end = -begin;
+  for (std::size_t i = 0; i < acquisitions.size(); ++i) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo, guess = 0.0;
+    for (const Eigen::Vector3d& p : samples[i]) {
+      guess = Unroll(centreline, p, guess).station_mm;
+      lo = std::min(lo, guess);
+      hi = std::max(hi, guess);
+    }
+    acquisitions[i].station_min_mm = lo;
+    acquisitions[i].station_max_mm = hi;
+    if (lo <= hi) begin = std::min(begin, lo), end = std::max(end, hi);
+  }
+  begin = std::floor(begin / resolution_mm) * resolution_mm;
+  return MakeMapGrid(begin, end, centreline.radius_mm, resolution_mm);
+}
+
+double SplatRadius(const CaptureRun& run, const ModelStageOptions& o) {
+  if (o.maps.splat_radius_mm > 0.0) return o.maps.splat_radius_mm;
+  double footprint = 0.0;
+  for (const RigModule& m : run.rig.modules)
+    footprint = std::max(footprint, o.depth_ref_mm / m.module.camera.fx * o.pixel_step);
+  return footprint > 0.7 * o.resolution_mm ? footprint : 0.0;
+}
+
+double NominalDiameter(const ModelStageOptions& options, double fitted_radius_mm) {
+  if (options.nominal_diameter_mm > 0.0) return options.nominal_diameter_mm;
+  return 5.0 * std::round(2.0 * fitted_radius_mm / 5.0);
+}
+
+/// Accumulates and writes every tile not written by an earlier run.
+void WriteTiles(const CaptureRun& run, const std::filesystem::path& ws, const Centreline& line,
+                const std::vector<ModelAcquisition>& acquisitions, const ModelStageOptions& o,
+                PipeModelInfo& info, ModelStageReport& report, const ModelProgress& progress) {
+  const std::filesystem::path folder = ws / kStage;
+  const int tile_rows = std::max(1, static_cast<int>(std::lround(o.tile_length_mm / o.resolution_mm)));
+  for (int row0 = 0, k = 0; row0 < info.grid.rows; row0 += tile_rows, ++k)
+    info.tiles.push_back({k, row0, std::min(tile_rows, info.grid.rows - row0)});
+  report.tiles = static_cast<int>(info.tiles.size());
+  for (const ModelTile& tile : info.tiles)
+    report.tiles_from_earlier_run += ModelTileDone(folder, tile.index) ? 1 : 0;
+  ForEachItem<int>(
+      info.tiles.size(), o.threads, [] { return 0; },
+      [&](std::size_t t, int&) {
+        const ModelTile& tile = info.tiles[t];
+        if (ModelTileDone(folder, tile.index)) return;
+        const MapGrid grid = info.grid.Tile(tile.row0, tile.rows);
+        const double lo = grid.station0_mm, hi = lo + grid.rows * grid.resolution_mm;
+        MapAccumulatorOptions map_options = o.maps;
+        map_options.splat_radius_mm = report.splat_radius_mm;
+        MapAccumulator maps(line, grid, map_options);
+        for (const ModelAcquisition& a : acquisitions) {
+          if (a.station_max_mm < lo - 5.0 || a.station_min_mm > hi + 5.0) continue;
+          const RgbdPairInput in = ReadRgbdForRegistration(ws / "rgbd", a.module, a.counter);
+          const CameraModel camera(run.rig.modules[a.module].module.camera);
+          const PixelWeighting weighting{o.pixel_step, o.feather_fraction * in.depth_mm.cols,
+                                         o.depth_sigma_ref_mm, o.depth_ref_mm};
+          AddAcquisitionPixels(maps, in.depth_mm, in.color_bgr, camera, a.world_from_camera,
+                               weighting);
+        }
+        WriteModelTile(folder, tile.index, maps.Finish(), info.grid, line, o.files);
+      },
+      [&](int finished) {
+        if (progress) progress("tiles", finished, report.tiles);
+      });
+}
+
+}  // namespace
+
+void ModelStageOptions::Check() const {
+  ValidatePositive("resolution_mm", resolution_mm);
+  SEWER3D_VALIDATE(resolution_mm >= 0.01 && resolution_mm <= 50.0, "resolution_mm",
+                   "must lie in [0.01, 50] mm, got " << resolution_mm);
+  SEWER3D_VALIDATE(std::isfinite(start_station_mm), "start_station_mm", "must be finite");
+  ValidateNotNegative("nominal_diameter_mm", nominal_diameter_mm);
+  ValidatePositive("tile_length_mm", tile_length_mm);
+  SEWER3D_VALIDATE(fit_samples_per_acquisition >= 10, "fit_samples_per_acquisition",
+                   "must be at least 10");
+  SEWER3D_VALIDATE(pixel_step >= 1, "pixel_step", "must be at least 1");
+  SEWER3D_VALIDATE(feather_fraction > 0.0 && feather_fraction <= 0.5, "feather_fraction",
+                   "must lie in (0, 0.5]");
+  ValidatePositive("depth_sigma_ref_mm", depth_sigma_ref_mm);
+  ValidatePositive("depth_ref_mm", depth_ref_mm);
+  centreline.Check();
+  maps.Check();
+  files.Check();
+  base.Check();
+  displaced.Check();
+  SEWER3D_VALIDATE(threads >= 1, "threads", "must be at least 1, got " << threads);
+}
+
+ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
+                               const ModelStageOptions& options, const ModelProgress& progress) {
+  options.Check();
+  const auto start = Clock::now();
+  workspace.BeginStage(kStage, ModelOptionsJson(options), options.force);
+  const std::filesystem::path ws = workspace.folder(), folder = workspace.StageFolder(kStage);
+  if (options.force) RemoveFolder(folder);
+  ModelStageReport report;
+  report.threads = options.threads;
+
+  std::vector<std::vector<Eigen::Vector3d>> samples;
+  std::vector<ModelAcquisition> acquisitions = RegisteredAcquisitions(
+      run, ws, options.fit_samples_per_acquisition, options.threads, samples, progress);
+  report.acquisitions = static_cast<int>(acquisitions.size());
+  std::vector<Eigen::Vector3d> all;
+  for (const auto& s : samples) all.insert(all.end(), s.begin(), s.end());
+  report.fit_points = static_cast<int>(all.size());
+
+  CentrelineFitOptions fit_options = options.centreline;
+  fit_options.straight = options.straight;
+  fit_options.start_station_mm = options.start_station_mm;
+  CentrelineFit fit = FitCentreline(all, fit_options);
+  report.centreline = fit.report;
+  if (!fit.converged) {
+    report.message = "no centreline: " + std::to_string(fit.report.slices_used) +
+                     " usable cross-section slices in " + std::to_string(all.size()) + " points";
+    workspace.FinishStage(kStage, false, {{"error", report.message}});
+    return report;
+  }
+  report.nominal_diameter_mm = NominalDiameter(options, fit.report.radius_mm);
+  fit.centreline.radius_mm = 0.5 * report.nominal_diameter_mm;
+
+  PipeModelInfo info;
+  info.centreline = fit.centreline;
+  info.start_station_mm = options.start_station_mm;
+  info.encoding = options.files.encoding;
+  info.view_range_mm = options.files.view_range_mm;
+  info.grid = StationGrid(info.centreline, samples, acquisitions, options.resolution_mm);
+  samples.clear();
+  report.grid = info.grid;
+  report.splat_radius_mm = SplatRadius(run, options);
+  WriteTiles(run, ws, info.centreline, acquisitions, options, info, report, progress);
+
+  const MapFilesReport files = FinishTiledModel(folder, info, options.files);
+  report.surface_points = files.surface_points;
+  WriteModelMeshes(folder, info, options, report, progress);
+  report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  report.seconds_per_acquisition = report.seconds / report.acquisitions;
+  report.ok = true;
+  WriteModelReport(folder, report);
+  workspace.FinishStage(kStage, true,
+                        {{"acquisitions", std::to_string(report.acquisitions)},
+                         {"rows", std::to_string(info.grid.rows)},
+                         {"cols", std::to_string(info.grid.cols)},
+                         {"tiles", std::to_string(report.tiles)}});
+  return report;
+}
+
+}  // namespace sewer3d
