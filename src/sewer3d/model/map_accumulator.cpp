@@ -66,6 +66,15 @@ void MapAccumulator::AddToCell(int row, int col, double weight, double displacem
 
 bool MapAccumulator::Add(const Eigen::Vector3d& p_model, const cv::Vec3f& bgr, double weight) {
   SEWER3D_CHECK(weight > 0.0 && std::isfinite(weight), "weight = " << weight);
+  // Points far outside the tile are rejected from a first-order station (one frame, no
+  // iterations): a caller feeds whole acquisitions to every tile they may reach. Its error is
+  // ~ Δs² / bend radius, far below the 10 mm slack for any pipe bend.
+  const AxisFrame near = centreline_.FrameAt(station_guess_mm_);
+  const double approx = station_guess_mm_ + (p_model - near.origin).dot(near.tangent);
+  const double slack = options_.splat_radius_mm + 10.0;
+  if (approx < ext_.station0_mm - slack ||
+      approx > ext_.station0_mm + ext_.rows * ext_.resolution_mm + slack)
+    return false;
   const CylPoint cyl = Unroll(centreline_, p_model, station_guess_mm_);
   station_guess_mm_ = cyl.station_mm;
   const double res = ext_.resolution_mm;
@@ -95,7 +104,7 @@ bool MapAccumulator::Add(const Eigen::Vector3d& p_model, const cv::Vec3f& bgr, d
       const double dc = (k + 0.5 - col_f) * col_mm;
       const double d2 = dr * dr + dc * dc;
       if (d2 >= r2) continue;
-      const double kernel = std::pow(1.0 - d2 / r2, 2);
+      const double kernel = (1.0 - d2 / r2) * (1.0 - d2 / r2);
       AddToCell(r, ((k % ext_.cols) + ext_.cols) % ext_.cols, weight * kernel, displacement, bgr);
     }
   }

@@ -14,7 +14,7 @@ namespace sewer3d {
 namespace {
 
 using nlohmann::json;
-constexpr int kMaxTextureSide = 8192;  // what browsers take (io/mesh_io.hpp)
+constexpr int kMaxTextureSide = 8192;   // what browsers take (io/mesh_io.hpp)
 constexpr int kPreviewLengthPx = 2400;  // preview.png along the pipe
 
 void WriteImageAtomically(const std::filesystem::path& path, const cv::Mat& image) {
@@ -71,14 +71,10 @@ json CentrelineReportJson(const CentrelineFitReport& c) {
                       {"rms_mm", s.rms_mm},
                       {"points", s.points},
                       {"used", s.used}});
-  json j = {{"slices_used", c.slices_used},
-            {"slices_rejected", c.slices_rejected},
-            {"fitted_radius_mm", c.radius_mm},
-            {"rms_mm", c.rms_mm},
-            {"axis_rms_mm", c.axis_rms_mm},
-            {"iterations", c.iterations},
-            {"last_move_mm", c.last_move_mm},
-            {"slices", slices}};
+  json j = {{"slices_used", c.slices_used},    {"slices_rejected", c.slices_rejected},
+            {"fitted_radius_mm", c.radius_mm}, {"rms_mm", c.rms_mm},
+            {"axis_rms_mm", c.axis_rms_mm},    {"iterations", c.iterations},
+            {"last_move_mm", c.last_move_mm},  {"slices", slices}};
   j["bend_radius_mm"] = c.bend_radius_mm ? json(*c.bend_radius_mm) : json(nullptr);
   return j;
 }

@@ -33,9 +33,8 @@ long long AddAcquisitionPixels(MapAccumulator& maps, const cv::Mat1f& depth_mm,
       const auto xy = camera.Unproject(Eigen::Vector2d(u, v));
       if (!xy) continue;
       const Eigen::Vector3d p = world_from_camera * Eigen::Vector3d(xy->x() * z, xy->y() * z, z);
-      const double weight =
-          DepthWeight(z, weighting.depth_sigma_ref_mm, weighting.depth_ref_mm) *
-          BorderFeather(u, v, depth_mm.cols, depth_mm.rows, weighting.feather_px);
+      const double weight = DepthWeight(z, weighting.depth_sigma_ref_mm, weighting.depth_ref_mm) *
+                            BorderFeather(u, v, depth_mm.cols, depth_mm.rows, weighting.feather_px);
       const cv::Vec3b& c = color_bgr(v, u);
       if (maps.Add(p, cv::Vec3f(c[0], c[1], c[2]), weight)) ++added;
     }

@@ -29,12 +29,12 @@ struct ModelStageOptions {
   double start_station_mm = 0.0;  ///< station of the run's first carrier position
   /// Model radius = half of this; 0: the fitted diameter rounded to 5 mm (nominal sizes).
   double nominal_diameter_mm = 0.0;
-  bool straight = false;           ///< one straight cylinder instead of a bending centreline
-  double tile_length_mm = 100.0;   ///< tile along the pipe (memory: ~22 bytes per cell)
+  bool straight = false;          ///< one straight cylinder instead of a bending centreline
+  double tile_length_mm = 100.0;  ///< tile along the pipe (memory: ~22 bytes per cell)
   int fit_samples_per_acquisition = 3000;  ///< depth samples each gives the centreline fit
   int pixel_step = 1;                      ///< every n-th pixel (rows, columns) into the maps
-  double feather_fraction = 0.08;  ///< border ramp, as a fraction of the image width
-  double depth_sigma_ref_mm = 0.03;  ///< DepthWeight: σ at depth_ref_mm
+  double feather_fraction = 0.08;          ///< border ramp, as a fraction of the image width
+  double depth_sigma_ref_mm = 0.03;        ///< DepthWeight: σ at depth_ref_mm
   double depth_ref_mm = 150.0;
   CentrelineFitOptions centreline;  ///< its nominal diameter and start station set by the stage
   /// Its splat_radius_mm 0 = automatic: where a pixel's footprint on the wall (depth_ref_mm /
@@ -54,8 +54,8 @@ struct ModelStageOptions {
 std::string ModelOptionsJson(const ModelStageOptions& options);
 
 struct ModelStageReport {
-  bool ok = false;      ///< false: the model could not be made (message says why)
-  std::string message;  ///< why not, one line
+  bool ok = false;       ///< false: the model could not be made (message says why)
+  std::string message;   ///< why not, one line
   int acquisitions = 0;  ///< registered ones with depth
   int fit_points = 0;
   CentrelineFitReport centreline;
