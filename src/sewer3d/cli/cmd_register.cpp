@@ -3,7 +3,9 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <vector>
 #include <string>
 #include <thread>
 
@@ -20,6 +22,7 @@ Command AddRegisterCommand(CLI::App& app) {
     std::string run, out;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     bool quiet = false, force = false;
+    std::vector<std::string> edges{"feature", "projection", "rig", "odometry", "straightness"};
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -31,6 +34,12 @@ Command AddRegisterCommand(CLI::App& app) {
   sub->add_option("--threads", args->threads, "Pairs registered at once")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
+  sub->add_option("--edges", args->edges,
+                  "Edge types the graph may use (ablation): feature, projection, rig, odometry, "
+                  "straightness; `none` keeps the odometry + rig poses")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"feature", "projection", "rig", "odometry", "straightness", "none"}))
+      ->capture_default_str();
   sub->add_flag("--force", args->force,
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
@@ -40,6 +49,14 @@ Command AddRegisterCommand(CLI::App& app) {
             options.threads = args->threads;
             options.fusion.threads = args->threads;
             options.force = args->force;
+            const auto use = [&](const char* type) {
+              return std::find(args->edges.begin(), args->edges.end(), type) != args->edges.end();
+            };
+            options.pairs.feature_registration = use("feature");
+            options.pairs.projection_fallback = use("projection");
+            options.priors.rig = use("rig");
+            options.priors.odometry = use("odometry");
+            options.priors.straightness = use("straightness");
             ProgressBar bar(args->quiet);
             auto progress = [&](const std::string& pass, int done, int total) {
               bar.Update("register " + pass, done, total, pass == "pairs" ? "pairs" : "steps");

@@ -60,6 +60,7 @@ std::string RegisterOptionsJson(const RegisterStageOptions& o) {
         {"ratio", f.ratio},
         {"max_keypoints", f.max_keypoints},
         {"min_inliers", f.points.min_inliers}}},
+      {"feature_registration", o.pairs.feature_registration},
       {"projection",
        {{"enabled", o.pairs.projection_fallback},
         {"sample_step_px", p.sample_step_px},

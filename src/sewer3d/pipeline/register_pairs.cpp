@@ -20,9 +20,10 @@ PairRecord Register(const AcquisitionNode& a, const AcquisitionNode& b, const Ri
   const CameraModel camera_b(rig.modules[b.module].module.camera);
   PairRecord r;
   r.method = "none";
-  const FeatureRegistrationResult f =
-      RegisterFeatures({in_a.color_bgr, in_a.depth_mm}, camera_a, {in_b.color_bgr, in_b.depth_mm},
-                       camera_b, options.features);
+  FeatureRegistrationResult f;
+  if (options.feature_registration)
+    f = RegisterFeatures({in_a.color_bgr, in_a.depth_mm}, camera_a,
+                         {in_b.color_bgr, in_b.depth_mm}, camera_b, options.features);
   if (f.converged) {
     r.method = "feature";
     r.a_from_b = f.a_from_b;

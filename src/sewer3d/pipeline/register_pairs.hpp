@@ -21,7 +21,8 @@ namespace sewer3d {
 struct PairRegistrationOptions {
   FeatureRegistrationOptions features;
   ProjectionRegistrationOptions projection;
-  bool projection_fallback = true;  ///< try projection registration where features fail
+  bool feature_registration = true;  ///< try feature registration first (ablation: off)
+  bool projection_fallback = true;   ///< try projection registration where features fail
 };
 
 struct PairRegistrationOutcome {
