@@ -28,6 +28,8 @@ Command AddEvaluateCommand(CLI::App& app);
 Command AddCalibrateCommand(CLI::App& app);
 Command AddRgbdCommand(CLI::App& app);
 Command AddRegisterCommand(CLI::App& app);
+Command AddProcessCommand(CLI::App& app);
+Command AddDemoCommand(CLI::App& app);
 
 /// Parses "WxH" (e.g. "648x486"); nullopt when malformed or not positive.
 std::optional<std::pair<int, int>> ParseSize(const std::string& text);
