@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <thread>
@@ -72,13 +73,15 @@ double PeakMemoryGb() {
 int RunDemo(const DemoArgs& a) {
   const auto start = Clock::now();
   const fs::path dir = a.out, run = dir / "run", ws = dir / "ws";
-  fmt::print("== simulate: the '{}' run (0.5 m of DN300, 648 x 486 images) into {}\n", kPreset,
+  fmt::print("== simulate: the '{}' run (0.56 m of DN300, 648 x 486 images) into {}\n", kPreset,
              run.string());
+  std::fflush(stdout);
   bool simulated = false;
   if (const int rc = SimulateUnlessDone(run, a, simulated); rc != 0) return rc;
   const double simulate_s = SecondsSince(start);
 
   fmt::print("\n== process: {} into {}\n", run.string(), ws.string());
+  std::fflush(stdout);
   ProcessArgs process;
   process.run = run.string();
   process.out = ws.string();
@@ -90,6 +93,7 @@ int RunDemo(const DemoArgs& a) {
   if (const int rc = RunProcessCommand(process, &report); rc != 0) return rc;
 
   fmt::print("\n== evaluate: the stages against the run's truth\n");
+  std::fflush(stdout);
   const auto evaluate_start = Clock::now();
   RunEvaluateRgbd(run.string(), ws.string(), "", RgbdEvaluationOptions{}.colour_smoothing_px);
   RunEvaluateRegistration(run.string(), ws.string(), "");

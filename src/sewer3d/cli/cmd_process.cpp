@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -30,6 +31,7 @@ void PrintStage(const ProcessStageResult& r) {
     fmt::print("{}: {:.1f} s when it was done\n", r.name, r.seconds);
   else
     fmt::print("{}: {:.1f} s; wrote {}\n", r.name, r.seconds, r.outcome.output.string());
+  std::fflush(stdout);  // before the next stage's progress on stderr
 }
 
 }  // namespace
