@@ -102,11 +102,13 @@ int RunDemo(const DemoArgs& a) {
   std::string times = fmt::format("simulate {:.1f} s{}", simulate_s, simulated ? "" : " (reused)");
   for (const ProcessStageResult& r : report.stages)
     times += fmt::format(", {} {:.1f} s{}", r.name, r.seconds, r.skipped ? " (done before)" : "");
-  fmt::print("\n== demo: done in {:.1f} s ({} threads; peak memory {:.2f} GB): {}, evaluate {:.1f} s\n",
-             SecondsSince(start), a.threads, PeakMemoryGb(), times, evaluate_s);
+  fmt::print(
+      "\n== demo: done in {:.1f} s ({} threads; peak memory {:.2f} GB): {}, evaluate {:.1f} s\n",
+      SecondsSince(start), a.threads, PeakMemoryGb(), times, evaluate_s);
   const std::string d = dir.string();
   fmt::print("look at:\n");
-  fmt::print("  {}/run/truth/overview.png          the unrolled pipe and every image's footprint\n", d);
+  fmt::print("  {}/run/truth/overview.png          the unrolled pipe and every image's footprint\n",
+             d);
   fmt::print("  {}/ws/rgbd/m0/000000_color.png     corrected colour at the pattern instant\n", d);
   fmt::print("  {}/ws/rgbd/m0/000000_depth_preview.png  its depth map\n", d);
   fmt::print("  {}/ws/registration/graph.png       the pose graph\n", d);

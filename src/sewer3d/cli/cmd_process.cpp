@@ -9,6 +9,7 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 
@@ -42,7 +43,14 @@ int RunProcessCommand(const ProcessArgs& args, ProcessReport* report_out) {
   options.resolution_mm = args.resolution_mm;
   options.threads = args.threads;
   options.force = args.force;
-  options.Check();
+  try {
+    options.Check();
+  } catch (const InvalidValue& e) {  // in the command line's terms
+    const std::string field = e.field() == "start_station_mm" ? "--start-station-mm"
+                              : e.field() == "resolution_mm"  ? "--resolution-mm"
+                                                              : e.field();
+    throw InvalidValue(field, e.problem());
+  }
   const CaptureRun run = LoadRun(args.run);
   ProgressBar bar(args.quiet);
   auto progress = [&](const std::string& pass, int done, int total) {

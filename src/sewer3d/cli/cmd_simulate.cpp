@@ -144,7 +144,6 @@ int RunRun(const RunArgs& a) {
   return 0;
 }
 
-
 Command AddSimulateCommand(CLI::App& app) {
   struct Args {
     std::string module, scene = "plane", out, material = "concrete";

@@ -36,13 +36,12 @@ ProcessStage RegisterProcessStage() {
     r.force = o.force;
     return r;
   };
-  return {"register",
-          [=](const ProcessOptions& o) { return RegisterOptionsJson(stage_options(o)); },
-          [=](const CaptureRun& run, Workspace& ws, const ProcessOptions& o,
-              const StageProgress& progress) {
-            return RegisterOutcome(RunRegisterStage(run, ws, stage_options(o), progress),
-                                   ws.folder());
-          }};
+  return {
+      "register", [=](const ProcessOptions& o) { return RegisterOptionsJson(stage_options(o)); },
+      [=](const CaptureRun& run, Workspace& ws, const ProcessOptions& o,
+          const StageProgress& progress) {
+        return RegisterOutcome(RunRegisterStage(run, ws, stage_options(o), progress), ws.folder());
+      }};
 }
 
 // Recorded done with the options it would run with now, and nothing before it changed.
@@ -102,8 +101,8 @@ StageOutcome RegisterOutcome(const RegisterStageReport& report,
     o.details.push_back(fmt::format("left out: m{} counter {}: {}", l.module, l.counter, l.reason));
   if (!report.fusion.usable) {
     o.ok = false;
-    o.error = fmt::format("the pose graph did not converge (see {})",
-                          (folder / "report.json").string());
+    o.error =
+        fmt::format("the pose graph did not converge (see {})", (folder / "report.json").string());
   }
   return o;
 }
@@ -129,9 +128,8 @@ std::string ProcessOptionsJson(const ProcessOptions& options) {
   return j.dump();
 }
 
-ProcessReport RunProcess(const CaptureRun& run, Workspace& workspace,
-                         const ProcessOptions& options, const StageProgress& progress,
-                         const StageFinished& finished) {
+ProcessReport RunProcess(const CaptureRun& run, Workspace& workspace, const ProcessOptions& options,
+                         const StageProgress& progress, const StageFinished& finished) {
   options.Check();
   const auto start = Clock::now();
   const std::string options_json = ProcessOptionsJson(options);
@@ -151,10 +149,10 @@ ProcessReport RunProcess(const CaptureRun& run, Workspace& workspace,
       skipped += (skipped.empty() ? "" : " ") + stage.name;
     } else {
       upstream_unchanged = false;
-      r.outcome = stage.run(run, workspace, options,
-                            [&](const std::string& pass, int done, int total) {
-                              if (progress) progress(stage.name + " " + pass, done, total);
-                            });
+      r.outcome =
+          stage.run(run, workspace, options, [&](const std::string& pass, int done, int total) {
+            if (progress) progress(stage.name + " " + pass, done, total);
+          });
       r.seconds = std::chrono::duration<double>(Clock::now() - stage_start).count();
     }
     report.stages.push_back(r);

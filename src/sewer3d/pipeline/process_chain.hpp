@@ -38,11 +38,11 @@ struct ProcessOptions {
 
 /// What one stage run by the chain came to, in words for people (one line each).
 struct StageOutcome {
-  bool ok = true;            ///< false: the stage could not do its task (exit code 1)
-  std::string summary;       ///< what it did, with counts
+  bool ok = true;                    ///< false: the stage could not do its task (exit code 1)
+  std::string summary;               ///< what it did, with counts
   std::vector<std::string> details;  ///< further lines (e.g. acquisitions left out)
-  std::string error;         ///< !ok: why, naming the file to look at
-  std::filesystem::path output;  ///< the file to look at first
+  std::string error;                 ///< !ok: why, naming the file to look at
+  std::filesystem::path output;      ///< the file to look at first
 };
 
 /// The RGB-D and registration stages' reports in words (also for `sewer3d rgbd|register`).
@@ -91,8 +91,7 @@ using StageFinished = std::function<void(const ProcessStageResult&)>;
 /// each stage's own counts. Throws what the stages throw (std::invalid_argument on invalid
 /// options, WorkspaceConflict, FileError); a stage that fails without throwing ends the chain
 /// with report.ok false.
-ProcessReport RunProcess(const CaptureRun& run, Workspace& workspace,
-                         const ProcessOptions& options, const StageProgress& progress = {},
-                         const StageFinished& finished = {});
+ProcessReport RunProcess(const CaptureRun& run, Workspace& workspace, const ProcessOptions& options,
+                         const StageProgress& progress = {}, const StageFinished& finished = {});
 
 }  // namespace sewer3d

@@ -2,8 +2,6 @@
 // stage that fails stops the chain and keeps what it wrote; once the input is mended the chain
 // resumes and runs every stage; run again, every stage is skipped from workspace.json.
 
-#include "sewer3d/pipeline/process_chain.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -15,6 +13,7 @@
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/pipeline/process_chain.hpp"
 #include "sewer3d/simio/simulate_run.hpp"
 #include "sewer3d/testing/small_module.hpp"
 
@@ -95,9 +94,9 @@ TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
       EXPECT_EQ(r.seconds, record.stages.at(r.name).seconds);  // as recorded
     }
   }
-  EXPECT_EQ(ReadWorkspaceRecord(dir / "ws" / "workspace.json").stages.at("process").notes.at(
-                "skipped"),
-            "rgbd register");
+  EXPECT_EQ(
+      ReadWorkspaceRecord(dir / "ws" / "workspace.json").stages.at("process").notes.at("skipped"),
+      "rgbd register");
   if (!std::getenv("SEWER3D_KEEP")) fs::remove_all(dir);
 }
 
