@@ -232,5 +232,28 @@ expect_error "no_run: is not a run folder" "$bin" rgbd "$tmp/rg/no_run" --out "$
 "$bin" rgbd "$tmp/rg/no_run" --out "$tmp/rg/ws4" --quiet >/dev/null 2>&1
 [ $? -eq 3 ] || fail "rgbd on a folder that is no run did not exit 3"
 
+# process: the chain of stages; bad input is refused before anything runs, a failed stage stops it.
+expect_ok "$bin" process --help
+for opt in --start-station-mm --resolution-mm --threads --force --quiet; do
+  grep -q -- "$opt" "$tmp/out" || fail "process --help shows no $opt"
+done
+expect_ok "$bin" demo --help
+grep -q -- "--out" "$tmp/out" || fail "demo --help shows no --out"
+expect_error "no_run: is not a run folder" "$bin" process "$tmp/rg/no_run" --out "$tmp/rg/ws5" --quiet
+[ "$rc" -eq 3 ] || fail "process on a folder that is no run exited $rc, not 3"
+expect_error "--resolution-mm" "$bin" process "$tmp/rg/run" --out "$tmp/rg/ws5" --resolution-mm 0
+[ "$rc" -eq 2 ] || fail "process --resolution-mm 0 exited $rc, not 2"
+expect_error "--resolution-mm" "$bin" process "$tmp/rg/run" --out "$tmp/rg/ws5" --resolution-mm abc
+[ "$rc" -eq 2 ] || fail "process --resolution-mm abc exited $rc, not 2"
+expect_error "--start-station-mm: must be finite" \
+  "$bin" process "$tmp/rg/run" --out "$tmp/rg/ws5" --start-station-mm nan
+[ "$rc" -eq 2 ] || fail "process --start-station-mm nan exited $rc, not 2"
+[ -e "$tmp/rg/ws5" ] && fail "a refused process wrote its workspace"
+expect_error "rgbd: .*000001_pattern.png: cannot decode image" \
+  "$bin" process "$tmp/rg/run" --out "$tmp/rg/ws2" --quiet
+[ "$rc" -eq 1 ] || fail "process with a truncated image exited $rc, not 1"
+[ -e "$tmp/rg/ws2/registration" ] && fail "process went on to register after rgbd failed"
+grep -q '"process"' "$tmp/rg/ws2/workspace.json" || fail "workspace.json does not record process"
+
 if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
 echo "all CLI checks passed"

@@ -12,6 +12,7 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/pipeline/process_chain.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 
@@ -69,22 +70,12 @@ Command AddRegisterCommand(CLI::App& app) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());
               return 2;
             }
-            const std::filesystem::path folder = std::filesystem::path(args->out) / "registration";
-            fmt::print(
-                "register: {} acquisitions, {} nodes, {} left out; {} pairs ({} done, {} from "
-                "an earlier run, {} failed): {} feature, {} projection ({} degenerate); {} rig/"
-                "odometry/straightness edges; {} rejected by the gate; {:.1f} s ({:.2f} s per "
-                "pair)\n",
-                report.acquisitions, report.nodes, report.left_out.size(), report.pairs,
-                report.pairs_done, report.pairs_skipped, report.pairs_failed, report.feature_edges,
-                report.projection_edges, report.degenerate_edges, report.prior_edges,
-                report.fusion.rejected, report.seconds, report.seconds_per_pair);
-            for (const LeftOutAcquisition& l : report.left_out)
-              fmt::print("left out: m{} counter {}: {}\n", l.module, l.counter, l.reason);
-            fmt::print("wrote {}\n", (folder / "poses.csv").string());
-            if (!report.fusion.usable) {
-              fmt::print(stderr, "sewer3d: error: the pose graph did not converge (see {})\n",
-                         (folder / "report.json").string());
+            const StageOutcome outcome = RegisterOutcome(report, args->out);
+            fmt::print("{}\n", outcome.summary);
+            for (const std::string& line : outcome.details) fmt::print("{}\n", line);
+            fmt::print("wrote {}\n", outcome.output.string());
+            if (!outcome.ok) {
+              fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);
               return 1;
             }
             return 0;

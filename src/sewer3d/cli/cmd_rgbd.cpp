@@ -9,6 +9,7 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/pipeline/process_chain.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 
@@ -78,18 +79,10 @@ Command AddRgbdCommand(CLI::App& app) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());
               return 2;
             }
-            const std::filesystem::path report_file =
-                std::filesystem::path(args->out) / "rgbd" / "report.json";
-            fmt::print(
-                "rgbd: {} acquisitions: {} done, {} skipped (done before), {} failed; {} points; "
-                "{:.2f} s per acquisition, {:.1f} s in all ({} threads); colour: {}\n",
-                report.acquisitions, report.done, report.skipped, report.failed, report.points,
-                report.seconds_per_acquisition, report.seconds, report.threads, kRgbdColorSource);
-            fmt::print("wrote {}\n", report_file.string());
-            if (const RgbdAcquisitionResult* first = report.FirstFailure()) {
-              fmt::print(stderr, "sewer3d: error: {}: {}; {} of {} acquisitions failed (see {})\n",
-                         first->file, first->reason, report.failed, report.acquisitions,
-                         report_file.string());
+            const StageOutcome outcome = RgbdOutcome(report, args->out);
+            fmt::print("{}\nwrote {}\n", outcome.summary, outcome.output.string());
+            if (!outcome.ok) {
+              fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);
               return 1;
             }
             return 0;

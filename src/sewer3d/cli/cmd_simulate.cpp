@@ -69,20 +69,14 @@ void CheckSceneOptions(const Scene& scene) {
   }
 }
 
-struct RunArgs {
-  std::string scenario, preset, out, module;
-  std::uint64_t seed = 0;
-  int supersampling = 0;
-  bool quiet = false;
-};
-
 void AddRunCommand(CLI::App& sim, RunArgs& a) {
   CLI::App* run = sim.add_subcommand(
       "run", "Simulate a whole inspection run: six modules, robot motion, odometry, truth");
   auto* scenario = run->add_option("--scenario", a.scenario, "Scenario JSON file (docs/formats.md)")
                        ->check(CLI::ExistingFile);
-  auto* preset = run->add_option("--preset", a.preset, "Built-in scenario: tiny, demo or long")
-                     ->check(CLI::IsMember({"tiny", "demo", "long"}));
+  auto* preset =
+      run->add_option("--preset", a.preset, "Built-in scenario: tiny, compact, demo or long")
+          ->check(CLI::IsMember(PresetNames()));
   scenario->excludes(preset);
   run->add_option("--out", a.out, "Run folder to write")->required();
   run->add_option("--seed", a.seed, "Seed (overrides the scenario's)");
@@ -93,6 +87,8 @@ void AddRunCommand(CLI::App& sim, RunArgs& a) {
       ->check(CLI::Range(1, 16));
   run->add_flag("--quiet", a.quiet, "No progress bar");
 }
+
+}  // namespace
 
 int RunRun(const RunArgs& a) {
   if (a.scenario.empty() && a.preset.empty()) {
@@ -147,8 +143,6 @@ int RunRun(const RunArgs& a) {
   fmt::print("wrote {} ({:.1f} MB) in {:.1f} s\n", a.out, r.bytes / 1e6, r.wall_seconds);
   return 0;
 }
-
-}  // namespace
 
 Command AddSimulateCommand(CLI::App& app) {
   struct Args {

@@ -29,6 +29,8 @@ Command AddCalibrateCommand(CLI::App& app);
 Command AddRgbdCommand(CLI::App& app);
 Command AddRegisterCommand(CLI::App& app);
 Command AddModelCommand(CLI::App& app);
+Command AddProcessCommand(CLI::App& app);
+Command AddDemoCommand(CLI::App& app);
 
 /// Parses "WxH" (e.g. "648x486"); nullopt when malformed or not positive.
 std::optional<std::pair<int, int>> ParseSize(const std::string& text);

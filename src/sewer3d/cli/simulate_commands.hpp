@@ -23,4 +23,15 @@ struct CalibrationArgs {
 void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& args);
 int RunCalibration(const CalibrationArgs& args);
 
+/// `sewer3d simulate run`'s arguments (0 / empty: the scenario's).
+struct RunArgs {
+  std::string scenario, preset, out, module;
+  std::uint64_t seed = 0;
+  int supersampling = 0;
+  bool quiet = false;
+};
+
+/// Simulates the run (progress bar unless quiet), prints what it wrote; returns the exit code.
+int RunRun(const RunArgs& args);
+
 }  // namespace sewer3d::cli

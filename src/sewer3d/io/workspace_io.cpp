@@ -19,6 +19,7 @@ std::string WorkspaceToJson(const WorkspaceRecord& record) {
     stage["started_utc"] = s.started_utc;
     stage["done_utc"] = s.done_utc.empty() ? json(nullptr) : json(s.done_utc);
     stage["software_version"] = s.software_version;
+    stage["seconds"] = s.seconds;
     stage["notes"] = s.notes;
     stages[name] = stage;
   }
@@ -50,6 +51,7 @@ WorkspaceRecord WorkspaceFromJson(const std::string& text, const std::filesystem
     if (s.contains("done_utc") && !s["done_utc"].is_null())
       stage.done_utc = reader.Text(s, "done_utc", prefix, "");
     stage.software_version = reader.Text(s, "software_version", prefix, "");
+    stage.seconds = reader.Number(s, "seconds", prefix, 0.0);
     for (const auto& [key, value] : reader.Object(s, "notes", prefix).items()) {
       if (!value.is_string()) reader.Fail(prefix + "notes." + std::string(key), "must be a string");
       stage.notes[key] = value.get<std::string>();

@@ -20,6 +20,8 @@ struct WorkspaceStage {
   std::string started_utc;       ///< ISO 8601, when the outputs now present were begun
   std::string done_utc;          ///< ISO 8601; empty while not done
   std::string software_version;  ///< the version that last ran the stage
+  /// Wall time (s) of the invocation that last finished the stage (done or not); 0 before.
+  double seconds = 0.0;
   std::map<std::string, std::string> notes;  ///< facts about the outputs, e.g. "color"
 };
 

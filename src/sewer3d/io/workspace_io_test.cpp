@@ -24,6 +24,7 @@ WorkspaceRecord Example() {
   rgbd.started_utc = "2026-12-01T20:00:00Z";
   rgbd.done_utc = "2026-12-01T20:01:30Z";
   rgbd.software_version = "0.1.0";
+  rgbd.seconds = 90.25;
   rgbd.notes["color"] = "texture_before, uncorrected";
   record.stages["rgbd"] = rgbd;
   WorkspaceStage reg;  // begun, not done
@@ -45,6 +46,7 @@ void ExpectEqual(const WorkspaceRecord& a, const WorkspaceRecord& b) {
     EXPECT_EQ(s.started_utc, t.started_utc);
     EXPECT_EQ(s.done_utc, t.done_utc);
     EXPECT_EQ(s.software_version, t.software_version);
+    EXPECT_EQ(s.seconds, t.seconds);
     EXPECT_EQ(s.notes, t.notes);
   }
 }

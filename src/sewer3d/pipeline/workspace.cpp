@@ -62,6 +62,7 @@ void Workspace::BeginStage(const std::string& stage, const std::string& options_
   s.done = false;
   s.done_utc.clear();
   s.software_version = SoftwareVersion();
+  begun_[stage] = std::chrono::steady_clock::now();
   WriteWorkspaceRecord(RecordFile(), record_);
 }
 
@@ -72,6 +73,23 @@ void Workspace::FinishStage(const std::string& stage, bool done,
   it->second.done = done;
   it->second.done_utc = done ? UtcNow() : std::string();
   it->second.notes = notes;
+  const auto begun = begun_.find(stage);
+  SEWER3D_CHECK(begun != begun_.end(), "FinishStage without BeginStage: " + stage);
+  it->second.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begun->second).count();
+  WriteWorkspaceRecord(RecordFile(), record_);
+}
+
+void Workspace::RecordCommand(const std::string& name, const std::string& options_json, bool done,
+                              double seconds, const std::map<std::string, std::string>& notes) {
+  WorkspaceStage& s = record_.stages[name];
+  if (s.started_utc.empty() || s.done) s.started_utc = UtcNow();
+  s.options_json = options_json;
+  s.done = done;
+  s.done_utc = done ? UtcNow() : std::string();
+  s.software_version = SoftwareVersion();
+  s.seconds = seconds;
+  s.notes = notes;
   WriteWorkspaceRecord(RecordFile(), record_);
 }
 

@@ -10,6 +10,7 @@
 /// forcing removes the stage's folder and starts the stage afresh. A workspace never changes
 /// runs.
 
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -55,15 +56,24 @@ class Workspace {
   void BeginStage(const std::string& stage, const std::string& options_json, bool force);
 
   /// Records the end of `stage` (begun before): `done` (every item finished without failure)
-  /// with the time, and `notes` about its outputs; writes workspace.json.
+  /// with the time, the wall time since its BeginStage (`seconds`), and `notes` about its
+  /// outputs; writes workspace.json.
   void FinishStage(const std::string& stage, bool done,
                    const std::map<std::string, std::string>& notes);
+
+  /// Records the entry `name` of a command that runs several stages (`process`): the options
+  /// it was given, whether every stage ended done, its wall time and notes. Replaces what was
+  /// recorded under `name` and is never refused (each stage checks its own options); the
+  /// entry has no folder. Writes workspace.json.
+  void RecordCommand(const std::string& name, const std::string& options_json, bool done,
+                     double seconds, const std::map<std::string, std::string>& notes);
 
  private:
   std::filesystem::path folder_;
   FolderLock lock_;
   int stale_temporaries_removed_ = 0;
   WorkspaceRecord record_;
+  std::map<std::string, std::chrono::steady_clock::time_point> begun_;  ///< by BeginStage
 };
 
 }  // namespace sewer3d

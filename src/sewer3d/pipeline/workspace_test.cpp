@@ -1,13 +1,15 @@
 // The workspace record: a new workspace, resuming with the same options, refusing other
-// options or another run, and --force removing the stage's outputs.
+// options or another run, --force removing the stage's outputs, seconds and command entries.
 
 #include "sewer3d/pipeline/workspace.hpp"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <thread>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -78,6 +80,26 @@ TEST_F(WorkspaceTest, OtherOptionsAreRefusedUnlessForcedAndForcingRemovesOutputs
   const WorkspaceRecord r = ReadWorkspaceRecord(ws.RecordFile());
   EXPECT_EQ(r.stages.at("rgbd").options_json, R"({"a":2})");
   EXPECT_FALSE(r.stages.at("rgbd").done);
+}
+
+TEST_F(WorkspaceTest, StagesRecordTheirSecondsAndCommandEntriesAreNeverRefused) {
+  Workspace ws(dir_ / "ws", dir_ / "run");
+  ws.BeginStage("rgbd", "{}", false);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ws.FinishStage("rgbd", true, {});
+  const double seconds = ReadWorkspaceRecord(ws.RecordFile()).stages.at("rgbd").seconds;
+  EXPECT_GE(seconds, 0.05);
+  EXPECT_LT(seconds, 30.0);
+  ws.RecordCommand("process", R"({"resolution_mm":0.2})", false, 0.0, {});
+  ws.RecordCommand("process", R"({"resolution_mm":0.5})", true, 12.5, {{"skipped", "rgbd"}});
+  const WorkspaceRecord r = ReadWorkspaceRecord(ws.RecordFile());
+  const WorkspaceStage& p = r.stages.at("process");
+  EXPECT_EQ(p.options_json, R"({"resolution_mm":0.5})");
+  EXPECT_TRUE(p.done);
+  EXPECT_EQ(p.seconds, 12.5);
+  EXPECT_EQ(p.notes.at("skipped"), "rgbd");
+  EXPECT_FALSE(fs::exists(ws.StageFolder("process")));
+  EXPECT_EQ(r.stages.at("rgbd").seconds, seconds);  // other entries untouched
 }
 
 TEST_F(WorkspaceTest, AWorkspaceOfAnotherRunIsRefused) {

@@ -2,7 +2,7 @@
 /// \file
 /// Everything that defines a virtual inspection run (docs/simulator.md, "Scenario files"):
 /// the pipe world, the rig, the robot's motion, capture timing, odometry errors and render
-/// settings; plus the built-in presets tiny, demo and long.
+/// settings; plus the built-in presets tiny, compact, demo and long.
 
 #include <cstdint>
 #include <string>
@@ -45,11 +45,12 @@ Eigen::Vector3d CameraWhiteBalance(const Scenario& scenario, int module);
 
 const std::vector<std::string>& PresetNames();
 /// tiny: 648 × 486 images, DN300 concrete with a displaced joint, two acquisitions (tests);
-/// demo: full-size images, DN300, 1 m of travel: concrete, displaced joint, intruding
-/// connection, spalled patch, crack, then plastic; long: 10 m with every kind of feature.
-/// Texture images: full colour with truth albedo (tiny), Bayer RGGB with truth albedo (demo),
-/// Bayer RGGB without (long).
-/// Throws std::invalid_argument for an unknown name.
+/// compact: 648 × 486 images, DN300, 0.56 m of travel: concrete, displaced joint, intruding
+/// connection, then plastic (`sewer3d demo`); demo: full-size images, DN300, 1 m of travel:
+/// concrete, displaced joint, intruding connection, spalled patch, crack, then plastic; long: 10 m
+/// with every kind of feature. Texture images: full colour with truth albedo (tiny), Bayer RGGB
+/// with truth albedo (compact, demo), Bayer RGGB without (long). Throws std::invalid_argument for
+/// an unknown name.
 Scenario PresetScenario(const std::string& name);
 
 }  // namespace sewer3d
