@@ -11,6 +11,7 @@
 #include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/model_stage.hpp"
+#include "sewer3d/pipeline/process_chain.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 
 namespace sewer3d::cli {
@@ -69,26 +70,15 @@ Command AddModelCommand(CLI::App& app) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());
               return 2;
             }
-            const std::filesystem::path folder = std::filesystem::path(args->out) / "model";
-            if (!r.ok) {
-              fmt::print(stderr, "sewer3d: error: {}: {}\n", folder.string(), r.message);
+            const StageOutcome outcome = ModelOutcome(r, args->out);
+            fmt::print("{}\n", outcome.summary);
+            if (!outcome.ok) {
+              fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);
               return 1;
             }
-            fmt::print(
-                "model: {} acquisitions; centreline from {}/{} slices, fitted diameter {:.2f} mm "
-                "(model {:.0f} mm){}; maps {} x {} cells at {} mm ({} tiles, {} from an earlier "
-                "run), {:.1f} % measured, {:.1f} % filled; mesh.glb {} vertices at {:.1f} mm; "
-                "{:.1f} s ({:.2f} s per acquisition)\n",
-                r.acquisitions, r.centreline.slices_used,
-                r.centreline.slices_used + r.centreline.slices_rejected,
-                2.0 * r.centreline.radius_mm, r.nominal_diameter_mm,
-                r.centreline.bend_radius_mm
-                    ? fmt::format(", bend radius {:.1f} m", *r.centreline.bend_radius_mm / 1000.0)
-                    : std::string(),
-                r.grid.rows, r.grid.cols, r.grid.resolution_mm, r.tiles, r.tiles_from_earlier_run,
-                100.0 * r.measured_fraction, 100.0 * r.filled_fraction, r.displaced_vertices,
-                r.displaced_step_mm, r.seconds, r.seconds_per_acquisition);
-            fmt::print("wrote {}\n", (folder / "model.json").string());
+            fmt::print("wrote {}, look at {}\n",
+                       (std::filesystem::path(args->out) / "model" / "model.json").string(),
+                       outcome.output.string());
             return 0;
           }};
 }

@@ -92,7 +92,7 @@ Command AddProcessCommand(CLI::App& app) {
   sub->add_option("--resolution-mm", args->resolution_mm,
                   "Cell size of the model maps (mm); recorded for the model stage")
       ->capture_default_str()
-      ->check(CLI::Range(1e-3, 50.0));
+      ->check(CLI::Range(0.01, 50.0));
   sub->add_option("--threads", args->threads, "Workers of every stage")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));

@@ -5,9 +5,9 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <vector>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"

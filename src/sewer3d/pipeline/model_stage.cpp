@@ -88,8 +88,11 @@ void WriteTiles(const CaptureRun& run, const std::filesystem::path& ws, const Ce
                 const std::vector<ModelAcquisition>& acquisitions, const ModelStageOptions& o,
                 PipeModelInfo& info, ModelStageReport& report, const ModelProgress& progress) {
   const std::filesystem::path folder = ws / kStage;
-  const int tile_rows =
-      std::max(1, static_cast<int>(std::lround(o.tile_length_mm / o.resolution_mm)));
+  // At most kMaxTileCells per tile whatever the resolution: memory stays bounded.
+  constexpr double kMaxTileCells = 8e6;
+  const int tile_rows = std::max(
+      1, static_cast<int>(std::min(std::round(o.tile_length_mm / o.resolution_mm),
+                                   std::floor(kMaxTileCells / std::max(info.grid.cols, 1)))));
   for (int row0 = 0, k = 0; row0 < info.grid.rows; row0 += tile_rows, ++k)
     info.tiles.push_back({k, row0, std::min(tile_rows, info.grid.rows - row0)});
   report.tiles = static_cast<int>(info.tiles.size());

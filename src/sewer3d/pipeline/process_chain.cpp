@@ -44,6 +44,22 @@ ProcessStage RegisterProcessStage() {
       }};
 }
 
+ProcessStage ModelProcessStage() {
+  auto stage_options = [](const ProcessOptions& o) {
+    ModelStageOptions m = o.model;
+    m.resolution_mm = o.resolution_mm;
+    m.start_station_mm = o.start_station_mm;
+    m.threads = o.threads;
+    m.force = o.force;
+    return m;
+  };
+  return {"model", [=](const ProcessOptions& o) { return ModelOptionsJson(stage_options(o)); },
+          [=](const CaptureRun& run, Workspace& ws, const ProcessOptions& o,
+              const StageProgress& progress) {
+            return ModelOutcome(RunModelStage(run, ws, stage_options(o), progress), ws.folder());
+          }};
+}
+
 // Recorded done with the options it would run with now, and nothing before it changed.
 bool CanSkip(const Workspace& workspace, const std::string& stage, const std::string& options) {
   const auto it = workspace.record().stages.find(stage);
@@ -61,11 +77,12 @@ std::string StageNames() {
 
 void ProcessOptions::Check() const {
   SEWER3D_VALIDATE(std::isfinite(start_station_mm), "start_station_mm", "must be finite");
-  SEWER3D_VALIDATE(std::isfinite(resolution_mm) && resolution_mm >= 1e-3 && resolution_mm <= 50.0,
-                   "resolution_mm", "must be 0.001..50 mm, got " << resolution_mm);
+  SEWER3D_VALIDATE(std::isfinite(resolution_mm) && resolution_mm >= 0.01 && resolution_mm <= 50.0,
+                   "resolution_mm", "must be 0.01..50 mm, got " << resolution_mm);
   SEWER3D_VALIDATE(threads >= 1, "threads", "must be at least 1, got " << threads);
   rgbd.Check();
   registration.Check();
+  model.Check();
 }
 
 StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::path& workspace) {
@@ -107,8 +124,33 @@ StageOutcome RegisterOutcome(const RegisterStageReport& report,
   return o;
 }
 
+StageOutcome ModelOutcome(const ModelStageReport& r, const std::filesystem::path& workspace) {
+  StageOutcome o;
+  o.output = workspace / "model" / "preview.png";
+  if (!r.ok) {
+    o.ok = false;
+    o.summary = fmt::format("model: {} acquisitions; no model", r.acquisitions);
+    o.error = fmt::format("{}: {}", (workspace / "model").string(), r.message);
+    return o;
+  }
+  const CentrelineFitReport& c = r.centreline;
+  o.summary = fmt::format(
+      "model: {} acquisitions; centreline from {}/{} slices, fitted diameter {:.2f} mm (model "
+      "{:.0f} mm){}; maps {} x {} cells at {} mm ({} tiles, {} from an earlier run), {:.1f} % "
+      "measured, {:.1f} % filled; mesh.glb {} vertices at {:.1f} mm; {:.1f} s ({:.2f} s per "
+      "acquisition)",
+      r.acquisitions, c.slices_used, c.slices_used + c.slices_rejected, 2.0 * c.radius_mm,
+      r.nominal_diameter_mm,
+      c.bend_radius_mm ? fmt::format(", bend radius {:.1f} m", *c.bend_radius_mm / 1000.0) : "",
+      r.grid.rows, r.grid.cols, r.grid.resolution_mm, r.tiles, r.tiles_from_earlier_run,
+      100.0 * r.measured_fraction, 100.0 * r.filled_fraction, r.displaced_vertices,
+      r.displaced_step_mm, r.seconds, r.seconds_per_acquisition);
+  return o;
+}
+
 const std::vector<ProcessStage>& ProcessStages() {
-  static const std::vector<ProcessStage> stages = {RgbdProcessStage(), RegisterProcessStage()};
+  static const std::vector<ProcessStage> stages = {RgbdProcessStage(), RegisterProcessStage(),
+                                                   ModelProcessStage()};
   return stages;
 }
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "sewer3d/pipeline/model_stage.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
@@ -26,10 +27,11 @@ namespace sewer3d {
 struct ProcessOptions {
   RgbdStageOptions rgbd;              ///< its threads and force are set from the fields below
   RegisterStageOptions registration;  ///< likewise (and its fusion's threads)
+  ModelStageOptions model;            ///< likewise, and its resolution and start station
   /// Where the run began along the pipe (mm): the model's station 0 is the carrier centre at
   /// the run's first image plus this (DESIGN.md, model maps). Any finite value.
   double start_station_mm = 0.0;
-  double resolution_mm = 0.2;  ///< the model maps' cell size (mm), 0.001..50
+  double resolution_mm = 0.2;  ///< the model maps' cell size (mm), 0.01..50
   int threads = 1;             ///< workers of every stage (≥ 1); does not change the outputs
   bool force = false;          ///< redo every stage from scratch (Workspace::BeginStage)
   /// Throws std::invalid_argument naming the option (the stages' own Check() too).
@@ -49,6 +51,7 @@ struct StageOutcome {
 StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::path& workspace);
 StageOutcome RegisterOutcome(const RegisterStageReport& report,
                              const std::filesystem::path& workspace);
+StageOutcome ModelOutcome(const ModelStageReport& report, const std::filesystem::path& workspace);
 
 /// One stage of the chain. `options_json` is what the stage records in workspace.json (to
 /// tell whether the record is current); `run` runs it (with `options.threads` and
@@ -61,7 +64,7 @@ struct ProcessStage {
       run;
 };
 
-/// The chain in order: rgbd, register (the model stage joins here).
+/// The chain in order: rgbd, register, model.
 const std::vector<ProcessStage>& ProcessStages();
 
 /// One stage as the chain met it.

@@ -22,8 +22,8 @@ PairRecord Register(const AcquisitionNode& a, const AcquisitionNode& b, const Ri
   r.method = "none";
   FeatureRegistrationResult f;
   if (options.feature_registration)
-    f = RegisterFeatures({in_a.color_bgr, in_a.depth_mm}, camera_a,
-                         {in_b.color_bgr, in_b.depth_mm}, camera_b, options.features);
+    f = RegisterFeatures({in_a.color_bgr, in_a.depth_mm}, camera_a, {in_b.color_bgr, in_b.depth_mm},
+                         camera_b, options.features);
   if (f.converged) {
     r.method = "feature";
     r.a_from_b = f.a_from_b;
