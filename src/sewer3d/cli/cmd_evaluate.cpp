@@ -35,12 +35,14 @@ Command AddEvaluateCommand(CLI::App& app) {
       ->required()
       ->check(CLI::IsMember({"plane", "cylinder", "rgbd", "registration", "model"}));
   sub->add_option("--cloud", args->cloud, "plane, cylinder: point cloud (PLY, camera frame, mm)");
-  sub->add_option("--run", args->run, "rgbd, registration, model: the simulated capture run (with truth/)");
+  sub->add_option("--run", args->run,
+                  "rgbd, registration, model: the simulated capture run (with truth/)");
   sub->add_option("--smoothing-px", args->smoothing_px,
                   "rgbd: colours compared after a box mean of this side (1: per pixel)")
       ->capture_default_str()
       ->check(CLI::Range(1, 101));
-  sub->add_option("--workspace", args->workspace, "rgbd, registration, model: the processing workspace WS");
+  sub->add_option("--workspace", args->workspace,
+                  "rgbd, registration, model: the processing workspace WS");
   sub->add_option("--out", args->out,
                   "rgbd, registration, model: folder for evaluation.json and pictures (default "
                   "WS/evaluation/<what>)");

@@ -30,8 +30,12 @@ int RunEvaluateModel(const std::string& run_folder, const std::string& workspace
                   : std::filesystem::path(out);
   WriteTextFileAtomically(folder / "evaluation.json", ModelEvaluationToJson(e));
   const std::filesystem::path picture = folder / "error_map.png";
+  const std::filesystem::path surface_picture = folder / "error_map_after_axis_offset.png";
   WriteFileAtomically(picture,
                       [&](const std::filesystem::path& t) { WriteImage(t, ModelErrorMap(e)); });
+  WriteFileAtomically(surface_picture, [&](const std::filesystem::path& t) {
+    WriteImage(t, ModelErrorMap(e, 0.5, 2000, true));
+  });
   fmt::print("model surface against the true wall (signed, mm, + outward; every {} cell{}):\n",
              e.stride, e.stride == 1 ? "" : "s along and around");
   fmt::print("  {:<16} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "cells", "count", "mean", "RMS",
@@ -39,12 +43,20 @@ int RunEvaluateModel(const std::string& run_folder, const std::string& workspace
   PrintRow("all", e.all);
   for (const auto& [name, f] : e.by_coverage) PrintRow(name, f);
   for (const auto& [name, f] : e.by_material) PrintRow(name, f);
+  const ErrorFigures& a = e.axis_offset;
+  fmt::print(
+      "lateral axis offset from the truth over {} stations: mean {:.3f} mm, P95 {:.3f} mm, max "
+      "{:.3f} mm; with it removed:\n",
+      a.cells, a.mean_mm, a.p95_abs_mm, a.max_abs_mm);
+  PrintRow("all", e.after_axis_offset);
+  for (const auto& [name, f] : e.after_axis_offset_by_material) PrintRow(name, f);
   const CircumferenceFigures& c = e.circumference;
   fmt::print(
       "circumference of {} cross-sections against the true wall's: mean {:+.3f} mm, mean |d| "
       "{:.3f} mm, max |d| {:.3f} mm\n",
       c.sections, c.mean_diff_mm, c.mean_abs_diff_mm, c.max_abs_diff_mm);
-  fmt::print("wrote {} and {}\n", (folder / "evaluation.json").string(), picture.string());
+  fmt::print("wrote {}, {} and {}\n", (folder / "evaluation.json").string(), picture.string(),
+             surface_picture.string());
   return 0;
 }
 

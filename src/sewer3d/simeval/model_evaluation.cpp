@@ -1,5 +1,6 @@
 #include "sewer3d/simeval/model_evaluation.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -21,6 +22,7 @@ void ModelEvaluationOptions::Check() const {
   ValidateNotNegative("stride", stride);
   ValidatePositive("target_cells", static_cast<double>(target_cells));
   ValidatePositive("station_bin_mm", station_bin_mm);
+  ValidatePositive("axis_outlier_mm", axis_outlier_mm);
   SEWER3D_VALIDATE(circumference_directions >= 8, "circumference_directions",
                    "must be ≥ 8, got " << circumference_directions);
 }
@@ -49,6 +51,37 @@ ErrorFigures Figures(std::vector<float> errors) {
   f.p95_abs_mm = quantile(0.95);
   f.max_abs_mm = *std::max_element(errors.begin(), errors.end());
   return f;
+}
+
+struct RowCell {
+  int j = 0;  ///< evaluated column
+  Material material = Material::kConcrete;
+  float error_mm = 0.0f;
+};
+
+/// The first harmonic (a, b) of a row's errors around the clock, e ≈ c + a cos θ + b sin θ: the
+/// lateral offset of the model's axis from the true one at that station (crown and 3 o'clock
+/// components). Cells beyond ±outlier_mm (joint gaps) are left out of the fit; none when fewer
+/// than half the row's cells are left or they do not go round the pipe.
+std::optional<Eigen::Vector2d> AxisOffset(const std::vector<RowCell>& cells, int row_cells,
+                                          const std::vector<double>& cos_c,
+                                          const std::vector<double>& sin_c, double outlier_mm) {
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (const RowCell& cell : cells) {
+    if (std::abs(cell.error_mm) > outlier_mm) continue;
+    const Eigen::Vector3d x(1.0, cos_c[cell.j], sin_c[cell.j]);
+    normal += x * x.transpose();
+    rhs += x * cell.error_mm;
+    ++n;
+  }
+  if (2 * n < row_cells) return std::nullopt;
+  // A full turn gives diag(n, n/2, n/2); a covered arc much shorter than the turn does not.
+  if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(normal).eigenvalues()[0] < 0.1 * n)
+    return std::nullopt;
+  const Eigen::Vector3d c = normal.ldlt().solve(rhs);
+  return Eigen::Vector2d(c[1], c[2]);
 }
 
 int AutomaticStride(const PipeMaps& maps, std::int64_t target_cells) {
@@ -133,6 +166,7 @@ ModelEvaluation EvaluatePipeModel(const PipeModel& model, const PipeGeometry& tr
   const int out_rows = grid.rows > first ? (grid.rows - first + s - 1) / s : 0;
   const int out_cols = grid.cols > first ? (grid.cols - first + s - 1) / s : 0;
   e.error_mm = cv::Mat1f(out_rows, out_cols, std::numeric_limits<float>::quiet_NaN());
+  e.after_axis_offset_mm = e.error_mm.clone();
 
   std::vector<double> cos_c(out_cols), sin_c(out_cols);
   std::vector<int> hour_c(out_cols);
@@ -146,6 +180,9 @@ ModelEvaluation EvaluatePipeModel(const PipeModel& model, const PipeGeometry& tr
   std::array<std::vector<float>, 3> by_coverage;
   std::map<Material, std::vector<float>> by_material;
   std::array<std::vector<float>, 12> by_hour;
+  std::vector<float> after_axis, axis_offsets;
+  std::map<Material, std::vector<float>> after_axis_by_material;
+  std::vector<RowCell> row_cells;
   const double radius = model.info.centreline.radius_mm;
   const Eigen::Matrix3d rotation = truth_from_model.RotationMatrix();
   for (int i = 0; i < out_rows; ++i) {
@@ -153,6 +190,7 @@ ModelEvaluation EvaluatePipeModel(const PipeModel& model, const PipeGeometry& tr
     const AxisFrame f = model.info.centreline.FrameAt(grid.RowStationMm(row));
     const Eigen::Vector3d origin = truth_from_model * f.origin;
     const Eigen::Vector3d crown = rotation * f.crown, right = rotation * f.right;
+    row_cells.clear();
     for (int j = 0; j < out_cols; ++j) {
       const int col = first + j * s;
       const unsigned char coverage = maps.coverage(row, col);
@@ -166,8 +204,23 @@ ModelEvaluation EvaluatePipeModel(const PipeModel& model, const PipeGeometry& tr
       by_coverage[coverage].push_back(error);
       by_material[truth.world().sections[at.section].material].push_back(error);
       by_hour[hour_c[j]].push_back(error);
+      row_cells.push_back({j, truth.world().sections[at.section].material, error});
+    }
+    const auto offset = AxisOffset(row_cells, out_cols, cos_c, sin_c, options.axis_outlier_mm);
+    if (!offset) continue;
+    axis_offsets.push_back(static_cast<float>(offset->norm()));
+    for (const RowCell& cell : row_cells) {
+      const auto residual = static_cast<float>(cell.error_mm - (*offset)[0] * cos_c[cell.j] -
+                                               (*offset)[1] * sin_c[cell.j]);
+      e.after_axis_offset_mm(i, cell.j) = residual;
+      after_axis.push_back(residual);
+      after_axis_by_material[cell.material].push_back(residual);
     }
   }
+  e.axis_offset = Figures(std::move(axis_offsets));
+  e.after_axis_offset = Figures(std::move(after_axis));
+  for (auto& [material, list] : after_axis_by_material)
+    e.after_axis_offset_by_material[MaterialName(material)] = Figures(std::move(list));
   e.all = Figures(std::move(all));
   if (!by_coverage[1].empty()) e.by_coverage["measured"] = Figures(std::move(by_coverage[1]));
   if (!by_coverage[2].empty()) e.by_coverage["filled"] = Figures(std::move(by_coverage[2]));

@@ -10,7 +10,10 @@
 ///   and per clock hour (the modules' seams show as hours with larger errors);
 /// - per station bin, the circumference of the model's cross-section (in the centreline's normal
 ///   plane) against the true wall's cut by the same plane (rays from the same axis point in the
-///   same clock directions), for cross-sections the model covers all around.
+///   same clock directions), for cross-sections the model covers all around;
+/// - per evaluated map row, the lateral offset of the model's axis from the true one (the first
+///   harmonic of the row's errors around the clock: registration drift and centreline error),
+///   and the errors with it removed (the surface's own error: noise, seams, radius).
 
 #include <cstdint>
 #include <filesystem>
@@ -29,8 +32,10 @@ struct ModelEvaluationOptions {
   /// stride that checks at most target_cells covered cells.
   int stride = 0;
   std::int64_t target_cells = 3'000'000;
-  double station_bin_mm = 10.0;       ///< circumference: one cross-section per bin
+  double station_bin_mm = 10.0;        ///< circumference: one cross-section per bin
   int circumference_directions = 720;  ///< clock directions per cross-section
+  /// Axis offset per row: cells with |error| above this (joint gaps) are left out of the fit.
+  double axis_outlier_mm = 2.0;
   void Check() const;
 };
 
@@ -64,6 +69,11 @@ struct ModelEvaluation {
   std::map<std::string, ErrorFigures> by_coverage;  ///< "measured", "filled"
   std::map<std::string, ErrorFigures> by_material;  ///< MaterialName of the true section
   std::vector<ErrorFigures> by_clock_hour;  ///< 12: [0] 12–1 o'clock, [2] 2–3 o'clock, …
+  /// |lateral axis offset| per row (cells = rows fitted; mean_mm = mean |offset|, median_abs_mm,
+  /// p95_abs_mm, max_abs_mm of |offset|).
+  ErrorFigures axis_offset;
+  ErrorFigures after_axis_offset;  ///< the fitted rows' errors with their axis offset removed
+  std::map<std::string, ErrorFigures> after_axis_offset_by_material;
   CircumferenceFigures circumference;
   std::vector<CircumferenceSample> circumference_profile;
   Rigid3d truth_from_model;
@@ -71,6 +81,7 @@ struct ModelEvaluation {
   /// The evaluated cells' signed errors: row i = map row stride/2 + i · stride, column j = map
   /// column stride/2 + j · stride; NaN where the map has no data.
   cv::Mat1f error_mm;
+  cv::Mat1f after_axis_offset_mm;  ///< the same with each row's axis offset removed (NaN: none)
 };
 
 /// Evaluates `model` against the true pipe, the model frame mapped by `truth_from_model`.
@@ -91,8 +102,9 @@ std::string ModelEvaluationToJson(const ModelEvaluation& evaluation);
 /// error_map.png for people: the unrolled pipe (station along x, clock down y, crown at the
 /// top) coloured by the signed error (inward blue, 0 white, outward red, saturating at
 /// ±range_mm; no data black), at most `length_px` along the pipe, with station and clock tick
-/// labels and a colour bar. BGR.
+/// labels and a colour bar; `after_axis_offset`: the errors with each row's axis offset removed.
+/// BGR.
 cv::Mat3b ModelErrorMap(const ModelEvaluation& evaluation, double range_mm = 1.0,
-                        int length_px = 2000);
+                        int length_px = 2000, bool after_axis_offset = false);
 
 }  // namespace sewer3d

@@ -14,8 +14,8 @@ namespace sewer3d {
 namespace {
 
 nlohmann::json FiguresJson(const ErrorFigures& f) {
-  return {{"cells", f.cells},          {"mean_mm", f.mean_mm},
-          {"rms_mm", f.rms_mm},        {"median_abs_mm", f.median_abs_mm},
+  return {{"cells", f.cells},           {"mean_mm", f.mean_mm},
+          {"rms_mm", f.rms_mm},         {"median_abs_mm", f.median_abs_mm},
           {"p95_abs_mm", f.p95_abs_mm}, {"max_abs_mm", f.max_abs_mm}};
 }
 
@@ -58,6 +58,8 @@ std::string ModelEvaluationToJson(const ModelEvaluation& e) {
   nlohmann::json coverage = nlohmann::json::object(), materials = nlohmann::json::object();
   for (const auto& [name, f] : e.by_coverage) coverage[name] = FiguresJson(f);
   for (const auto& [name, f] : e.by_material) materials[name] = FiguresJson(f);
+  nlohmann::json after_axis = nlohmann::json::object();
+  for (const auto& [name, f] : e.after_axis_offset_by_material) after_axis[name] = FiguresJson(f);
   nlohmann::json hours = nlohmann::json::array();
   for (size_t h = 0; h < e.by_clock_hour.size(); ++h) {
     nlohmann::json j = FiguresJson(e.by_clock_hour[h]);
@@ -66,8 +68,8 @@ std::string ModelEvaluationToJson(const ModelEvaluation& e) {
   }
   nlohmann::json profile = nlohmann::json::array();
   for (const CircumferenceSample& s : e.circumference_profile)
-    profile.push_back({{"station_mm", s.station_mm}, {"model_mm", s.model_mm},
-                       {"truth_mm", s.truth_mm}});
+    profile.push_back(
+        {{"station_mm", s.station_mm}, {"model_mm", s.model_mm}, {"truth_mm", s.truth_mm}});
   const CircumferenceFigures& c = e.circumference;
   const Eigen::Vector3d t = e.truth_from_model.translation;
   const Eigen::Quaterniond& q = e.truth_from_model.rotation;
@@ -78,6 +80,14 @@ std::string ModelEvaluationToJson(const ModelEvaluation& e) {
       {"by_coverage", coverage},
       {"by_material", materials},
       {"by_clock_hour", hours},
+      {"axis_offset",
+       {{"rows", e.axis_offset.cells},
+        {"mean_mm", e.axis_offset.mean_mm},
+        {"median_mm", e.axis_offset.median_abs_mm},
+        {"p95_mm", e.axis_offset.p95_abs_mm},
+        {"max_mm", e.axis_offset.max_abs_mm}}},
+      {"after_axis_offset", FiguresJson(e.after_axis_offset)},
+      {"after_axis_offset_by_material", after_axis},
       {"circumference",
        {{"sections", c.sections},
         {"mean_diff_mm", c.mean_diff_mm},
@@ -85,21 +95,24 @@ std::string ModelEvaluationToJson(const ModelEvaluation& e) {
         {"max_abs_diff_mm", c.max_abs_diff_mm},
         {"profile", profile}}},
       {"truth_from_model",
-       {{"translation_mm", {t.x(), t.y(), t.z()}}, {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}}}};
+       {{"translation_mm", {t.x(), t.y(), t.z()}},
+        {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}}}};
   return j.dump(2) + "\n";
 }
 
-cv::Mat3b ModelErrorMap(const ModelEvaluation& e, double range_mm, int length_px) {
+cv::Mat3b ModelErrorMap(const ModelEvaluation& e, double range_mm, int length_px,
+                        bool after_axis_offset) {
   const int stations = std::max(1, e.error_mm.rows);
   const double factor = std::min(1.0, static_cast<double>(length_px) / stations);
-  const cv::Mat1f small = Shrink(e.error_mm, factor);
+  const cv::Mat1f small = Shrink(after_axis_offset ? e.after_axis_offset_mm : e.error_mm, factor);
   const cv::Mat3b map = DisplacementView(small, range_mm).t();  // station along x, crown on top
-  const int left = 70, top = 30, right = 110, bottom = 45;
+  const int left = 70, top = 30, right = 130, bottom = 45;
   cv::Mat3b out(map.rows + top + bottom, map.cols + left + right, cv::Vec3b(255, 255, 255));
   map.copyTo(out(cv::Rect(left, top, map.cols, map.rows)));
   Text(out,
-       fmt::format("signed error of the model against the true wall (stride {}, +-{:g} mm)",
-                   e.stride, range_mm),
+       fmt::format("signed error of the model against the true wall{} (stride {}, +-{:g} mm)",
+                   after_axis_offset ? ", each station's axis offset removed," : "", e.stride,
+                   range_mm),
        {left, 20});
   // Clock ticks: 12, 3, 6, 9, 12 o'clock down the left side.
   for (int h = 0; h <= 4; ++h) {

@@ -60,8 +60,8 @@ PipeModel SyntheticModel(const Rigid3d& truth_from_model) {
     for (int c = 0; c < g.cols; ++c) {
       maps.displacement_mm(r, c) = g.RowStationMm(r) < kSection_mm ? kPlanted_mm : 0.0f;
       const bool filled = g.ColClockRad(c) >= 1.5 * std::numbers::pi;
-      maps.coverage(r, c) = static_cast<unsigned char>(filled ? Coverage::kFilled
-                                                              : Coverage::kMeasured);
+      maps.coverage(r, c) =
+          static_cast<unsigned char>(filled ? Coverage::kFilled : Coverage::kMeasured);
     }
   }
   const fs::path dir = fs::temp_directory_path() / "sewer3d_model_evaluation_sim_test";
@@ -96,7 +96,8 @@ TEST(ModelEvaluation, FindsThePlantedDisplacementPerMaterialCoverageAndCircumfer
   EXPECT_NEAR(static_cast<double>(e.by_coverage.at("filled").cells) / e.all.cells, 0.25, 0.01);
   EXPECT_NEAR(e.all.max_abs_mm, kPlanted_mm, 0.02);
   ASSERT_EQ(e.by_clock_hour.size(), 12u);
-  for (const ErrorFigures& hour : e.by_clock_hour) EXPECT_NEAR(hour.mean_mm, 0.5 * kPlanted_mm, 0.02);
+  for (const ErrorFigures& hour : e.by_clock_hour)
+    EXPECT_NEAR(hour.mean_mm, 0.5 * kPlanted_mm, 0.02);
 
   // Cross-sections every 10 mm: 2π · 0.3 mm longer over the concrete, equal over the plastic.
   EXPECT_GE(e.circumference.sections, 38);
@@ -124,11 +125,17 @@ TEST(ModelEvaluation, StrideSubsamplesTheCellsAndAWrongAlignmentShowsAsError) {
   EXPECT_EQ(e.error_mm.rows, (model.maps.grid.rows - 2 + 3) / 4);
   EXPECT_NEAR(static_cast<double>(e.all.cells), e.error_mm.total(), 0.5);
   EXPECT_NEAR(e.by_material.at("concrete").mean_mm, kPlanted_mm, 0.02);
+  EXPECT_NEAR(e.axis_offset.max_abs_mm, 0.0, 0.01);
   // The model 1 mm off to the right: the wall errors swing ±1 mm around the clock.
   const Rigid3d shifted(Eigen::Quaterniond::Identity(), Eigen::Vector3d(1.0, 0, 0));
   const ModelEvaluation off = EvaluatePipeModel(model, truth, shifted, options);
   EXPECT_NEAR(off.by_material.at("plastic").max_abs_mm, 1.0, 0.02);
   EXPECT_NEAR(off.by_material.at("plastic").rms_mm, std::sqrt(0.5), 0.02);
+  // … which the per-row axis offset takes out, leaving the planted displacement.
+  EXPECT_NEAR(off.axis_offset.mean_mm, 1.0, 0.01);
+  EXPECT_NEAR(off.axis_offset.max_abs_mm, 1.0, 0.01);
+  EXPECT_NEAR(off.after_axis_offset_by_material.at("plastic").max_abs_mm, 0.0, 0.01);
+  EXPECT_NEAR(off.after_axis_offset_by_material.at("concrete").mean_mm, kPlanted_mm, 0.01);
 }
 
 }  // namespace

@@ -9,9 +9,9 @@
 #include "sewer3d/io/g2o_io.hpp"
 #include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/simeval/truth_alignment.hpp"
 #include "sewer3d/simio/render_json.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
-#include "sewer3d/simeval/truth_alignment.hpp"
 
 namespace sewer3d {
 namespace {

@@ -17,11 +17,11 @@
 namespace sewer3d {
 
 struct TruthAlignment {
-  std::map<int, Rigid3d> truth;  ///< registration vertex id → true world_from_camera
+  std::map<int, Rigid3d> truth;            ///< registration vertex id → true world_from_camera
   std::vector<RegistrationPoseRow> poses;  ///< WS/registration/poses.csv
   Eigen::Matrix3Xd model_centres;          ///< the poses' camera centres (model frame)
   Eigen::Matrix3Xd true_centres;           ///< the same cameras' true centres (world)
-  Rigid3d truth_from_model;  ///< identity when fewer than 3 poses
+  Rigid3d truth_from_model;                ///< identity when fewer than 3 poses
 };
 
 /// Reads truth/poses.csv of `run_folder` and WS/registration/poses.csv and aligns them;
