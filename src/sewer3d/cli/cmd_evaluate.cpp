@@ -1,7 +1,8 @@
 // `sewer3d evaluate plane|cylinder`: fits the surface to a cloud and prints the accuracy
 // figures of the paper's Tables 1 and 2, plus errors against the truth when it is known.
 // `sewer3d evaluate rgbd`: the RGB-D stage's colour against a simulated run's truth
-// (cmd_evaluate_rgbd.cpp).
+// (cmd_evaluate_rgbd.cpp); `registration` and `model` likewise (cmd_evaluate_registration.cpp,
+// cmd_evaluate_model.cpp).
 
 #include <fmt/core.h>
 
@@ -22,6 +23,7 @@ Command AddEvaluateCommand(CLI::App& app) {
   struct Args {
     std::string surface, cloud, truth, run, workspace, out;
     int smoothing_px = RgbdEvaluationOptions{}.colour_smoothing_px;
+    int stride = 0;
     double inner_fraction = 0.5;
   };
   auto args = std::make_shared<Args>();
@@ -29,18 +31,25 @@ Command AddEvaluateCommand(CLI::App& app) {
       app.add_subcommand("evaluate",
                          "Accuracy against the truth: a plane or cylinder fitted to a cloud, or a "
                          "processing stage on a simulated run (rgbd)");
-  sub->add_option("what", args->surface, "plane, cylinder, rgbd or registration")
+  sub->add_option("what", args->surface, "plane, cylinder, rgbd, registration or model")
       ->required()
-      ->check(CLI::IsMember({"plane", "cylinder", "rgbd", "registration"}));
+      ->check(CLI::IsMember({"plane", "cylinder", "rgbd", "registration", "model"}));
   sub->add_option("--cloud", args->cloud, "plane, cylinder: point cloud (PLY, camera frame, mm)");
-  sub->add_option("--run", args->run, "rgbd: the simulated capture run (with truth/)");
+  sub->add_option("--run", args->run,
+                  "rgbd, registration, model: the simulated capture run (with truth/)");
   sub->add_option("--smoothing-px", args->smoothing_px,
                   "rgbd: colours compared after a box mean of this side (1: per pixel)")
       ->capture_default_str()
       ->check(CLI::Range(1, 101));
-  sub->add_option("--workspace", args->workspace, "rgbd: the processing workspace WS");
+  sub->add_option("--workspace", args->workspace,
+                  "rgbd, registration, model: the processing workspace WS");
   sub->add_option("--out", args->out,
-                  "rgbd: folder for evaluation.json and pictures (default WS/evaluation/rgbd)");
+                  "rgbd, registration, model: folder for evaluation.json and pictures (default "
+                  "WS/evaluation/<what>)");
+  sub->add_option("--stride", args->stride,
+                  "model: every n-th map row and column (0: automatic, about 3 M cells)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
   sub->add_option("--inner-fraction", args->inner_fraction,
                   "Central fraction of the view used for the fit")
       ->capture_default_str()
@@ -57,6 +66,11 @@ Command AddEvaluateCommand(CLI::App& app) {
               if (args->run.empty() || args->workspace.empty())
                 throw CLI::RequiredError("evaluate registration needs --run and --workspace");
               return RunEvaluateRegistration(args->run, args->workspace, args->out);
+            }
+            if (args->surface == "model") {
+              if (args->run.empty() || args->workspace.empty())
+                throw CLI::RequiredError("evaluate model needs --run and --workspace");
+              return RunEvaluateModel(args->run, args->workspace, args->out, args->stride);
             }
             if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
             const auto all = ReadPlyPoints(args->cloud);

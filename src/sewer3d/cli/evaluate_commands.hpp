@@ -18,4 +18,12 @@ int RunEvaluateRgbd(const std::string& run, const std::string& workspace, const 
 int RunEvaluateRegistration(const std::string& run, const std::string& workspace,
                             const std::string& out);
 
+/// `sewer3d evaluate model --run RUN --workspace WS [--out DIR] [--stride N]`: prints the model
+/// surface's errors against the true wall (overall, per coverage class, per material) and the
+/// circumference differences, writes DIR/evaluation.json, DIR/error_map.png (±1 mm) and
+/// DIR/error_map_after_axis_offset.png (±0.5 mm) (default WS/evaluation/model); `stride` 0:
+/// automatic. Returns the exit code.
+int RunEvaluateModel(const std::string& run, const std::string& workspace, const std::string& out,
+                     int stride);
+
 }  // namespace sewer3d::cli

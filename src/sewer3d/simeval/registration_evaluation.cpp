@@ -1,6 +1,5 @@
 #include "sewer3d/simeval/registration_evaluation.hpp"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -10,9 +9,9 @@
 #include "sewer3d/io/g2o_io.hpp"
 #include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/simeval/truth_alignment.hpp"
 #include "sewer3d/simio/render_json.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
-#include "sewer3d/simio/truth_io.hpp"
 
 namespace sewer3d {
 namespace {
@@ -40,36 +39,15 @@ void Finish(AteFigures& f) {
 RegistrationEvaluation EvaluateRegistration(const std::filesystem::path& run_folder,
                                             const std::filesystem::path& workspace) {
   const CaptureRun run = LoadRun(run_folder);
-  std::map<int, Rigid3d> truth;  // vertex id → true world_from_camera
-  for (const TruthPose& t : ReadTruthPoses(run_folder / "truth" / "poses.csv")) {
-    if (t.kind != ImageKind::kPattern || t.module >= static_cast<int>(run.rig.modules.size()))
-      continue;
-    truth[RegistrationVertexId(t.module, t.counter)] =
-        t.world_from_carrier * run.rig.modules[t.module].carrier_from_camera;
-  }
+  const TruthAlignment alignment = AlignRegistrationToTruth(run, run_folder, workspace);
+  const std::map<int, Rigid3d>& truth = alignment.truth;
+  const std::vector<RegistrationPoseRow>& poses = alignment.poses;
   const PipeGeometry pipe(ReadScenario(run_folder / "truth" / "scenario.json").world);
   const std::filesystem::path folder = workspace / "registration";
-  const std::vector<RegistrationPoseRow> poses = ReadRegistrationPoses(folder / "poses.csv");
-  std::map<int, Rigid3d> estimate;
-  Eigen::Matrix3Xd model(3, poses.size()), world(3, poses.size());
-  for (size_t i = 0; i < poses.size(); ++i) {
-    const int id = RegistrationVertexId(poses[i].module, poses[i].counter);
-    const auto it = truth.find(id);
-    if (it == truth.end())
-      throw FileError(folder / "poses.csv", "m" + std::to_string(poses[i].module) + " counter " +
-                                                std::to_string(poses[i].counter) + " has no truth");
-    estimate[id] = poses[i].world_from_camera;
-    model.col(static_cast<Eigen::Index>(i)) = poses[i].world_from_camera.translation;
-    world.col(static_cast<Eigen::Index>(i)) = it->second.translation;
-  }
   RegistrationEvaluation e;
-  if (poses.size() >= 3) {
-    const Eigen::Matrix4d t = Eigen::umeyama(model, world, false);
-    e.truth_from_model = Rigid3d(Eigen::Matrix3d(t.topLeftCorner<3, 3>()),
-                                 Eigen::Vector3d(t.topRightCorner<3, 1>()));
-  }
+  e.truth_from_model = alignment.truth_from_model;
   for (size_t i = 0; i < poses.size(); ++i) {
-    const Eigen::Vector3d c_world = world.col(static_cast<Eigen::Index>(i));
+    const Eigen::Vector3d c_world = alignment.true_centres.col(static_cast<Eigen::Index>(i));
     const double error =
         (e.truth_from_model * poses[i].world_from_camera.translation - c_world).norm();
     Add(e.ate, error);

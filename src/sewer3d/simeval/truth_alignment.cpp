@@ -1,0 +1,43 @@
+#include "sewer3d/simeval/truth_alignment.hpp"
+
+#include <Eigen/Geometry>
+#include <string>
+
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/simio/truth_io.hpp"
+
+namespace sewer3d {
+
+TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
+                                        const std::filesystem::path& run_folder,
+                                        const std::filesystem::path& workspace) {
+  TruthAlignment a;
+  for (const TruthPose& t : ReadTruthPoses(run_folder / "truth" / "poses.csv")) {
+    if (t.kind != ImageKind::kPattern || t.module >= static_cast<int>(run.rig.modules.size()))
+      continue;
+    a.truth[RegistrationVertexId(t.module, t.counter)] =
+        t.world_from_carrier * run.rig.modules[t.module].carrier_from_camera;
+  }
+  const std::filesystem::path poses_file = workspace / "registration" / "poses.csv";
+  a.poses = ReadRegistrationPoses(poses_file);
+  const auto n = static_cast<Eigen::Index>(a.poses.size());
+  a.model_centres.resize(3, n);
+  a.true_centres.resize(3, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const RegistrationPoseRow& pose = a.poses[static_cast<size_t>(i)];
+    const auto it = a.truth.find(RegistrationVertexId(pose.module, pose.counter));
+    if (it == a.truth.end())
+      throw FileError(poses_file, "m" + std::to_string(pose.module) + " counter " +
+                                      std::to_string(pose.counter) + " has no truth");
+    a.model_centres.col(i) = pose.world_from_camera.translation;
+    a.true_centres.col(i) = it->second.translation;
+  }
+  if (n >= 3) {
+    const Eigen::Matrix4d t = Eigen::umeyama(a.model_centres, a.true_centres, false);
+    a.truth_from_model = Rigid3d(Eigen::Matrix3d(t.topLeftCorner<3, 3>()),
+                                 Eigen::Vector3d(t.topRightCorner<3, 1>()));
+  }
+  return a;
+}
+
+}  // namespace sewer3d

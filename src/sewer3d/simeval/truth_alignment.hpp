@@ -1,0 +1,33 @@
+#pragma once
+/// \file
+/// The model frame of a processed simulated run aligned onto the truth's world: the registered
+/// camera centres (WS/registration/poses.csv) against the true ones (truth/poses.csv with
+/// rig.json's carrier_from_camera), one rigid transform by Umeyama (no scale). Shared by the
+/// registration and model evaluations, so both judge the same alignment.
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <map>
+#include <vector>
+
+#include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/io/registration_io.hpp"
+#include "sewer3d/run/capture_run.hpp"
+
+namespace sewer3d {
+
+struct TruthAlignment {
+  std::map<int, Rigid3d> truth;            ///< registration vertex id → true world_from_camera
+  std::vector<RegistrationPoseRow> poses;  ///< WS/registration/poses.csv
+  Eigen::Matrix3Xd model_centres;          ///< the poses' camera centres (model frame)
+  Eigen::Matrix3Xd true_centres;           ///< the same cameras' true centres (world)
+  Rigid3d truth_from_model;                ///< identity when fewer than 3 poses
+};
+
+/// Reads truth/poses.csv of `run_folder` and WS/registration/poses.csv and aligns them;
+/// FileError when a file is missing or malformed, or a registered pose has no truth.
+TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
+                                        const std::filesystem::path& run_folder,
+                                        const std::filesystem::path& workspace);
+
+}  // namespace sewer3d
