@@ -97,6 +97,7 @@ int RunDemo(const DemoArgs& a) {
   const auto evaluate_start = Clock::now();
   RunEvaluateRgbd(run.string(), ws.string(), "", RgbdEvaluationOptions{}.colour_smoothing_px);
   RunEvaluateRegistration(run.string(), ws.string(), "");
+  RunEvaluateModel(run.string(), ws.string(), "", 0);
   const double evaluate_s = SecondsSince(evaluate_start);
 
   std::string times = fmt::format("simulate {:.1f} s{}", simulate_s, simulated ? "" : " (reused)");
@@ -107,6 +108,11 @@ int RunDemo(const DemoArgs& a) {
       SecondsSince(start), a.threads, PeakMemoryGb(), times, evaluate_s);
   const std::string d = dir.string();
   fmt::print("look at:\n");
+  fmt::print("  {}/ws/model/preview.png            the unrolled pipe: texture over displacement\n",
+             d);
+  fmt::print("  {}/ws/model/mesh.glb               the displaced 3D model (any glTF viewer)\n", d);
+  fmt::print("  {}/ws/model/mesh.obj               the textured cylinder (MeshLab, Blender)\n", d);
+  fmt::print("  {}/ws/evaluation/model/error_map.png  the model against the true wall\n", d);
   fmt::print("  {}/run/truth/overview.png          the unrolled pipe and every image's footprint\n",
              d);
   fmt::print("  {}/ws/rgbd/m0/000000_color.png     corrected colour at the pattern instant\n", d);
