@@ -9,6 +9,7 @@
 #include <limits>
 #include <set>
 
+#include "sewer3d/io/model_io.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
@@ -57,38 +58,47 @@ TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
   EXPECT_FALSE(record.stages.at("rgbd").done);
   EXPECT_FALSE(record.stages.at("process").done);
   EXPECT_EQ(record.stages.at("process").notes.at("failed"), "rgbd");
-  EXPECT_EQ(record.stages.at("process").options_json,
-            R"({"resolution_mm":0.5,"stages":["rgbd","register"],"start_station_mm":1200.0})");
+  EXPECT_EQ(
+      record.stages.at("process").options_json,
+      R"({"resolution_mm":0.5,"stages":["rgbd","register","model"],"start_station_mm":1200.0})");
 
-  // Mended: the rgbd stage redoes the one acquisition, and register runs.
+  // Mended: the rgbd stage redoes the one acquisition, register and model run.
   WriteTextFile(image, bytes);
   {
     Workspace ws(dir / "ws", run.folder);
     const ProcessReport report = RunProcess(run, ws, options);
     EXPECT_TRUE(report.ok);
-    ASSERT_EQ(report.stages.size(), 2u);
+    ASSERT_EQ(report.stages.size(), 3u);
     EXPECT_EQ(report.stages[0].name, "rgbd");
     EXPECT_EQ(report.stages[1].name, "register");
+    EXPECT_EQ(report.stages[2].name, "model");
     for (const ProcessStageResult& r : report.stages) EXPECT_FALSE(r.skipped) << r.name;
     EXPECT_NE(report.stages[0].outcome.summary.find("1 done, 11 skipped"), std::string::npos)
         << report.stages[0].outcome.summary;
     EXPECT_TRUE(fs::exists(dir / "ws" / "registration" / "poses.csv"));
+    // The model took the chain's grid and start station: the carrier's first position is
+    // station 1200, the rearmost camera looks ~315 mm behind it.
+    const PipeModelInfo model = ReadModelJson(dir / "ws" / "model" / "model.json");
+    EXPECT_DOUBLE_EQ(model.grid.resolution_mm, 0.5);
+    EXPECT_DOUBLE_EQ(model.start_station_mm, 1200.0);
+    EXPECT_NEAR(model.grid.station0_mm, 1200.0 - 315.0, 30.0);
   }
   record = ReadWorkspaceRecord(dir / "ws" / "workspace.json");
-  for (const char* stage : {"rgbd", "register", "process"}) {
+  for (const char* stage : {"rgbd", "register", "model", "process"}) {
     SCOPED_TRACE(stage);
     EXPECT_TRUE(record.stages.at(stage).done);
     EXPECT_GT(record.stages.at(stage).seconds, 0.0);
   }
-  EXPECT_LE(record.stages.at("rgbd").seconds + record.stages.at("register").seconds,
+  EXPECT_LE(record.stages.at("rgbd").seconds + record.stages.at("register").seconds +
+                record.stages.at("model").seconds,
             record.stages.at("process").seconds);
 
-  // Again: both stages recorded done with the same options, neither is started.
+  // Again: every stage recorded done with the same options, none is started.
   {
     Workspace ws(dir / "ws", run.folder);
     const ProcessReport again = RunProcess(run, ws, options);
     EXPECT_TRUE(again.ok);
-    ASSERT_EQ(again.stages.size(), 2u);
+    ASSERT_EQ(again.stages.size(), 3u);
     for (const ProcessStageResult& r : again.stages) {
       EXPECT_TRUE(r.skipped) << r.name;
       EXPECT_EQ(r.seconds, record.stages.at(r.name).seconds);  // as recorded
@@ -96,7 +106,7 @@ TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
   }
   EXPECT_EQ(
       ReadWorkspaceRecord(dir / "ws" / "workspace.json").stages.at("process").notes.at("skipped"),
-      "rgbd register");
+      "rgbd register model");
   if (!std::getenv("SEWER3D_KEEP")) fs::remove_all(dir);
 }
 
