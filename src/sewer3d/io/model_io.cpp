@@ -29,7 +29,7 @@ void WriteImageAtomically(const std::filesystem::path& path, const Mat& image) {
 
 template <typename Mat>
 Mat ReadTyped(const std::filesystem::path& path, int type, const MapGrid& grid, const char* what) {
-  const cv::Mat image = ReadImage(path, cv::IMREAD_UNCHANGED);
+  cv::Mat image = ReadImage(path, cv::IMREAD_UNCHANGED);
   if (image.type() != type) throw FileError(path, std::string("not a ") + what);
   if (image.rows != grid.rows || image.cols != grid.cols) {
     throw FileError(path, "size " + std::to_string(image.cols) + " x " +
