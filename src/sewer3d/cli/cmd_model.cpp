@@ -33,6 +33,8 @@ void AddModelStageOptions(CLI::App& sub, ModelStageOptions& o) {
       ->capture_default_str();
   sub.add_option("--mesh-step-mm", o.displaced.step_mm, "Vertex spacing of mesh.glb")
       ->capture_default_str();
+  sub.add_flag("--keep-tiles", o.keep_tiles,
+               "Keep WS/model/tiles/ when the whole-run map files are written");
 }
 
 Command AddModelCommand(CLI::App& app) {

@@ -92,7 +92,8 @@ std::string ModelOptionsJson(const ModelStageOptions& o) {
                   {"slice_spacing_mm", o.centreline.slice_spacing_mm},
                   {"smoothing_half_width_mm", o.centreline.smoothing_half_width_mm},
                   {"max_hole_mm", o.maps.max_hole_mm},
-                  {"mesh_step_mm", o.displaced.step_mm}};
+                  {"mesh_step_mm", o.displaced.step_mm},
+                  {"keep_tiles", o.keep_tiles}};
   return j.dump();
 }
 

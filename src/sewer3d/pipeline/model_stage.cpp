@@ -194,6 +194,14 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
   const MapFilesReport files = FinishTiledModel(folder, info, options.files);
   report.surface_points = files.surface_points;
   WriteModelMeshes(folder, info, options, report, progress);
+  if (report.whole_maps && !options.keep_tiles) {
+    // The tiles duplicate the whole-run files now: model.json without them first, so the
+    // folder is a complete model at every moment.
+    info.tiles.clear();
+    info.whole_maps = true;
+    WriteModelJson(folder / "model.json", info);
+    RemoveFolder(folder / "tiles");
+  }
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   report.seconds_per_acquisition = report.seconds / report.acquisitions;
   report.ok = true;

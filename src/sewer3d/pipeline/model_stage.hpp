@@ -9,7 +9,8 @@
 ///    reaches it is unrolled into a MapAccumulator (weight: depth noise × feathering toward
 ///    the image border), then the tile's files are written (resumable: done tiles are kept).
 /// 3. The whole-run map files and model.json (io/model_io), the base cylinder (mesh.obj +
-///    mesh.mtl, the texture.png) and the displaced mesh (mesh.glb), report.json.
+///    mesh.mtl, the texture.png) and the displaced mesh (mesh.glb), report.json; the tiles
+///    are removed when the whole-run files hold the maps (unless keep_tiles).
 
 #include <Eigen/Core>
 #include <functional>
@@ -44,6 +45,9 @@ struct ModelStageOptions {
   ModelFileOptions files;
   BaseCylinderOptions base;
   DisplacedMeshOptions displaced;
+  /// Keep WS/model/tiles/ after the whole-run files are written (they duplicate them; a run
+  /// too long for whole-run files always keeps its tiles, which are then the maps).
+  bool keep_tiles = false;
   int threads = 1;  ///< tiles accumulated at once
   bool force = false;
 

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "sewer3d/io/model_io.hpp"
@@ -45,6 +46,7 @@ class ModelStageTiny : public ::testing::Test {
     RunRegisterStage(run_, ws, reg);
     options_.threads = 2;
     options_.tile_length_mm = 60.0;
+    options_.keep_tiles = true;  // the resume test below takes one away
     report_ = RunModelStage(run_, ws, options_);
   }
   static void TearDownTestSuite() {
@@ -122,12 +124,32 @@ TEST_F(ModelStageTiny, DisplacementIsRoundWallAndTheJointStep) {
 }
 
 TEST_F(ModelStageTiny, ResumedStageKeepsItsTiles) {
+  // As if killed while writing the last tile: its files are incomplete.
+  const fs::path tiles = dir_ / "ws" / "model" / "tiles";
+  const fs::path last_ply = tiles / ("tile_" + std::to_string(report_.tiles - 1) + "_surface.ply");
+  ASSERT_TRUE(fs::exists(last_ply));
+  fs::remove(last_ply);
   Workspace ws(dir_ / "ws", run_.folder);
   const ModelStageReport again = RunModelStage(run_, ws, options_);
   ASSERT_TRUE(again.ok);
-  EXPECT_EQ(again.tiles_from_earlier_run, again.tiles);
+  EXPECT_EQ(again.tiles_from_earlier_run, again.tiles - 1);
   EXPECT_EQ(again.grid.rows, report_.grid.rows);
   EXPECT_DOUBLE_EQ(again.measured_fraction, report_.measured_fraction);
+}
+
+TEST_F(ModelStageTiny, TilesGoWhenTheWholeRunFilesHoldTheMaps) {
+  ModelStageOptions options = options_;
+  options.keep_tiles = false;
+  options.force = true;
+  Workspace ws(dir_ / "ws", run_.folder);
+  const ModelStageReport r = RunModelStage(run_, ws, options);
+  ASSERT_TRUE(r.ok && r.whole_maps);
+  EXPECT_FALSE(fs::exists(dir_ / "ws" / "model" / "tiles"));
+  const PipeModel model = ReadPipeModel(dir_ / "ws" / "model");
+  EXPECT_TRUE(model.info.tiles.empty());
+  EXPECT_EQ(model.maps.grid.rows, report_.grid.rows);
+  EXPECT_EQ(cv::countNonZero(model.maps.coverage == 1),
+            static_cast<int>(std::lround(r.measured_fraction * r.grid.rows * r.grid.cols)));
 }
 
 }  // namespace
