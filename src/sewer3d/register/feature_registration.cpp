@@ -10,8 +10,9 @@ namespace sewer3d {
 namespace {
 
 struct Features {
-  std::vector<cv::KeyPoint> keypoints;
+  std::vector<cv::KeyPoint> keypoints;  ///< in the full image's pixels
   cv::Mat descriptors;
+  double scale = 1.0;  ///< detection image / full image
 };
 
 void CheckImage(const RgbdImage& image, const CameraModel& camera, const char* name) {
@@ -30,10 +31,22 @@ Features Detect(const RgbdImage& image, const FeatureRegistrationOptions& option
   cv::cvtColor(image.color_bgr, gray, cv::COLOR_BGR2GRAY);
   // NOLINTNEXTLINE(misc-redundant-expression): NaN compares unequal to itself
   cv::Mat1b mask = (image.depth == image.depth);  // false where NaN
+  Features f;
+  if (options.max_detect_width_px > 0 && gray.cols > options.max_detect_width_px) {
+    f.scale = static_cast<double>(options.max_detect_width_px) / gray.cols;
+    const cv::Size size(options.max_detect_width_px,
+                        std::max(1, static_cast<int>(std::lround(gray.rows * f.scale))));
+    cv::resize(gray, gray, size, 0, 0, cv::INTER_AREA);
+    cv::resize(mask, mask, size, 0, 0, cv::INTER_NEAREST);
+  }
   const cv::Ptr<cv::SIFT> sift =
       cv::SIFT::create(options.max_keypoints, 3, options.contrast_threshold, 10.0, 1.6);
-  Features f;
   sift->detectAndCompute(gray, mask, f.keypoints, f.descriptors);
+  for (cv::KeyPoint& k : f.keypoints) {  // pixel centres at integers in both images
+    k.pt.x = static_cast<float>((k.pt.x + 0.5) / f.scale - 0.5);
+    k.pt.y = static_cast<float>((k.pt.y + 0.5) / f.scale - 0.5);
+    k.size = static_cast<float>(k.size / f.scale);
+  }
   return f;
 }
 
@@ -74,6 +87,7 @@ void FeatureRegistrationOptions::Check() const {
   ValidatePositive("contrast_threshold", contrast_threshold);
   SEWER3D_VALIDATE(ratio > 0.0 && ratio <= 1.0, "ratio", "must lie in (0, 1], got " << ratio);
   ValidatePositive("max_depth_spread_mm", max_depth_spread_mm);
+  ValidateNotNegative("max_detect_width_px", max_detect_width_px);
   CheckWithin("noise.", [&] { noise.Check(); });
   CheckWithin("points.", [&] { points.Check(); });
 }
@@ -92,8 +106,12 @@ FeatureRegistrationResult RegisterFeatures(const RgbdImage& a, const CameraModel
   const std::vector<cv::DMatch> matches = Match(fa, fb, options);
   report.matches = static_cast<int>(matches.size());
 
-  const double focal_a = std::sqrt(camera_a.intrinsics().fx * camera_a.intrinsics().fy);
-  const double focal_b = std::sqrt(camera_b.intrinsics().fx * camera_b.intrinsics().fy);
+  // A keypoint found at scale s is localised s times less finely in the full image: the noise
+  // model sees the detection image's focal length.
+  const double focal_a =
+      fa.scale * std::sqrt(camera_a.intrinsics().fx * camera_a.intrinsics().fy);
+  const double focal_b =
+      fb.scale * std::sqrt(camera_b.intrinsics().fx * camera_b.intrinsics().fy);
   std::vector<PointMatch> points;
   for (const cv::DMatch& m : matches) {
     const auto pa = Lift(fa.keypoints[m.queryIdx], a, camera_a, options.max_depth_spread_mm);

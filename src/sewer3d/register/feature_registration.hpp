@@ -28,6 +28,10 @@ struct FeatureRegistrationOptions {
   double contrast_threshold = 0.02;
   double ratio = 0.8;       ///< Lowe's ratio: best / second-best descriptor distance below it
   bool cross_check = true;  ///< keep a match only if it is also b's best match in a
+  /// Wider images are detected on an area-averaged copy this wide (keypoints scaled back, their
+  /// localisation σ scaled up with them): SIFT and brute-force matching on the full 2592 px
+  /// frame take ~14 s a pair; 0: always the full image.
+  int max_detect_width_px = 1300;
   /// Depth at a keypoint is bilinear over the 4 pixels around it; rejected if they spread
   /// over more than this (a depth step or an edge of the map).
   double max_depth_spread_mm = 0.5;
