@@ -81,8 +81,7 @@ void BM_ProjectionRegistration(benchmark::State& state) {
   // The odometry's guess: 1 mm short along the pipe, 0.5 mm across.
   const Rigid3d guess(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.5, kStepMm - 1.0, 0.0));
   ProjectionRegistrationResult last;
-  for (auto _ : state)
-    last = RegisterProjection(p.a.depth, camera, p.b.depth, camera, guess, {});
+  for (auto _ : state) last = RegisterProjection(p.a.depth, camera, p.b.depth, camera, guess, {});
   state.counters["correspondences"] = last.correspondences;
   state.counters["iterations"] = last.report.iterations;
 }

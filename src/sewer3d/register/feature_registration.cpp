@@ -108,10 +108,8 @@ FeatureRegistrationResult RegisterFeatures(const RgbdImage& a, const CameraModel
 
   // A keypoint found at scale s is localised s times less finely in the full image: the noise
   // model sees the detection image's focal length.
-  const double focal_a =
-      fa.scale * std::sqrt(camera_a.intrinsics().fx * camera_a.intrinsics().fy);
-  const double focal_b =
-      fb.scale * std::sqrt(camera_b.intrinsics().fx * camera_b.intrinsics().fy);
+  const double focal_a = fa.scale * std::sqrt(camera_a.intrinsics().fx * camera_a.intrinsics().fy);
+  const double focal_b = fb.scale * std::sqrt(camera_b.intrinsics().fx * camera_b.intrinsics().fy);
   std::vector<PointMatch> points;
   for (const cv::DMatch& m : matches) {
     const auto pa = Lift(fa.keypoints[m.queryIdx], a, camera_a, options.max_depth_spread_mm);
