@@ -255,5 +255,20 @@ expect_error "rgbd: .*000001_pattern.png: cannot decode image" \
 [ -e "$tmp/rg/ws2/registration" ] && fail "process went on to register after rgbd failed"
 grep -q '"process"' "$tmp/rg/ws2/workspace.json" || fail "workspace.json does not record process"
 
+# model: refused without a registration (exit 3, one line naming poses.csv) or with a bad grid.
+expect_ok "$bin" model --help
+for opt in --resolution-mm --start-station-mm --nominal-diameter-mm --straight --keep-tiles; do
+  grep -q -- "$opt" "$tmp/out" || fail "model --help shows no $opt"
+done
+expect_error "poses.csv: missing: run the register stage first" \
+  "$bin" model "$tmp/rg/run" --out "$tmp/rg/ws" --quiet
+[ "$rc" -eq 3 ] || fail "model without a registration exited $rc, not 3"
+expect_error "--resolution-mm" "$bin" model "$tmp/rg/run" --out "$tmp/rg/ws" --resolution-mm 0 --quiet
+[ "$rc" -eq 2 ] || fail "model --resolution-mm 0 exited $rc, not 2"
+expect_error "--start-station-mm" "$bin" model "$tmp/rg/run" --out "$tmp/rg/ws" --start-station-mm nan
+[ "$rc" -eq 2 ] || fail "model --start-station-mm nan exited $rc, not 2"
+expect_error "model.json" "$bin" evaluate model --run "$tmp/rg/run" --workspace "$tmp/rg/ws"
+[ "$rc" -eq 3 ] || fail "evaluate model without a model exited $rc, not 3"
+
 if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
 echo "all CLI checks passed"

@@ -9,6 +9,7 @@
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/model_stage.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
@@ -18,21 +19,26 @@ namespace sewer3d::cli {
 
 void AddModelStageOptions(CLI::App& sub, ModelStageOptions& o) {
   sub.add_option("--resolution-mm", o.resolution_mm, "Map cell size along and around the pipe")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 50.0));
   sub.add_option("--start-station-mm", o.start_station_mm,
                  "Station of the run's first carrier position (where the run began)")
       ->capture_default_str();
   sub.add_option("--nominal-diameter-mm", o.nominal_diameter_mm,
                  "Model diameter (the round pipe the displacement is measured from); 0: the "
                  "fitted diameter rounded to 5 mm")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10000.0));
   sub.add_flag("--straight", o.straight, "One straight cylinder instead of a bending centreline");
   sub.add_option("--tile-length-mm", o.tile_length_mm, "Tile along the pipe (bounds memory)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 10000.0));
   sub.add_option("--pixel-step", o.pixel_step, "Every n-th depth-map pixel into the maps")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
   sub.add_option("--mesh-step-mm", o.displaced.step_mm, "Vertex spacing of mesh.glb")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 1000.0));
   sub.add_flag("--keep-tiles", o.keep_tiles,
                "Keep WS/model/tiles/ when the whole-run map files are written");
 }
@@ -59,6 +65,12 @@ Command AddModelCommand(CLI::App& app) {
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
   return {sub, [args] {
+            try {
+              args->options.Check();
+            } catch (const InvalidValue& e) {  // in the command line's terms
+              throw InvalidValue(e.field() == "start_station_mm" ? "--start-station-mm" : e.field(),
+                                 e.problem());
+            }
             const CaptureRun run = LoadRun(args->run);
             ProgressBar bar(args->quiet);
             auto progress = [&](const std::string& pass, int done, int total) {
