@@ -130,7 +130,7 @@ Command AddDemoCommand(CLI::App& app) {
   auto args = std::make_shared<DemoArgs>();
   CLI::App* sub = app.add_subcommand(
       "demo",
-      "Simulate the compact run (0.5 m of DN300: concrete, displaced joint, intruding "
+      "Simulate the compact run (0.56 m of DN300: concrete, displaced joint, intruding "
       "connection, plastic), process it and evaluate it against its truth: DIR/run, DIR/ws");
   sub->add_option("--out", args->out, "Folder of the demo: DIR/run, DIR/ws")->capture_default_str();
   sub->add_option("--threads", args->threads, "Workers for simulating and processing")

@@ -79,10 +79,10 @@ int RunProcessCommand(const ProcessArgs& args, ProcessReport* report_out) {
 
 Command AddProcessCommand(CLI::App& app) {
   auto args = std::make_shared<ProcessArgs>();
-  CLI::App* sub = app.add_subcommand(
-      "process",
-      "The whole processing chain over a capture run (rgbd, register): WS/workspace.json and "
-      "each stage's folder; resumes where an earlier run stopped");
+  CLI::App* sub = app.add_subcommand("process",
+                                     "The whole processing chain over a capture run (rgbd, "
+                                     "register, model): WS/workspace.json and "
+                                     "each stage's folder; resumes where an earlier run stopped");
   sub->add_option("RUN", args->run, "Capture run folder (docs/formats.md)")->required();
   sub->add_option("--out", args->out, "Processing workspace folder WS")->required();
   sub->add_option("--start-station-mm", args->start_station_mm,

@@ -35,9 +35,11 @@ struct PixelWeighting {
 };
 
 /// Adds every pixel_step-th pixel with depth of the acquisition (colour from `color_bgr`) to
-/// `maps`, weighted by DepthWeight × BorderFeather. Returns the samples the tile took.
+/// `maps`, weighted by DepthWeight × BorderFeather. `normalised`: the camera's
+/// NormalisedCoordinates (texture/shading.hpp), computed once per module rather than
+/// unprojecting every pixel of every acquisition again. Returns the samples the tile took.
 long long AddAcquisitionPixels(MapAccumulator& maps, const cv::Mat1f& depth_mm,
-                               const cv::Mat3b& color_bgr, const CameraModel& camera,
+                               const cv::Mat3b& color_bgr, const cv::Mat2f& normalised,
                                const Rigid3d& world_from_camera, const PixelWeighting& weighting);
 
 }  // namespace sewer3d

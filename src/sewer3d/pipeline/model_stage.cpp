@@ -9,10 +9,12 @@
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/registration_io.hpp"
+#include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/model/unroll.hpp"
 #include "sewer3d/pipeline/model_outputs.hpp"
 #include "sewer3d/pipeline/model_samples.hpp"
 #include "sewer3d/pipeline/parallel_items.hpp"
+#include "sewer3d/texture/shading.hpp"
 
 namespace sewer3d {
 namespace {
@@ -96,6 +98,9 @@ void WriteTiles(const CaptureRun& run, const std::filesystem::path& ws, const Ce
   for (int row0 = 0, k = 0; row0 < info.grid.rows; row0 += tile_rows, ++k)
     info.tiles.push_back({k, row0, std::min(tile_rows, info.grid.rows - row0)});
   report.tiles = static_cast<int>(info.tiles.size());
+  std::vector<cv::Mat2f> normalised;  // per module, shared by every tile
+  for (const RigModule& m : run.rig.modules)
+    normalised.push_back(NormalisedCoordinates(CameraModel(m.module.camera)));
   for (const ModelTile& tile : info.tiles)
     report.tiles_from_earlier_run += ModelTileDone(folder, tile.index) ? 1 : 0;
   ForEachItem<int>(
@@ -111,11 +116,13 @@ void WriteTiles(const CaptureRun& run, const std::filesystem::path& ws, const Ce
         for (const ModelAcquisition& a : acquisitions) {
           if (a.station_max_mm < lo - 5.0 || a.station_min_mm > hi + 5.0) continue;
           const RgbdPairInput in = ReadRgbdForRegistration(ws / "rgbd", a.module, a.counter);
-          const CameraModel camera(run.rig.modules[a.module].module.camera);
+          if (in.depth_mm.size() != normalised[a.module].size())
+            throw FileError(RgbdAcquisitionFiles(ws / "rgbd", a.module, a.counter).depth,
+                            "not the size of module " + std::to_string(a.module) + "'s camera");
           const PixelWeighting weighting{o.pixel_step, o.feather_fraction * in.depth_mm.cols,
                                          o.depth_sigma_ref_mm, o.depth_ref_mm};
-          AddAcquisitionPixels(maps, in.depth_mm, in.color_bgr, camera, a.world_from_camera,
-                               weighting);
+          AddAcquisitionPixels(maps, in.depth_mm, in.color_bgr, normalised[a.module],
+                               a.world_from_camera, weighting);
         }
         WriteModelTile(folder, tile.index, maps.Finish(), info.grid, line, o.files);
       },
