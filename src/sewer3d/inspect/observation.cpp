@@ -1,0 +1,12 @@
+#include "sewer3d/inspect/observation.hpp"
+
+namespace sewer3d {
+
+const Quantity* Observation::Find(const std::string& name) const {
+  for (const Quantity& q : quantities) {
+    if (q.name == name) return &q;
+  }
+  return nullptr;
+}
+
+}  // namespace sewer3d
