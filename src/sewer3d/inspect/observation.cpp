@@ -9,4 +9,6 @@ const Quantity* Observation::Find(const std::string& name) const {
   return nullptr;
 }
 
+bool IsContinuous(const Observation& o) { return o.code == "BAA" || o.code == "BBC"; }
+
 }  // namespace sewer3d

@@ -35,9 +35,11 @@ struct Observation {
   /// the governing one when present, "A" gap, "C" deflection; BAA: "A" vertical, "B"
   /// horizontal); empty otherwise.
   std::string characterisation;
-  double station_mm = 0.0;  ///< where it starts (continuous defects) or its centre
-  double length_mm = 0.0;   ///< extent along the pipe; 0 for a point observation
-  double clock_h = 12.0;    ///< where it is most pronounced
+  /// Where it starts for continuous observations (deformation BAA, deposits BBC: they run
+  /// over a stretch) or its centre for local ones (IsContinuous).
+  double station_mm = 0.0;
+  double length_mm = 0.0;  ///< extent along the pipe; 0 for a point observation
+  double clock_h = 12.0;   ///< where it is most pronounced
   double clock_from_h = 12.0;
   double clock_to_h = 12.0;  ///< clockwise from clock_from_h; equal for a point
   bool at_joint = false;     ///< EN 13508-2 joint flag
@@ -50,5 +52,8 @@ struct Observation {
   /// The quantity called `name`; nullptr when the observation has none.
   [[nodiscard]] const Quantity* Find(const std::string& name) const;
 };
+
+/// True for observations that run over a stretch of pipe (BAA, BBC): station_mm is their start.
+bool IsContinuous(const Observation& o);
 
 }  // namespace sewer3d

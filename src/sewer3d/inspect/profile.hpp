@@ -26,7 +26,7 @@ struct ProfileOptions {
 /// enough (coverage below ProfileOptions::min_coverage).
 struct ProfileRow {
   double station_mm = 0.0;
-  double coverage = 0.0;  ///< measured share of the circumference, 0..1
+  double coverage = 0.0;   ///< measured share of the circumference, 0..1
   double height_mm = 0.0;  ///< crown to invert (clock 12 to 6)
   double width_mm = 0.0;   ///< 9 to 3 o'clock
   double circumference_mm = 0.0;

@@ -1,0 +1,329 @@
+#include "sewer3d/inspect/defects.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
+#include "sewer3d/inspect/components.hpp"
+
+namespace sewer3d {
+namespace {
+
+constexpr double kTurn = 2.0 * std::numbers::pi;
+
+double Percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const auto k = static_cast<std::ptrdiff_t>(std::lround(q * (v.size() - 1)));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+/// Where coarse cells lie on the wall.
+struct Wall {
+  const CoarseMap& map;
+  double radius_mm;
+  [[nodiscard]] int Cols() const { return map.displacement_mm.cols; }
+  [[nodiscard]] double RowMm() const { return map.RowMm(); }
+  [[nodiscard]] double ColMm() const { return map.ColArcMm(radius_mm); }
+  [[nodiscard]] double CellMm2() const { return RowMm() * ColMm(); }
+  [[nodiscard]] double Station(double row) const {
+    return map.fine.station0_mm + (row + 0.5) * RowMm();
+  }
+  /// Clock angle of an unwrapped column (may exceed one turn).
+  [[nodiscard]] double Clock(double ucol) const {
+    const int base = static_cast<int>(std::floor(ucol));
+    const int turns = base >= 0 ? base / Cols() : -((-base + Cols() - 1) / Cols());
+    return map.ColClockRad(Wrap(base)) + (ucol - base) * map.factor * kTurn / map.fine.cols +
+           turns * kTurn;
+  }
+  [[nodiscard]] int Wrap(int ucol) const { return ((ucol % Cols()) + Cols()) % Cols(); }
+};
+
+double ToClockH(double rad) {
+  const double h = std::fmod(rad / kTurn * 12.0, 12.0);
+  const double wrapped = h < 0.0 ? h + 12.0 : h;
+  return wrapped == 0.0 ? 12.0 : wrapped;
+}
+
+std::vector<double> SignedValues(const cv::Mat1f& res, const Wall& wall,
+                                 const std::vector<cv::Point>& cells, double sign) {
+  std::vector<double> v;
+  v.reserve(cells.size());
+  for (const cv::Point& p : cells) {
+    const float x = res(p.y, wall.Wrap(p.x));
+    if (std::isfinite(x)) v.push_back(sign * x);
+  }
+  return v;
+}
+
+/// The fields every observation of a region has: place, extent, crop, confidence.
+Observation Describe(const Wall& wall, const cv::Mat1f& res, const MapComponent& comp, double sign,
+                     double magnitude, double threshold) {
+  Observation o;
+  cv::Point peak = comp.cells.front();
+  for (const cv::Point& p : comp.cells) {
+    if (sign * res(p.y, wall.Wrap(p.x)) > sign * res(peak.y, wall.Wrap(peak.x))) peak = p;
+  }
+  o.station_mm = wall.Station(0.5 * (comp.row_min + comp.row_max));
+  o.length_mm = (comp.row_max - comp.row_min + 1) * wall.RowMm();
+  o.clock_h = ToClockH(wall.Clock(peak.x));
+  o.clock_from_h = ToClockH(wall.Clock(comp.col_min - 0.5));
+  o.clock_to_h = ToClockH(wall.Clock(comp.col_max + 0.5));
+  const int margin = 5, f = wall.map.factor;
+  o.crop.row0 = std::max(0, (comp.row_min - margin) * f);
+  o.crop.rows = std::min(wall.map.fine.rows, (comp.row_max + 1 + margin) * f) - o.crop.row0;
+  o.crop.col0 =
+      ((comp.col_min - margin) * f % wall.map.fine.cols + wall.map.fine.cols) % wall.map.fine.cols;
+  o.crop.cols = std::min(wall.map.fine.cols, (comp.col_max - comp.col_min + 1 + 2 * margin) * f);
+  // Share of the box's cells that were measured, times how far the signal clears the threshold.
+  int measured = 0, total = 0;
+  for (int r = comp.row_min; r <= comp.row_max; ++r) {
+    for (int c = comp.col_min; c <= comp.col_max; ++c, ++total) {
+      measured += std::isfinite(wall.map.displacement_mm(r, wall.Wrap(c))) ? 1 : 0;
+    }
+  }
+  o.confidence = static_cast<double>(measured) / total * (1.0 - std::exp(-magnitude / threshold));
+  return o;
+}
+
+/// A lateral connection: its bore (outward regions deeper than any surface damage, and those
+/// next to them) and the inward regions around it (the lateral's intruding end).
+struct ConnectionParts {
+  std::vector<cv::Point> bore, ring;
+  MapComponent box;  ///< bounding box of all parts (cells unused)
+};
+
+bool Near(const MapComponent& a, const MapComponent& b, int margin_rows, int margin_cols) {
+  return a.row_min <= b.row_max + margin_rows && b.row_min <= a.row_max + margin_rows &&
+         a.col_min <= b.col_max + margin_cols && b.col_min <= a.col_max + margin_cols;
+}
+
+Observation Connection(const Wall& wall, const cv::Mat1f& res, const ConnectionParts& parts,
+                       double dn, double intrusion_threshold) {
+  const std::vector<double> inward = SignedValues(res, wall, parts.ring, -1.0);
+  const double intrusion = inward.empty() ? 0.0 : Percentile(inward, 0.9);
+  MapComponent all = parts.box;
+  all.cells = parts.bore;
+  all.cells.insert(all.cells.end(), parts.ring.begin(), parts.ring.end());
+  const bool intruding = intrusion >= intrusion_threshold;
+  Observation o = Describe(wall, res, all, 1.0, intruding ? intrusion : 1.0, intrusion_threshold);
+  int row_min = parts.bore.front().y, row_max = row_min;
+  for (const cv::Point& p : parts.bore) {
+    row_min = std::min(row_min, p.y);
+    row_max = std::max(row_max, p.y);
+  }
+  // Along the pipe a lateral square to it opens exactly its bore.
+  const double bore = (row_max - row_min + 1) * wall.RowMm();
+  o.station_mm = wall.Station(0.5 * (row_min + row_max));
+  o.clock_h = ToClockH(wall.Clock(0.5 * (parts.box.col_min + parts.box.col_max)));
+  if (intruding) {
+    o.code = "BAG";
+    o.quantities = {{"intrusion_pct_of_dn", 100.0 * intrusion / dn, "%"},
+                    {"intrusion_mm", intrusion, "mm"},
+                    {"bore_diameter_mm", bore, "mm"}};
+    o.remark = fmt::format("connection Ø{:.0f} at {:.1f} h intruding {:.1f} mm", bore, o.clock_h,
+                           intrusion);
+  } else {
+    o.code = "BCA";
+    o.quantities = {{"bore_diameter_mm", bore, "mm"}};
+    o.remark = fmt::format("connection Ø{:.0f} at {:.1f} h", bore, o.clock_h);
+  }
+  return o;
+}
+
+Observation Deposit(const Wall& wall, const cv::Mat1f& res, const MapComponent& comp, double dn,
+                    double threshold) {
+  // Height: the bed's highest point per row (at the invert), median over the middle rows.
+  const int rows = comp.row_max - comp.row_min + 1;
+  std::vector<double> per_row(rows, 0.0);
+  for (const cv::Point& p : comp.cells) {
+    const float v = -res(p.y, wall.Wrap(p.x));
+    if (std::isfinite(v))
+      per_row[p.y - comp.row_min] = std::max<double>(per_row[p.y - comp.row_min], v);
+  }
+  const int cut = rows / 10;
+  const std::vector<double> middle(per_row.begin() + cut, per_row.end() - cut);
+  const double h = Percentile(middle, 0.5), r = 0.5 * dn;
+  const double theta = 2.0 * std::acos(std::clamp((r - h) / r, -1.0, 1.0));
+  Observation o = Describe(wall, res, comp, -1.0, h, threshold);
+  o.code = "BBC";
+  o.station_mm = wall.Station(comp.row_min - 0.5);
+  o.quantities = {{"cross_section_loss_pct", 100.0 * (theta - std::sin(theta)) / kTurn, "%"},
+                  {"height_mm", h, "mm"}};
+  o.remark = fmt::format("settled deposit {:.0f} mm high over {:.2f} m", h, o.length_mm / 1000.0);
+  return o;
+}
+
+/// Length, width (4 σ across) and direction (deg on the unrolled wall, 0 = along the pipe,
+/// in (−90, 90]) of a region from the principal axes of its cells.
+struct Shape {
+  double length_mm = 0.0;
+  double width_mm = 0.0;
+  double angle_deg = 0.0;
+};
+
+Shape ShapeOf(const Wall& wall, const MapComponent& comp) {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const cv::Point& p : comp.cells)
+    mean += Eigen::Vector2d(p.y * wall.RowMm(), p.x * wall.ColMm());
+  mean /= static_cast<double>(comp.cells.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const cv::Point& p : comp.cells) {
+    const Eigen::Vector2d d = Eigen::Vector2d(p.y * wall.RowMm(), p.x * wall.ColMm()) - mean;
+    cov += d * d.transpose();
+  }
+  cov /= static_cast<double>(comp.cells.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  const Eigen::Vector2d axis = eig.eigenvectors().col(1);  // (along, around)
+  double lo = 0.0, hi = 0.0;
+  for (const cv::Point& p : comp.cells) {
+    const double t = (Eigen::Vector2d(p.y * wall.RowMm(), p.x * wall.ColMm()) - mean).dot(axis);
+    lo = std::min(lo, t);
+    hi = std::max(hi, t);
+  }
+  const double cell = std::hypot(axis.x() * wall.RowMm(), axis.y() * wall.ColMm());
+  double angle = RadToDeg(std::atan2(axis.y(), axis.x()));
+  if (angle <= -90.0) angle += 180.0;
+  if (angle > 90.0) angle -= 180.0;
+  return {hi - lo + cell, 4.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(0))), angle};
+}
+
+Observation Surface(const Wall& wall, const cv::Mat1f& res, const MapComponent& comp,
+                    const DefectOptions& opt, double threshold) {
+  const std::vector<double> depth = SignedValues(res, wall, comp.cells, 1.0);
+  double sum = 0.0;
+  for (double d : depth) sum += d;
+  const double max_depth = Percentile(depth, 0.98);
+  Observation o = Describe(wall, res, comp, 1.0, max_depth, threshold);
+  const Shape shape = ShapeOf(wall, comp);
+  if (shape.length_mm >= opt.crack_elongation * shape.width_mm &&
+      shape.width_mm <= opt.crack_max_width_mm) {
+    // A V-groove's cross-section is depth · width / 2: the width from the mean cross-section.
+    const double section_mm2 = sum * wall.CellMm2() / shape.length_mm;
+    o.code = "BAB";
+    o.quantities = {{"width_mm", 2.0 * section_mm2 / max_depth, "mm"},
+                    {"length_mm", shape.length_mm, "mm"},
+                    {"angle_deg", shape.angle_deg, "deg"},
+                    {"depth_mm", max_depth, "mm"}};
+    o.remark = fmt::format("crack {:.0f} mm long at {:.0f}° to the axis", shape.length_mm,
+                           shape.angle_deg);
+    return o;
+  }
+  o.code = "BAF";
+  const double area = static_cast<double>(comp.cells.size()) * wall.CellMm2();
+  o.quantities = {{"depth_max_mm", max_depth, "mm"},
+                  {"area_mm2", area, "mm2"},
+                  {"depth_mean_mm", sum / static_cast<double>(depth.size()), "mm"},
+                  {"width_mm", (comp.col_max - comp.col_min + 1) * wall.ColMm(), "mm"}};
+  o.remark = fmt::format("spalling {:.0f} cm² up to {:.1f} mm deep", area / 100.0, max_depth);
+  return o;
+}
+
+}  // namespace
+
+namespace {
+
+void Grow(MapComponent& box, const MapComponent& c) {
+  box.row_min = std::min(box.row_min, c.row_min);
+  box.row_max = std::max(box.row_max, c.row_max);
+  box.col_min = std::min(box.col_min, c.col_min);
+  box.col_max = std::max(box.col_max, c.col_max);
+}
+
+}  // namespace
+
+std::vector<Observation> FindDefects(const CoarseMap& map, const cv::Mat1f& residual,
+                                     double radius_mm, double nominal_diameter_mm, double sigma_mm,
+                                     const DefectOptions& options) {
+  options.Check();
+  const Wall wall{map, radius_mm};
+  const double min_cells = options.min_area_mm2 / wall.CellMm2();
+  const double in_high = std::max(options.intrusion_mm, options.noise_factor * sigma_mm);
+  const double out_high = std::max(options.surface_mm, options.noise_factor * sigma_mm);
+  std::vector<MapComponent> inward = HysteresisComponents(residual, -1.0, 0.5 * in_high, in_high);
+  std::vector<MapComponent> outward = HysteresisComponents(residual, 1.0, 0.5 * out_high, out_high);
+  // Connections: bores first, then every region next to one joins it.
+  std::vector<ConnectionParts> connections;
+  std::vector<bool> used_in(inward.size(), false), used_out(outward.size(), false);
+  const int margin_rows = static_cast<int>(options.connection_margin_mm / wall.RowMm());
+  const int margin_cols = static_cast<int>(options.connection_margin_mm / wall.ColMm());
+  for (std::size_t i = 0; i < outward.size(); ++i) {
+    if (Percentile(SignedValues(residual, wall, outward[i].cells, 1.0), 0.9) <
+        options.bore_depth_mm)
+      continue;
+    used_out[i] = true;
+    connections.push_back({outward[i].cells, {}, outward[i]});
+  }
+  // Parts of one bore split by unmeasured cells, and the regions next to a bore, join it.
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (std::size_t i = 0; i < connections.size() && !merged; ++i) {
+      for (std::size_t j = i + 1; j < connections.size() && !merged; ++j) {
+        if (!Near(connections[i].box, connections[j].box, margin_rows, margin_cols)) continue;
+        connections[i].bore.insert(connections[i].bore.end(), connections[j].bore.begin(),
+                                   connections[j].bore.end());
+        Grow(connections[i].box, connections[j].box);
+        connections.erase(connections.begin() + static_cast<std::ptrdiff_t>(j));
+        merged = true;
+      }
+    }
+  }
+  auto join = [&](std::vector<MapComponent>& regions, std::vector<bool>& used,
+                  ConnectionParts& parts, std::vector<cv::Point>& into) {
+    for (std::size_t j = 0; j < regions.size(); ++j) {
+      if (used[j] || !Near(regions[j], parts.box, margin_rows, margin_cols)) continue;
+      used[j] = true;
+      into.insert(into.end(), regions[j].cells.begin(), regions[j].cells.end());
+      Grow(parts.box, regions[j]);
+    }
+  };
+  for (ConnectionParts& parts : connections) {
+    join(outward, used_out, parts, parts.bore);
+    join(inward, used_in, parts, parts.ring);
+  }
+  std::vector<Observation> out;
+  for (const ConnectionParts& c : connections) {
+    out.push_back(Connection(wall, residual, c, nominal_diameter_mm, in_high));
+  }
+  for (std::size_t i = 0; i < inward.size(); ++i) {
+    const MapComponent& c = inward[i];
+    if (used_in[i] || static_cast<double>(c.cells.size()) < min_cells) continue;
+    const double clock = ToClockH(wall.Clock(0.5 * (c.col_min + c.col_max)));
+    if (std::abs(clock - 6.0) <= options.invert_half_h) {
+      out.push_back(Deposit(wall, residual, c, nominal_diameter_mm, in_high));
+      continue;
+    }
+    const double height = Percentile(SignedValues(residual, wall, c.cells, -1.0), 0.9);
+    Observation o = Describe(wall, residual, c, -1.0, height, in_high);
+    o.code = "BBE";
+    o.quantities = {{"height_mm", height, "mm"},
+                    {"area_mm2", static_cast<double>(c.cells.size()) * wall.CellMm2(), "mm2"}};
+    o.remark = fmt::format("obstacle standing {:.1f} mm from the wall", height);
+    out.push_back(o);
+  }
+  for (std::size_t i = 0; i < outward.size(); ++i) {
+    if (used_out[i] || static_cast<double>(outward[i].cells.size()) < min_cells) continue;
+    out.push_back(Surface(wall, residual, outward[i], options, out_high));
+  }
+  return out;
+}
+
+void DefectOptions::Check() const {
+  ValidatePositive("intrusion_mm", intrusion_mm);
+  ValidatePositive("surface_mm", surface_mm);
+  ValidateNotNegative("noise_factor", noise_factor);
+  ValidateNotNegative("min_area_mm2", min_area_mm2);
+  ValidatePositive("crack_elongation", crack_elongation);
+  ValidatePositive("crack_max_width_mm", crack_max_width_mm);
+  ValidatePositive("bore_depth_mm", bore_depth_mm);
+  ValidateNotNegative("connection_margin_mm", connection_margin_mm);
+  SEWER3D_VALIDATE(invert_half_h > 0.0 && invert_half_h <= 6.0, "invert_half_h",
+                   "must be in (0, 6] h, got " << invert_half_h);
+}
+
+}  // namespace sewer3d

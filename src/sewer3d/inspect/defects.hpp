@@ -1,0 +1,39 @@
+#pragma once
+/// \file
+/// Local defects on the ring residual (coarse map minus the smooth wall, ring_fit.hpp): lateral
+/// connections (a bore going deep outward; intruding BAG with the lateral's end standing
+/// inward around it, else BCA), regions standing inward (deposits BBC, other obstacles BBE) or
+/// outward (spalling BAF, cracks BAB), classified by shape and place and measured
+/// (docs/inspection.md).
+
+#include <vector>
+
+#include "sewer3d/inspect/coarse_map.hpp"
+#include "sewer3d/inspect/observation.hpp"
+
+namespace sewer3d {
+
+struct DefectOptions {
+  double intrusion_mm = 3.0;  ///< a region standing this far inward is an observation
+  double surface_mm = 1.5;    ///< a region this deep into the wall is an observation
+  /// An outward region deeper than this (90th percentile) is the bore of a lateral
+  /// connection; regions within connection_margin_mm of it belong to the connection.
+  double bore_depth_mm = 15.0;
+  double connection_margin_mm = 15.0;
+  /// Thresholds are raised to this many times the residual's robust sigma where noisier.
+  double noise_factor = 6.0;
+  double min_area_mm2 = 20.0;     ///< smaller regions are ignored
+  double crack_elongation = 4.0;  ///< length / width from which an outward region is a crack
+  double crack_max_width_mm = 6.0;
+  double invert_half_h = 1.0;  ///< a deposit's deepest point lies within ± this of 6 o'clock
+  void Check() const;
+};
+
+/// Observations (ids, at_joint left to the caller) from `residual` (rows × cols of `map`,
+/// NaN where unknown or masked, e.g. joint bands). `radius_mm`: the model radius;
+/// `nominal_diameter_mm` the DN quantities are relative to; `sigma_mm` the residual's noise.
+std::vector<Observation> FindDefects(const CoarseMap& map, const cv::Mat1f& residual,
+                                     double radius_mm, double nominal_diameter_mm, double sigma_mm,
+                                     const DefectOptions& options);
+
+}  // namespace sewer3d

@@ -1,0 +1,164 @@
+#include "sewer3d/inspect/inspect.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
+#include "sewer3d/inspect/ring_fit.hpp"
+
+namespace sewer3d {
+namespace {
+
+double ClockH(double rad) {
+  const double h = std::fmod(rad * 6.0 / std::numbers::pi, 12.0);
+  const double wrapped = h < 0.0 ? h + 12.0 : h;
+  return wrapped < 1e-9 ? 12.0 : wrapped;
+}
+
+Observation JointObservation(const JointMeasure& j, const CoarseMap& map, const JointOptions& opt) {
+  Observation o;
+  o.code = "BAJ";
+  const char letter =
+      j.offset_mm >= opt.min_offset_mm ? 'B' : (j.deflection_deg >= 1.0 ? 'C' : 'A');
+  o.characterisation = std::string(1, letter);
+  o.station_mm = j.station_mm;
+  o.clock_h = o.clock_from_h = o.clock_to_h = ClockH(j.offset_clock_rad);
+  o.at_joint = true;
+  o.quantities = {{"offset_mm", j.offset_mm, "mm"},
+                  {"gap_mm", j.gap_mm, "mm"},
+                  {"deflection_deg", j.deflection_deg, "deg"},
+                  {"deflection_clock_h", ClockH(j.deflection_clock_rad), "h"},
+                  {"gap_depth_mm", j.gap_depth_mm, "mm"}};
+  const double strength =
+      std::max(j.gap_depth_mm / opt.min_gap_depth_mm, j.offset_mm / opt.min_offset_mm);
+  o.confidence = j.side_coverage * (1.0 - std::exp(-strength));
+  const int side = static_cast<int>(opt.side_length_mm / map.RowMm());
+  o.crop.row0 = std::max(0, map.FineRow(j.row_begin - side));
+  o.crop.rows = std::min(map.fine.rows, map.FineRow(j.row_end + side)) - o.crop.row0;
+  o.crop.cols = map.fine.cols;
+  o.remark = fmt::format("joint: offset {:.1f} mm at {:.1f} h, gap {:.1f} mm, deflection {:.2f}°",
+                         j.offset_mm, o.clock_h, j.gap_mm, j.deflection_deg);
+  return o;
+}
+
+/// The stretches between the joints' bands (each gap and band_mm either side of it).
+std::vector<RowRange> Sections(const std::vector<JointMeasure>& joints, const CoarseMap& map,
+                               double band_mm) {
+  const int rows = map.displacement_mm.rows;
+  std::vector<RowRange> out;
+  int begin = 0;
+  for (const JointMeasure& j : joints) {
+    const double half = 0.5 * j.gap_mm + band_mm, s0 = map.fine.station0_mm;
+    const int first =
+        std::max(0, static_cast<int>(std::floor((j.station_mm - half - s0) / map.RowMm())));
+    if (first > begin) out.push_back({begin, first});
+    begin = std::max(begin, static_cast<int>(std::ceil((j.station_mm + half - s0) / map.RowMm())));
+  }
+  if (rows > begin) out.push_back({begin, rows});
+  return out;
+}
+
+/// BAA for a section whose median smooth wall has a diameter reduced by ≥ the threshold.
+bool Deformation(const CoarseMap& map, const std::vector<RingFit>& fits, const RowRange& s,
+                 double radius, double dn, double min_pct, Observation& o) {
+  std::vector<double> k[5];
+  for (int r = s.begin; r < s.end; ++r) {
+    if (!fits[r].valid) continue;
+    for (int j = 0; j < 5; ++j) k[j].push_back(fits[r].k(j));
+  }
+  if (k[0].size() < 10) return false;
+  double med[5];
+  for (int j = 0; j < 5; ++j) {
+    std::nth_element(k[j].begin(), k[j].begin() + static_cast<std::ptrdiff_t>(k[j].size() / 2),
+                     k[j].end());
+    med[j] = k[j][k[j].size() / 2];
+  }
+  // Diameter along θ: 2 (R + a0 + c2 cos 2θ + s2 sin 2θ); the axis terms cancel.
+  const double amp = std::hypot(med[3], med[4]), phase = std::atan2(med[4], med[3]);
+  auto diameter = [&](double th) {
+    return 2.0 * (radius + med[0] + med[3] * std::cos(2 * th) + med[4] * std::sin(2 * th));
+  };
+  const double theta_min = std::fmod(0.5 * (phase + std::numbers::pi), std::numbers::pi);
+  const double reduction = 100.0 * (dn - 2.0 * (radius + med[0] - amp)) / dn;
+  if (reduction < min_pct) return false;
+  o.code = "BAA";
+  const double vertical = std::abs(std::cos(theta_min));
+  o.characterisation = vertical >= std::sqrt(0.5) ? "A" : "B";
+  o.station_mm = map.fine.station0_mm + s.begin * map.RowMm();
+  o.length_mm = (s.end - s.begin) * map.RowMm();
+  o.clock_h = ClockH(theta_min);
+  o.clock_from_h = o.clock_to_h = o.clock_h;
+  o.quantities = {
+      {"deformation_pct", reduction, "%"},
+      {"vertical_change_pct", 100.0 * (diameter(0.0) - dn) / dn, "%"},
+      {"horizontal_change_pct", 100.0 * (diameter(0.5 * std::numbers::pi) - dn) / dn, "%"},
+      {"ovality_astm_pct", 100.0 * 2.0 * amp / (2.0 * (radius + med[0])), "%"}};
+  o.confidence = std::min(1.0, static_cast<double>(k[0].size()) / (s.end - s.begin)) *
+                 (1.0 - std::exp(-reduction / min_pct));
+  o.crop = {map.FineRow(s.begin), map.FineRow(s.end - s.begin), 0, map.fine.cols};
+  o.remark = fmt::format("deformation {:.1f} % toward {:.1f} h", reduction, o.clock_h);
+  return true;
+}
+
+}  // namespace
+
+void InspectOptions::Check() const {
+  ValidatePositive("cell_mm", cell_mm);
+  ValidateNotNegative("nominal_diameter_mm", nominal_diameter_mm);
+  SEWER3D_VALIDATE(min_ring_coverage > 0.0 && min_ring_coverage <= 1.0, "min_ring_coverage",
+                   "must be in (0, 1], got " << min_ring_coverage);
+  ValidatePositive("smoothing_mm", smoothing_mm);
+  ValidatePositive("min_deformation_pct", min_deformation_pct);
+  ValidateNotNegative("joint_flag_mm", joint_flag_mm);
+  ValidateNotNegative("joint_band_mm", joint_band_mm);
+  CheckWithin("joints.", [&] { joints.Check(); });
+  CheckWithin("defects.", [&] { defects.Check(); });
+}
+
+Inspection Inspect(const CoarseMap& map, const Centreline& centreline,
+                   const InspectOptions& options) {
+  options.Check();
+  const double radius = centreline.radius_mm;
+  const double dn = options.nominal_diameter_mm > 0.0 ? options.nominal_diameter_mm : 2.0 * radius;
+  Inspection out;
+  InspectionReport& rep = out.report;
+  rep.coarse_rows = map.displacement_mm.rows;
+  rep.coarse_cols = map.displacement_mm.cols;
+  rep.cell_mm = map.RowMm();
+  const std::vector<RingFit> fits = FitRings(map, options.min_ring_coverage);
+  for (const RingFit& f : fits) rep.valid_rings += f.valid ? 1 : 0;
+  const std::vector<JointMeasure> joints = FindJoints(map, fits, centreline, options.joints);
+  const std::vector<RowRange> sections = Sections(joints, map, options.joint_band_mm);
+  rep.sections = static_cast<int>(sections.size());
+  const int half = std::max(1, static_cast<int>(options.smoothing_mm / map.RowMm()));
+  const cv::Mat1f residual = RingResidual(map, SmoothRings(fits, sections, half));
+  rep.residual_sigma_mm = RobustSigma(residual);
+  out.observations = FindDefects(map, residual, radius, dn, rep.residual_sigma_mm, options.defects);
+  for (Observation& o : out.observations) {
+    const double begin = o.station_mm - (IsContinuous(o) ? 0.0 : 0.5 * o.length_mm);
+    for (const JointMeasure& j : joints) {
+      const double gap = std::max(begin - j.station_mm, j.station_mm - (begin + o.length_mm));
+      o.at_joint = o.at_joint || gap <= options.joint_flag_mm;
+    }
+  }
+  for (const JointMeasure& j : joints)
+    out.observations.push_back(JointObservation(j, map, options.joints));
+  for (const RowRange& s : sections) {
+    Observation o;
+    if (Deformation(map, fits, s, radius, dn, options.min_deformation_pct, o))
+      out.observations.push_back(o);
+  }
+  std::stable_sort(
+      out.observations.begin(), out.observations.end(),
+      [](const Observation& a, const Observation& b) { return a.station_mm < b.station_mm; });
+  for (std::size_t i = 0; i < out.observations.size(); ++i)
+    out.observations[i].id = fmt::format("O{}", i + 1);
+  return out;
+}
+
+}  // namespace sewer3d

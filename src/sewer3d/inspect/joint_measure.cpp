@@ -1,0 +1,166 @@
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "sewer3d/core/units.hpp"
+#include "sewer3d/inspect/joints.hpp"
+
+namespace sewer3d {
+namespace {
+
+double WrapAngle(double a) {
+  const double turn = 2.0 * std::numbers::pi;
+  a = std::fmod(a, turn);
+  return a < 0.0 ? a + turn : a;
+}
+
+/// Least-squares line d = value + slope · x through the column's finite values at x.
+struct SideLine {
+  double value = 0.0;
+  double slope = 0.0;
+  bool ok = false;
+};
+
+SideLine FitSide(const cv::Mat1f& d, int col, int row_begin, int row_end,
+                 const std::vector<double>& x_of_row) {
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (int r = std::max(0, row_begin); r < std::min(d.rows, row_end); ++r) {
+    const float v = d(r, col);
+    if (!std::isfinite(v)) continue;
+    const double x = x_of_row[r];
+    n += 1;
+    sx += x;
+    sy += v;
+    sxx += x * x;
+    sxy += x * v;
+  }
+  SideLine line;
+  const double det = n * sxx - sx * sx;
+  if (2 * n < row_end - row_begin || n < 4 || det <= 0.0) return line;
+  line.slope = (n * sxy - sx * sy) / det;
+  line.value = (sy - line.slope * sx) / n;
+  line.ok = true;
+  return line;
+}
+
+struct Sides {
+  std::vector<int> cols;
+  std::vector<SideLine> before, after;
+};
+
+/// The two side lines of every column measured on both sides of a gap `gap_mm` wide.
+Sides FitSides(const CoarseMap& map, double station_mm, double gap_mm, const JointOptions& o,
+               const std::vector<double>& x) {
+  const double row_mm = map.RowMm(), s0 = map.fine.station0_mm;
+  auto row_at = [&](double s) { return static_cast<int>(std::floor((s - s0) / row_mm)); };
+  const double inner = 0.5 * gap_mm + o.side_margin_mm;
+  Sides sides;
+  for (int c = 0; c < map.displacement_mm.cols; ++c) {
+    const SideLine before =
+        FitSide(map.displacement_mm, c, row_at(station_mm - inner - o.side_length_mm) + 1,
+                row_at(station_mm - inner), x);
+    const SideLine after = FitSide(map.displacement_mm, c, row_at(station_mm + inner) + 1,
+                                   row_at(station_mm + inner + o.side_length_mm), x);
+    if (!before.ok || !after.ok) continue;
+    sides.cols.push_back(c);
+    sides.before.push_back(before);
+    sides.after.push_back(after);
+  }
+  return sides;
+}
+
+double MedianOf(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+/// The gap (median over columns of the open length between the side lines) and the depth of
+/// its bottom where seen (0 where not).
+std::pair<double, double> MeasureGap(const CoarseMap& map, const Sides& sides, double station_mm,
+                                     double half_window_mm, const JointOptions& o,
+                                     const std::vector<double>& x) {
+  const double row_mm = map.RowMm(), s0 = map.fine.station0_mm;
+  const int r0 =
+      std::max(0, static_cast<int>(std::floor((station_mm - half_window_mm - s0) / row_mm)));
+  const int r1 = std::min(map.displacement_mm.rows,
+                          static_cast<int>(std::ceil((station_mm + half_window_mm - s0) / row_mm)));
+  std::vector<double> deepest;
+  for (std::size_t i = 0; i < sides.cols.size(); ++i) {
+    double most = 0.0;
+    for (int r = r0; r < r1; ++r) {
+      const float v = map.displacement_mm(r, sides.cols[i]);
+      const SideLine& line = x[r] < 0.0 ? sides.before[i] : sides.after[i];
+      if (std::isfinite(v)) most = std::max(most, v - (line.value + line.slope * x[r]));
+    }
+    deepest.push_back(most);
+  }
+  const double bottom = MedianOf(deepest);
+  const bool seen = bottom >= o.min_gap_depth_mm;
+  std::vector<double> widths;
+  for (std::size_t i = 0; i < sides.cols.size(); ++i) {
+    double open = 0.0;
+    for (int r = r0; r < r1; ++r) {
+      const int c = sides.cols[i];
+      const float v = map.displacement_mm(r, c), frac = map.measured(r, c);
+      const SideLine& line = x[r] < 0.0 ? sides.before[i] : sides.after[i];
+      const double deep =
+          seen && std::isfinite(v)
+              ? std::clamp((v - (line.value + line.slope * x[r])) / bottom, 0.0, 1.0)
+              : 0.0;
+      open += (1.0 - frac) + frac * deep;
+    }
+    widths.push_back(open * row_mm);
+  }
+  return {MedianOf(widths), seen ? bottom : 0.0};
+}
+
+}  // namespace
+
+JointMeasure MeasureJoint(const CoarseMap& map, const Centreline& centreline, double station_mm,
+                          double gap_guess_mm, const JointOptions& o) {
+  const cv::Mat1f& d = map.displacement_mm;
+  const double row_mm = map.RowMm(), s0 = map.fine.station0_mm;
+  std::vector<double> x(d.rows);
+  for (int r = 0; r < d.rows; ++r) x[r] = s0 + (r + 0.5) * row_mm - station_mm;
+  JointMeasure m;
+  m.station_mm = station_mm;
+  if (gap_guess_mm > 0.0) {
+    const Sides first = FitSides(map, station_mm, gap_guess_mm + 2.0 * row_mm, o, x);
+    std::tie(m.gap_mm, m.gap_depth_mm) =
+        MeasureGap(map, first, station_mm, 0.5 * gap_guess_mm + 2.0 * row_mm, o, x);
+  }
+  const Sides sides = FitSides(map, station_mm, m.gap_mm, o, x);
+  std::vector<double> theta, step, bend;
+  for (std::size_t i = 0; i < sides.cols.size(); ++i) {
+    theta.push_back(map.ColClockRad(sides.cols[i]));
+    step.push_back(sides.after[i].value - sides.before[i].value);
+    bend.push_back(sides.after[i].slope - sides.before[i].slope);
+  }
+  const double inner = 0.5 * m.gap_mm + o.side_margin_mm;
+  m.row_begin = std::max(0, static_cast<int>(std::floor((station_mm - inner - s0) / row_mm)));
+  m.row_end = std::min(d.rows, static_cast<int>(std::ceil((station_mm + inner - s0) / row_mm)));
+  m.side_coverage = static_cast<double>(theta.size()) / d.cols;
+  const Eigen::VectorXd k_step = RobustHarmonicFit(theta, step, 1);
+  const Eigen::VectorXd k_bend = RobustHarmonicFit(theta, bend, 1);
+  if (k_step.size() != 3 || k_bend.size() != 3) return m;
+  m.offset_mm = std::hypot(k_step(1), k_step(2));
+  m.offset_clock_rad = WrapAngle(std::atan2(-k_step(2), -k_step(1)));
+  // An axis turning toward clock c moves the wall there outward along the pipe (slope +α at c,
+  // −α opposite). The slopes are relative to the model's centreline: add its own turn.
+  const AxisFrame f0 = centreline.FrameAt(station_mm - inner - 0.5 * o.side_length_mm);
+  const AxisFrame f1 = centreline.FrameAt(station_mm + inner + 0.5 * o.side_length_mm);
+  const AxisFrame at = centreline.FrameAt(station_mm);
+  const Eigen::Vector3d turn = f1.tangent - f0.tangent;
+  const Eigen::Vector2d v(k_bend(1) + turn.dot(at.crown), k_bend(2) + turn.dot(at.right));
+  m.deflection_deg = RadToDeg(std::atan(v.norm()));
+  m.deflection_clock_rad = WrapAngle(std::atan2(v.y(), v.x()));
+  return m;
+}
+
+}  // namespace sewer3d
