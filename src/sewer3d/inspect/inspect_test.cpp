@@ -1,0 +1,140 @@
+#include "sewer3d/inspect/inspect.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "sewer3d/core/units.hpp"
+#include "sewer3d/model/axis_curve.hpp"
+
+namespace sewer3d {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kRadius = 150.0;
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// Signed clock difference (rad) in [−π, π).
+double ClockDiff(double a, double b) { return std::remainder(a - b, 2.0 * kPi); }
+
+// A DN300 pipe 600 mm long, straight along z, with one feature of each kind (displacement in
+// mm, outward positive, as the model's maps hold it):
+// - section 1 (s < 200): deformed 3 % toward 12 h (r = R − 4.5 cos 2θ), spalling 50 × 40 mm,
+//   5 mm deep at s = 120, 4 h;
+// - joint at s = 200: an 8 mm gap with no data in it; the next pipe 4 mm inward at 2 h and
+//   its axis turned 1° toward 9 h;
+// - a connection at s = 350, 10 h: bore Ø80 open 40 mm deep, its end 12 mm inward over a
+//   10 mm wall; a crack at s = 450, 7.5 h, 100 mm long at 30° to the axis, 2 mm open, 3 mm deep;
+//   a deposit 20 mm high at the invert from s = 480 to 580.
+float Wall(double s, double th) {
+  if (std::abs(s - 200.0) < 4.0) return kNaN;
+  if (s < 200.0) {
+    double d = -4.5 * std::cos(2.0 * th);
+    const double arc = kRadius * ClockDiff(th, ClockHoursToRad(4.0));
+    if (std::abs(s - 120.0) < 25.0 && std::abs(arc) < 20.0) d += 5.0;
+    return static_cast<float>(d);
+  }
+  double d = -4.0 * std::cos(th - ClockHoursToRad(2.0)) +
+             std::tan(DegToRad(1.0)) * (s - 200.0) * std::cos(th - ClockHoursToRad(9.0));
+  const double arc_c = kRadius * ClockDiff(th, ClockHoursToRad(10.0)),
+               rho = std::hypot(s - 350.0, arc_c);
+  if (rho < 40.0) return static_cast<float>(d + 40.0);
+  if (rho < 50.0) return static_cast<float>(d - 12.0);
+  const double arc_k = kRadius * ClockDiff(th, ClockHoursToRad(7.5));
+  const double a = DegToRad(30.0), along = (s - 450.0) * std::cos(a) + arc_k * std::sin(a);
+  const double across = -(s - 450.0) * std::sin(a) + arc_k * std::cos(a);
+  if (std::abs(along) < 50.0 && std::abs(across) < 1.0) d += 3.0 * (1.0 - std::abs(across));
+  const double c = std::cos(ClockDiff(th, kPi));
+  if (s > 480.0 && s < 580.0 && c > 0.0) d -= std::max(0.0, kRadius - (kRadius - 20.0) / c);
+  return static_cast<float>(d);
+}
+
+CoarseMap SyntheticMap() {
+  const MapGrid grid = MakeMapGrid(0.0, 600.0, kRadius, 0.5);
+  PipeMaps maps;
+  maps.grid = grid;
+  maps.displacement_mm.create(grid.rows, grid.cols);
+  cv::Mat1f noise(grid.rows, grid.cols);
+  cv::setRNGSeed(7);
+  cv::randn(noise, 0.0, 0.05);  // a model's surface noise
+  for (int r = 0; r < grid.rows; ++r) {
+    for (int c = 0; c < grid.cols; ++c) {
+      maps.displacement_mm(r, c) = Wall(grid.RowStationMm(r), grid.ColClockRad(c)) + noise(r, c);
+    }
+  }
+  CoarseMapBuilder builder(grid, 1.0);
+  builder.Add(maps);
+  return builder.Finish();
+}
+
+Centreline Straight() {
+  auto line = ResampleAxis({Eigen::Vector3d(0, 0, -20), Eigen::Vector3d(0, 0, 620)}, 10.0);
+  EXPECT_TRUE(line.has_value());
+  line->radius_mm = kRadius;
+  line->station0_mm = -20.0;
+  return *line;
+}
+
+const Observation* Only(const Inspection& in, const std::string& code) {
+  const Observation* found = nullptr;
+  for (const Observation& o : in.observations) {
+    if (o.code != code) continue;
+    EXPECT_EQ(found, nullptr) << "a second " << code << " at " << o.station_mm;
+    found = &o;
+  }
+  EXPECT_NE(found, nullptr) << "no " << code;
+  return found;
+}
+
+double Q(const Observation* o, const std::string& name) {
+  const Quantity* q = o ? o->Find(name) : nullptr;
+  EXPECT_NE(q, nullptr) << name;
+  return q ? q->value : std::numeric_limits<double>::quiet_NaN();
+}
+
+TEST(Inspect, FindsAndMeasuresEveryKindOnASyntheticPipe) {
+  const Inspection in = Inspect(SyntheticMap(), Straight(), {});
+  EXPECT_EQ(in.observations.size(), 6U);
+  for (const Observation& o : in.observations) {
+    std::string q;
+    for (const Quantity& x : o.quantities) q += " " + x.name + "=" + std::to_string(x.value);
+    SCOPED_TRACE(o.id + " " + o.code + " at " + std::to_string(o.station_mm) + q);
+    EXPECT_GT(o.confidence, 0.5);
+  }
+  const Observation* joint = Only(in, "BAJ");
+  EXPECT_NEAR(joint->station_mm, 200.0, 1.0);
+  EXPECT_NEAR(Q(joint, "offset_mm"), 4.0, 0.3);
+  EXPECT_NEAR(joint->clock_h, 2.0, 0.25);
+  EXPECT_NEAR(Q(joint, "gap_mm"), 8.0, 0.5);
+  EXPECT_NEAR(Q(joint, "deflection_deg"), 1.0, 0.15);
+  EXPECT_NEAR(Q(joint, "deflection_clock_h"), 9.0, 0.5);
+  const Observation* connection = Only(in, "BAG");
+  EXPECT_NEAR(connection->station_mm, 350.0, 2.0);
+  EXPECT_NEAR(connection->clock_h, 10.0, 0.25);
+  EXPECT_NEAR(Q(connection, "intrusion_mm"), 12.0, 0.5);
+  EXPECT_NEAR(Q(connection, "bore_diameter_mm"), 80.0, 2.0);
+  const Observation* spall = Only(in, "BAF");
+  EXPECT_NEAR(spall->station_mm, 120.0, 2.0);
+  EXPECT_NEAR(spall->clock_h, 4.0, 0.25);
+  EXPECT_NEAR(Q(spall, "area_mm2"), 2000.0, 300.0);
+  EXPECT_NEAR(Q(spall, "depth_mean_mm"), 5.0, 0.3);
+  const Observation* crack = Only(in, "BAB");
+  EXPECT_NEAR(crack->station_mm, 450.0, 3.0);
+  EXPECT_NEAR(Q(crack, "length_mm"), 100.0, 10.0);
+  EXPECT_NEAR(Q(crack, "angle_deg"), 30.0, 5.0);
+  const Observation* deposit = Only(in, "BBC");
+  EXPECT_NEAR(deposit->station_mm, 480.0, 3.0);
+  EXPECT_NEAR(deposit->length_mm, 100.0, 6.0);
+  EXPECT_NEAR(Q(deposit, "height_mm"), 20.0, 1.0);
+  const Observation* deformation = Only(in, "BAA");
+  EXPECT_NEAR(Q(deformation, "deformation_pct"), 3.0, 0.3);
+  EXPECT_EQ(deformation->characterisation, "A");
+  EXPECT_NEAR(deformation->station_mm, 0.0, 2.0);
+}
+
+}  // namespace
+}  // namespace sewer3d
