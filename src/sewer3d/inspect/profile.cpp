@@ -95,6 +95,7 @@ ProfileRow MeasureRing(std::span<const double> radius_mm, double nominal_diamete
                        const ProfileOptions& options) {
   const int n = static_cast<int>(radius_mm.size());
   SEWER3D_CHECK(n >= 8, "a ring needs at least 8 radii, got " << n);
+  ValidatePositive("nominal_diameter_mm", nominal_diameter_mm);
   // An even number of sectors, no more than the radii, so each holds at least one radius.
   int m = 2 * std::max(4, static_cast<int>(std::lround(180.0 / options.ring_step_deg)));
   m = std::min(m, n - n % 2);

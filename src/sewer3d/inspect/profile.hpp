@@ -73,7 +73,8 @@ Profile ComputeProfile(const PipeMaps& maps, double radius_mm, const ProfileOpti
 
 /// The measures of one complete ring: `radius_mm[k]` is r at clock angle (k + ½) · 2π / n (all
 /// finite, n ≥ 8), as in a map row. Sets every field but station_mm, coverage and
-/// widest_gap_deg. Used by ComputeProfile and by evaluation against a true ring.
+/// widest_gap_deg. Used by ComputeProfile and by evaluation against a true ring. Throws
+/// std::invalid_argument when nominal_diameter_mm is not positive.
 ProfileRow MeasureRing(std::span<const double> radius_mm, double nominal_diameter_mm,
                        const ProfileOptions& options);
 

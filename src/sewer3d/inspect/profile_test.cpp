@@ -213,6 +213,9 @@ TEST(Profile, OptionsAreChecked) {
   o.max_gap_deg = 200.0;
   EXPECT_THROW(ComputeProfile(maps, kRadius, o), std::invalid_argument);
   EXPECT_THROW(ComputeProfile(maps, -1.0, {}), std::invalid_argument);
+  const std::vector<double> ring(360, kRadius);
+  EXPECT_THROW(MeasureRing(ring, 0.0, {}), std::invalid_argument);
+  EXPECT_NEAR(MeasureRing(ring, 300.0, {}).circumference_mm, 2.0 * kPi * kRadius, 0.02);
 }
 
 }  // namespace
