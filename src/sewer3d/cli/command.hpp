@@ -29,6 +29,7 @@ Command AddCalibrateCommand(CLI::App& app);
 Command AddRgbdCommand(CLI::App& app);
 Command AddRegisterCommand(CLI::App& app);
 Command AddModelCommand(CLI::App& app);
+Command AddInspectCommand(CLI::App& app);
 Command AddProcessCommand(CLI::App& app);
 Command AddDemoCommand(CLI::App& app);
 

@@ -105,6 +105,21 @@ bool Deformation(const CoarseMap& map, const std::vector<RingFit>& fits, const R
   return true;
 }
 
+void InspectedRange(const CoarseMap& map, const std::vector<RingCoefficients>& rings,
+                    InspectionReport& rep) {
+  int first = -1, last = -1, count = 0;
+  for (int r = 0; r < static_cast<int>(rings.size()); ++r) {
+    if (!std::isfinite(rings[r](0))) continue;
+    if (first < 0) first = r;
+    last = r;
+    ++count;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  rep.inspected_from_mm = first < 0 ? nan : map.RowStationMm(first);
+  rep.inspected_to_mm = last < 0 ? nan : map.RowStationMm(last);
+  rep.inspected_share = rings.empty() ? 0.0 : static_cast<double>(count) / rings.size();
+}
+
 }  // namespace
 
 void InspectOptions::Check() const {
@@ -136,7 +151,9 @@ Inspection Inspect(const CoarseMap& map, const Centreline& centreline,
   const std::vector<RowRange> sections = Sections(joints, map, options.joint_band_mm);
   rep.sections = static_cast<int>(sections.size());
   const int half = std::max(1, static_cast<int>(options.smoothing_mm / map.RowMm()));
-  const cv::Mat1f residual = RingResidual(map, SmoothRings(fits, sections, half));
+  const std::vector<RingCoefficients> rings = SmoothRings(fits, sections, half);
+  InspectedRange(map, rings, rep);
+  const cv::Mat1f residual = RingResidual(map, rings);
   rep.residual_sigma_mm = RobustSigma(residual);
   out.observations = FindDefects(map, residual, radius, dn, rep.residual_sigma_mm, options.defects);
   for (Observation& o : out.observations) {

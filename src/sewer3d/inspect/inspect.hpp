@@ -37,6 +37,11 @@ struct InspectionReport {
   int valid_rings = 0;             ///< rows with a ring fit
   double residual_sigma_mm = 0.0;  ///< robust noise of the wall around its smooth shape
   int sections = 0;
+  /// Stations (first and last coarse row centre) where the wall's smooth shape is known, so
+  /// local defects were searched; NaN when nowhere.
+  double inspected_from_mm = 0.0;
+  double inspected_to_mm = 0.0;
+  double inspected_share = 0.0;  ///< of the map's rows
 };
 
 struct Inspection {

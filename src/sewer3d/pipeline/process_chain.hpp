@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "sewer3d/pipeline/inspect_stage.hpp"
 #include "sewer3d/pipeline/model_stage.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
@@ -28,6 +29,7 @@ struct ProcessOptions {
   RgbdStageOptions rgbd;              ///< its threads and force are set from the fields below
   RegisterStageOptions registration;  ///< likewise (and its fusion's threads)
   ModelStageOptions model;            ///< likewise, and its resolution and start station
+  InspectStageOptions inspect;        ///< likewise (force)
   /// Where the run began along the pipe (mm): the model's station 0 is the carrier centre at
   /// the run's first image plus this (DESIGN.md, model maps). Any finite value.
   double start_station_mm = 0.0;
@@ -52,6 +54,8 @@ StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::p
 StageOutcome RegisterOutcome(const RegisterStageReport& report,
                              const std::filesystem::path& workspace);
 StageOutcome ModelOutcome(const ModelStageReport& report, const std::filesystem::path& workspace);
+StageOutcome InspectOutcome(const InspectStageReport& report,
+                            const std::filesystem::path& workspace);
 
 /// One stage of the chain. `options_json` is what the stage records in workspace.json (to
 /// tell whether the record is current); `run` runs it (with `options.threads` and
@@ -64,7 +68,7 @@ struct ProcessStage {
       run;
 };
 
-/// The chain in order: rgbd, register, model.
+/// The chain in order: rgbd, register, model, inspect.
 const std::vector<ProcessStage>& ProcessStages();
 
 /// One stage as the chain met it.

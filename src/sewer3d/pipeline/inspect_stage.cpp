@@ -1,0 +1,175 @@
+#include "sewer3d/pipeline/inspect_stage.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/inspection_io.hpp"
+#include "sewer3d/io/model_io.hpp"
+#include "sewer3d/io/atomic_file.hpp"
+
+namespace sewer3d {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using json = nlohmann::json;
+constexpr const char* kStage = "inspect";
+
+/// Calls `fn` with each piece of the model's maps (the whole maps, or tile after tile).
+void ForEachPiece(const std::filesystem::path& model_dir, const PipeModelInfo& info,
+                  const std::function<void(const PipeMaps&)>& fn, const InspectProgress& progress,
+                  const std::string& pass) {
+  if (info.whole_maps) {
+    fn(ReadMapFiles(WholeMapFiles(model_dir), info.grid));
+    if (progress) progress(pass, 1, 1);
+    return;
+  }
+  int done = 0;
+  for (const ModelTile& t : info.tiles) {
+    fn(ReadMapFiles(TileMapFiles(model_dir, t.index), info.grid.Tile(t.row0, t.rows)));
+    if (progress) progress(pass, ++done, static_cast<int>(info.tiles.size()));
+  }
+}
+
+/// The crops of every observation, texture above displacement, filled piece by piece.
+class Crops {
+ public:
+  Crops(const std::vector<Observation>& observations, const MapGrid& grid, double view_range_mm)
+      : grid_(grid), range_(view_range_mm) {
+    for (const Observation& o : observations) {
+      texture_.emplace_back(cv::Mat3b::zeros(std::max(1, o.crop.rows), std::max(1, o.crop.cols)));
+      displacement_.emplace_back(std::max(1, o.crop.rows), std::max(1, o.crop.cols));
+      displacement_.back().setTo(std::numeric_limits<float>::quiet_NaN());
+      boxes_.push_back(o.crop);
+    }
+  }
+  void Add(const PipeMaps& piece) {
+    const int p0 = static_cast<int>(
+        std::lround((piece.grid.station0_mm - grid_.station0_mm) / grid_.resolution_mm));
+    for (std::size_t i = 0; i < boxes_.size(); ++i) {
+      const MapCrop& b = boxes_[i];
+      const int from = std::max(b.row0, p0), to = std::min(b.row0 + b.rows, p0 + piece.grid.rows);
+      for (int r = from; r < to; ++r) {
+        for (int k = 0; k < b.cols; ++k) {
+          const int c = (b.col0 + k) % grid_.cols;
+          texture_[i](r - b.row0, k) = piece.texture(r - p0, c);
+          displacement_[i](r - b.row0, k) = piece.displacement_mm(r - p0, c);
+        }
+      }
+    }
+  }
+  /// Texture above the displacement view, scaled to at most max_side pixels.
+  [[nodiscard]] cv::Mat3b Image(std::size_t i, int max_side) const {
+    cv::Mat3b both;
+    cv::vconcat(texture_[i], DisplacementView(displacement_[i], range_), both);
+    const double scale =
+        std::min(1.0, static_cast<double>(max_side) / std::max(both.rows, both.cols));
+    if (scale < 1.0) cv::resize(both, both, cv::Size(), scale, scale, cv::INTER_AREA);
+    return both;
+  }
+
+ private:
+  MapGrid grid_;
+  double range_;
+  std::vector<MapCrop> boxes_;
+  std::vector<cv::Mat3b> texture_;
+  std::vector<cv::Mat1f> displacement_;
+};
+
+}  // namespace
+
+void InspectStageOptions::Check() const {
+  CheckWithin("inspect.", [&] { inspect.Check(); });
+  CheckWithin("profile.", [&] { profile.Check(); });
+  SEWER3D_VALIDATE(max_crop_side_px >= 16, "max_crop_side_px",
+                   "must be at least 16, got " << max_crop_side_px);
+}
+
+std::string InspectOptionsJson(const InspectStageOptions& o) {
+  const InspectOptions& i = o.inspect;
+  return json{{"cell_mm", i.cell_mm},
+              {"nominal_diameter_mm", i.nominal_diameter_mm},
+              {"min_deformation_pct", i.min_deformation_pct},
+              {"min_gap_depth_mm", i.joints.min_gap_depth_mm},
+              {"min_offset_mm", i.joints.min_offset_mm},
+              {"intrusion_mm", i.defects.intrusion_mm},
+              {"surface_mm", i.defects.surface_mm},
+              {"profile_step_mm", o.profile.step_mm}}
+      .dump();
+}
+
+std::string InspectStageReportToJson(const InspectStageReport& r) {
+  const InspectionReport& i = r.inspection;
+  return json{{"ok", r.ok},
+              {"message", r.message},
+              {"observations", r.observations},
+              {"per_code", r.per_code},
+              {"coarse_map", {{"rows", i.coarse_rows}, {"cols", i.coarse_cols}, {"cell_mm", i.cell_mm}}},
+              {"residual_sigma_mm", i.residual_sigma_mm},
+              {"sections", i.sections},
+              {"inspected_from_mm", r.inspected_from_mm},
+              {"inspected_to_mm", r.inspected_to_mm},
+              {"inspected_share", i.inspected_share},
+              {"profile_rows", r.profile_rows},
+              {"profile_rows_measured", r.profile_rows_measured},
+              {"seconds", r.seconds}}
+      .dump(1);
+}
+
+InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
+                                   const InspectStageOptions& options,
+                                   const InspectProgress& progress) {
+  options.Check();
+  const auto start = Clock::now();
+  const std::filesystem::path model_dir = workspace.StageFolder("model");
+  const PipeModelInfo info = ReadModelJson(model_dir / "model.json");
+  workspace.BeginStage(kStage, InspectOptionsJson(options), options.force);
+  const InspectionFiles files = InspectionFilesIn(workspace.folder());
+
+  CoarseMapBuilder coarse(info.grid, options.inspect.cell_mm);
+  Profile profile;
+  ForEachPiece(model_dir, info, [&](const PipeMaps& piece) {
+    coarse.Add(piece);
+    const Profile part = ComputeProfile(piece, info.centreline.radius_mm, options.profile);
+    profile.nominal_diameter_mm = part.nominal_diameter_mm;
+    profile.rows.insert(profile.rows.end(), part.rows.begin(), part.rows.end());
+  }, progress, "maps");
+  const Inspection inspection = Inspect(coarse.Finish(), info.centreline, options.inspect);
+
+  Crops crops(inspection.observations, info.grid, info.view_range_mm);
+  ForEachPiece(model_dir, info, [&](const PipeMaps& piece) { crops.Add(piece); }, progress, "crops");
+  for (std::size_t i = 0; i < inspection.observations.size(); ++i) {
+    WriteImage(files.folder / "crops" / (inspection.observations[i].id + ".png"),
+               crops.Image(i, options.max_crop_side_px));
+  }
+  WriteProfileCsv(files.profile_csv, profile);
+  WriteObservationsCsv(files.observations_csv, inspection.observations);
+  IsybauHeader header;
+  header.object_name = run.folder.filename().string();
+  header.profile_height_mm = header.profile_width_mm = profile.nominal_diameter_mm;
+  WriteObservationsIsybau(files.observations_xml, inspection.observations, header);
+  // observations.json last: its presence means the stage's files are complete.
+  WriteObservationsJson(files.observations_json, inspection.observations);
+
+  InspectStageReport report;
+  report.ok = true;
+  report.inspection = inspection.report;
+  report.observations = static_cast<int>(inspection.observations.size());
+  for (const Observation& o : inspection.observations) ++report.per_code[o.code];
+  report.profile_rows = static_cast<int>(profile.rows.size());
+  for (const ProfileRow& row : profile.rows) report.profile_rows_measured += std::isfinite(row.circumference_mm) ? 1 : 0;
+  report.inspected_from_mm = inspection.report.inspected_from_mm;
+  report.inspected_to_mm = inspection.report.inspected_to_mm;
+  report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  WriteTextFileAtomically(files.folder / "report.json", InspectStageReportToJson(report) + "\n");
+  workspace.FinishStage(kStage, true, {{"observations", std::to_string(report.observations)},
+                                       {"profile_rows", std::to_string(report.profile_rows)}});
+  return report;
+}
+
+}  // namespace sewer3d

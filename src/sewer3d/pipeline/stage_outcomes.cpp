@@ -1,0 +1,84 @@
+#include <fmt/core.h>
+
+#include "sewer3d/pipeline/process_chain.hpp"
+
+namespace sewer3d {
+
+StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::path& workspace) {
+  StageOutcome o;
+  o.output = workspace / "rgbd" / "report.json";
+  o.summary = fmt::format(
+      "rgbd: {} acquisitions: {} done, {} skipped (done before), {} failed; {} points; "
+      "{:.2f} s per acquisition, {:.1f} s in all ({} threads); colour: {}",
+      report.acquisitions, report.done, report.skipped, report.failed, report.points,
+      report.seconds_per_acquisition, report.seconds, report.threads, kRgbdColorSource);
+  if (const RgbdAcquisitionResult* first = report.FirstFailure()) {
+    o.ok = false;
+    o.error = fmt::format("{}: {}; {} of {} acquisitions failed (see {})", first->file,
+                          first->reason, report.failed, report.acquisitions, o.output.string());
+  }
+  return o;
+}
+
+StageOutcome RegisterOutcome(const RegisterStageReport& report,
+                             const std::filesystem::path& workspace) {
+  StageOutcome o;
+  const std::filesystem::path folder = workspace / "registration";
+  o.output = folder / "poses.csv";
+  o.summary = fmt::format(
+      "register: {} acquisitions, {} nodes, {} left out; {} pairs ({} done, {} from an earlier "
+      "run, {} failed): {} feature, {} projection ({} degenerate); {} rig/odometry/straightness "
+      "edges; {} rejected by the gate; {:.1f} s ({:.2f} s per pair)",
+      report.acquisitions, report.nodes, report.left_out.size(), report.pairs, report.pairs_done,
+      report.pairs_skipped, report.pairs_failed, report.feature_edges, report.projection_edges,
+      report.degenerate_edges, report.prior_edges, report.fusion.rejected, report.seconds,
+      report.seconds_per_pair);
+  for (const LeftOutAcquisition& l : report.left_out)
+    o.details.push_back(fmt::format("left out: m{} counter {}: {}", l.module, l.counter, l.reason));
+  if (!report.fusion.usable) {
+    o.ok = false;
+    o.error =
+        fmt::format("the pose graph did not converge (see {})", (folder / "report.json").string());
+  }
+  return o;
+}
+
+StageOutcome ModelOutcome(const ModelStageReport& r, const std::filesystem::path& workspace) {
+  StageOutcome o;
+  o.output = workspace / "model" / "preview.png";
+  if (!r.ok) {
+    o.ok = false;
+    o.summary = fmt::format("model: {} acquisitions; no model", r.acquisitions);
+    o.error = fmt::format("{}: {}", (workspace / "model").string(), r.message);
+    return o;
+  }
+  const CentrelineFitReport& c = r.centreline;
+  o.summary = fmt::format(
+      "model: {} acquisitions; centreline from {}/{} slices, fitted diameter {:.2f} mm (model "
+      "{:.0f} mm){}; maps {} x {} cells at {} mm ({} tiles, {} from an earlier run), {:.1f} % "
+      "measured, {:.1f} % filled; mesh.glb {} vertices at {:.1f} mm; {:.1f} s ({:.2f} s per "
+      "acquisition)",
+      r.acquisitions, c.slices_used, c.slices_used + c.slices_rejected, 2.0 * c.radius_mm,
+      r.nominal_diameter_mm,
+      c.bend_radius_mm ? fmt::format(", bend radius {:.1f} m", *c.bend_radius_mm / 1000.0) : "",
+      r.grid.rows, r.grid.cols, r.grid.resolution_mm, r.tiles, r.tiles_from_earlier_run,
+      100.0 * r.measured_fraction, 100.0 * r.filled_fraction, r.displaced_vertices,
+      r.displaced_step_mm, r.seconds, r.seconds_per_acquisition);
+  return o;
+}
+
+StageOutcome InspectOutcome(const InspectStageReport& r, const std::filesystem::path& workspace) {
+  StageOutcome o;
+  o.output = workspace / "inspection" / "observations.csv";
+  std::string codes;
+  for (const auto& [code, n] : r.per_code) codes += fmt::format("{}{} {}", codes.empty() ? "" : ", ", n, code);
+  o.summary = fmt::format(
+      "inspect: {} observations{}; stations {:.0f}..{:.0f} mm inspected ({:.0f} % of the map), "
+      "wall noise {:.3f} mm; profile {} rows ({} measured all round); {:.1f} s",
+      r.observations, codes.empty() ? "" : " (" + codes + ")", r.inspected_from_mm,
+      r.inspected_to_mm, 100.0 * r.inspection.inspected_share, r.inspection.residual_sigma_mm,
+      r.profile_rows, r.profile_rows_measured, r.seconds);
+  return o;
+}
+
+}  // namespace sewer3d
