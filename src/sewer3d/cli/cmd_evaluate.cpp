@@ -31,21 +31,22 @@ Command AddEvaluateCommand(CLI::App& app) {
       app.add_subcommand("evaluate",
                          "Accuracy against the truth: a plane or cylinder fitted to a cloud, or a "
                          "processing stage on a simulated run (rgbd)");
-  sub->add_option("what", args->surface, "plane, cylinder, rgbd, registration or model")
+  sub->add_option("what", args->surface, "plane, cylinder, rgbd, registration, model or inspection")
       ->required()
-      ->check(CLI::IsMember({"plane", "cylinder", "rgbd", "registration", "model"}));
+      ->check(CLI::IsMember({"plane", "cylinder", "rgbd", "registration", "model", "inspection"}));
   sub->add_option("--cloud", args->cloud, "plane, cylinder: point cloud (PLY, camera frame, mm)");
   sub->add_option("--run", args->run,
-                  "rgbd, registration, model: the simulated capture run (with truth/)");
+                  "rgbd, registration, model, inspection: the simulated capture run (with truth/)");
   sub->add_option("--smoothing-px", args->smoothing_px,
                   "rgbd: colours compared after a box mean of this side (1: per pixel)")
       ->capture_default_str()
       ->check(CLI::Range(1, 101));
   sub->add_option("--workspace", args->workspace,
-                  "rgbd, registration, model: the processing workspace WS");
-  sub->add_option("--out", args->out,
-                  "rgbd, registration, model: folder for evaluation.json and pictures (default "
-                  "WS/evaluation/<what>)");
+                  "rgbd, registration, model, inspection: the processing workspace WS");
+  sub->add_option(
+      "--out", args->out,
+      "rgbd, registration, model, inspection: folder for evaluation.json and pictures (default "
+      "WS/evaluation/<what>)");
   sub->add_option("--stride", args->stride,
                   "model: every n-th map row and column (0: automatic, about 3 M cells)")
       ->capture_default_str()
@@ -71,6 +72,11 @@ Command AddEvaluateCommand(CLI::App& app) {
               if (args->run.empty() || args->workspace.empty())
                 throw CLI::RequiredError("evaluate model needs --run and --workspace");
               return RunEvaluateModel(args->run, args->workspace, args->out, args->stride);
+            }
+            if (args->surface == "inspection") {
+              if (args->run.empty() || args->workspace.empty())
+                throw CLI::RequiredError("evaluate inspection needs --run and --workspace");
+              return RunEvaluateInspection(args->run, args->workspace, args->out);
             }
             if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
             const auto all = ReadPlyPoints(args->cloud);

@@ -7,11 +7,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/inspection_io.hpp"
 #include "sewer3d/io/model_io.hpp"
-#include "sewer3d/io/atomic_file.hpp"
 
 namespace sewer3d {
 namespace {
@@ -105,19 +105,20 @@ std::string InspectOptionsJson(const InspectStageOptions& o) {
 
 std::string InspectStageReportToJson(const InspectStageReport& r) {
   const InspectionReport& i = r.inspection;
-  return json{{"ok", r.ok},
-              {"message", r.message},
-              {"observations", r.observations},
-              {"per_code", r.per_code},
-              {"coarse_map", {{"rows", i.coarse_rows}, {"cols", i.coarse_cols}, {"cell_mm", i.cell_mm}}},
-              {"residual_sigma_mm", i.residual_sigma_mm},
-              {"sections", i.sections},
-              {"inspected_from_mm", r.inspected_from_mm},
-              {"inspected_to_mm", r.inspected_to_mm},
-              {"inspected_share", i.inspected_share},
-              {"profile_rows", r.profile_rows},
-              {"profile_rows_measured", r.profile_rows_measured},
-              {"seconds", r.seconds}}
+  return json{
+      {"ok", r.ok},
+      {"message", r.message},
+      {"observations", r.observations},
+      {"per_code", r.per_code},
+      {"coarse_map", {{"rows", i.coarse_rows}, {"cols", i.coarse_cols}, {"cell_mm", i.cell_mm}}},
+      {"residual_sigma_mm", i.residual_sigma_mm},
+      {"sections", i.sections},
+      {"inspected_from_mm", r.inspected_from_mm},
+      {"inspected_to_mm", r.inspected_to_mm},
+      {"inspected_share", i.inspected_share},
+      {"profile_rows", r.profile_rows},
+      {"profile_rows_measured", r.profile_rows_measured},
+      {"seconds", r.seconds}}
       .dump(1);
 }
 
@@ -133,16 +134,20 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
 
   CoarseMapBuilder coarse(info.grid, options.inspect.cell_mm);
   Profile profile;
-  ForEachPiece(model_dir, info, [&](const PipeMaps& piece) {
-    coarse.Add(piece);
-    const Profile part = ComputeProfile(piece, info.centreline.radius_mm, options.profile);
-    profile.nominal_diameter_mm = part.nominal_diameter_mm;
-    profile.rows.insert(profile.rows.end(), part.rows.begin(), part.rows.end());
-  }, progress, "maps");
+  ForEachPiece(
+      model_dir, info,
+      [&](const PipeMaps& piece) {
+        coarse.Add(piece);
+        const Profile part = ComputeProfile(piece, info.centreline.radius_mm, options.profile);
+        profile.nominal_diameter_mm = part.nominal_diameter_mm;
+        profile.rows.insert(profile.rows.end(), part.rows.begin(), part.rows.end());
+      },
+      progress, "maps");
   const Inspection inspection = Inspect(coarse.Finish(), info.centreline, options.inspect);
 
   Crops crops(inspection.observations, info.grid, info.view_range_mm);
-  ForEachPiece(model_dir, info, [&](const PipeMaps& piece) { crops.Add(piece); }, progress, "crops");
+  ForEachPiece(
+      model_dir, info, [&](const PipeMaps& piece) { crops.Add(piece); }, progress, "crops");
   for (std::size_t i = 0; i < inspection.observations.size(); ++i) {
     WriteImage(files.folder / "crops" / (inspection.observations[i].id + ".png"),
                crops.Image(i, options.max_crop_side_px));
@@ -162,13 +167,15 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
   report.observations = static_cast<int>(inspection.observations.size());
   for (const Observation& o : inspection.observations) ++report.per_code[o.code];
   report.profile_rows = static_cast<int>(profile.rows.size());
-  for (const ProfileRow& row : profile.rows) report.profile_rows_measured += std::isfinite(row.circumference_mm) ? 1 : 0;
+  for (const ProfileRow& row : profile.rows)
+    report.profile_rows_measured += std::isfinite(row.circumference_mm) ? 1 : 0;
   report.inspected_from_mm = inspection.report.inspected_from_mm;
   report.inspected_to_mm = inspection.report.inspected_to_mm;
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   WriteTextFileAtomically(files.folder / "report.json", InspectStageReportToJson(report) + "\n");
-  workspace.FinishStage(kStage, true, {{"observations", std::to_string(report.observations)},
-                                       {"profile_rows", std::to_string(report.profile_rows)}});
+  workspace.FinishStage(kStage, true,
+                        {{"observations", std::to_string(report.observations)},
+                         {"profile_rows", std::to_string(report.profile_rows)}});
   return report;
 }
 

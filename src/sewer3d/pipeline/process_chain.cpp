@@ -69,7 +69,8 @@ ProcessStage InspectProcessStage() {
   return {"inspect", [=](const ProcessOptions& o) { return InspectOptionsJson(stage_options(o)); },
           [=](const CaptureRun& run, Workspace& ws, const ProcessOptions& o,
               const StageProgress& progress) {
-            return InspectOutcome(RunInspectStage(run, ws, stage_options(o), progress), ws.folder());
+            return InspectOutcome(RunInspectStage(run, ws, stage_options(o), progress),
+                                  ws.folder());
           }};
 }
 

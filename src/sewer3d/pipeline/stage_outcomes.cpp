@@ -71,7 +71,8 @@ StageOutcome InspectOutcome(const InspectStageReport& r, const std::filesystem::
   StageOutcome o;
   o.output = workspace / "inspection" / "observations.csv";
   std::string codes;
-  for (const auto& [code, n] : r.per_code) codes += fmt::format("{}{} {}", codes.empty() ? "" : ", ", n, code);
+  for (const auto& [code, n] : r.per_code)
+    codes += fmt::format("{}{} {}", codes.empty() ? "" : ", ", n, code);
   o.summary = fmt::format(
       "inspect: {} observations{}; stations {:.0f}..{:.0f} mm inspected ({:.0f} % of the map), "
       "wall noise {:.3f} mm; profile {} rows ({} measured all round); {:.1f} s",

@@ -30,7 +30,11 @@ std::vector<TrueItem> TrueItems(const PipeGeometry& g) {
   std::vector<TrueItem> items;
   for (std::size_t i = 0; i < w.joints.size(); ++i) {
     const PipeJoint& j = w.joints[i];
-    items.push_back({j.id, "BAJ", g.SectionStartMm(static_cast<int>(i) + 1), j.offset_clock_h, 0.0,
+    items.push_back({j.id,
+                     "BAJ",
+                     g.SectionStartMm(static_cast<int>(i) + 1),
+                     j.offset_clock_h,
+                     0.0,
                      {{"offset_mm", j.offset_mm, 0.0},
                       {"gap_mm", j.gap_mm, 0.0},
                       {"deflection_deg", j.deflection_deg, 0.0}}});
@@ -38,8 +42,12 @@ std::vector<TrueItem> TrueItems(const PipeGeometry& g) {
   for (std::size_t i = 0; i < w.sections.size(); ++i) {
     const PipeSection& s = w.sections[i];
     if (s.ovality_pct <= 0.0) continue;
-    items.push_back({"D" + std::to_string(i + 1), "BAA", g.SectionStartMm(static_cast<int>(i)),
-                     s.ovality_clock_h, s.length_mm, {{"deformation_pct", s.ovality_pct, 0.0}}});
+    items.push_back({"D" + std::to_string(i + 1),
+                     "BAA",
+                     g.SectionStartMm(static_cast<int>(i)),
+                     s.ovality_clock_h,
+                     s.length_mm,
+                     {{"deformation_pct", s.ovality_pct, 0.0}}});
   }
   for (const PipeFeature& f : w.features) {
     const double dn = DiameterAt(g, f.station_mm);
@@ -96,9 +104,7 @@ CylPoint InModel(const PipeGeometry& g, const TrueItem& t, const Rigid3d& model_
   return Unroll(centreline, model_from_truth * p, centreline.station0_mm);
 }
 
-double ClockDiffH(double a, double b, double period) {
-  return std::remainder(a - b, period);
-}
+double ClockDiffH(double a, double b, double period) { return std::remainder(a - b, period); }
 
 bool Compatible(const std::string& truth_code, const std::string& code) {
   return truth_code == code || (truth_code == "BAG" && code == "BCA");
@@ -121,7 +127,8 @@ InspectionEvaluation EvaluateObservations(const std::vector<Observation>& observ
     m.code = t.code;
     m.station_mm = at.station_mm;
     m.clock_h = at.clock_rad * 6.0 / std::numbers::pi;
-    m.inspected = at.station_mm + t.length_mm >= o.inspected_from_mm && at.station_mm <= o.inspected_to_mm;
+    m.inspected =
+        at.station_mm + t.length_mm >= o.inspected_from_mm && at.station_mm <= o.inspected_to_mm;
     m.values = t.values;
     // Deformation is symmetric: its clock is known modulo 6 h.
     const double period = t.code == "BAA" ? 6.0 : 12.0;

@@ -8,6 +8,7 @@
 /// the stations the inspection searched are "not inspected"; observations that match no true
 /// item are "invented".
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,16 +17,17 @@
 #include "sewer3d/inspect/observation.hpp"
 #include "sewer3d/model/pipe_map.hpp"
 #include "sewer3d/sim/pipe_world.hpp"
+#include "sewer3d/simeval/profile_evaluation.hpp"
 
 namespace sewer3d {
 
 /// One true item and what the inspection said of it.
 struct TrueItemMatch {
-  std::string truth_id;  ///< J1, D2, C1, …
-  std::string code;      ///< its EN 13508-2 code
-  double station_mm = 0.0;  ///< true, in model stations
-  double clock_h = 12.0;    ///< true, in the model's clock
-  bool inspected = false;   ///< inside the stations the inspection searched
+  std::string truth_id;        ///< J1, D2, C1, …
+  std::string code;            ///< its EN 13508-2 code
+  double station_mm = 0.0;     ///< true, in model stations
+  double clock_h = 12.0;       ///< true, in the model's clock
+  bool inspected = false;      ///< inside the stations the inspection searched
   std::string observation_id;  ///< empty: not found
   double station_error_mm = 0.0;
   double clock_error_h = 0.0;
@@ -54,8 +56,24 @@ struct InspectionEvaluationOptions {
 /// Matches `observations` with the true items of `truth` (model frame put onto the world by
 /// truth_from_model; the model's `centreline`).
 InspectionEvaluation EvaluateObservations(const std::vector<Observation>& observations,
-                                          const PipeGeometry& truth, const Rigid3d& truth_from_model,
+                                          const PipeGeometry& truth,
+                                          const Rigid3d& truth_from_model,
                                           const Centreline& centreline,
                                           const InspectionEvaluationOptions& options);
+
+/// Both halves of `sewer3d evaluate inspection`.
+struct InspectionFilesEvaluation {
+  InspectionEvaluation observations;
+  ProfileEvaluation profile;
+};
+
+/// Reads the run (rig, truth/), WS/registration/poses.csv, WS/model/model.json and
+/// WS/inspection/ (observations.json, profile.csv, report.json for the stations searched) and
+/// evaluates them; FileError when a file is missing or malformed.
+InspectionFilesEvaluation EvaluateInspection(const std::filesystem::path& run_folder,
+                                             const std::filesystem::path& workspace);
+
+/// The matches, the invented observations and the profile's figures as JSON text.
+std::string InspectionEvaluationToJson(const InspectionFilesEvaluation& evaluation);
 
 }  // namespace sewer3d
