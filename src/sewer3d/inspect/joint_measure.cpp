@@ -2,8 +2,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <tuple>
-#include <utility>
 #include <vector>
 
 #include "sewer3d/core/units.hpp"
@@ -80,9 +78,13 @@ double MedianOf(std::vector<double> v) {
   return *mid;
 }
 
-/// The gap (median over columns of the open length between the side lines) and the depth of
-/// its bottom where seen (0 where not).
-std::pair<double, double> MeasureGap(const CoarseMap& map, const Sides& sides, double station_mm,
+struct GapMeasure {
+  double gap_mm = 0.0;     ///< median over columns of the open length between the side lines
+  double depth_mm = 0.0;   ///< of its bottom where seen (0 where not)
+  double centre_mm = 0.0;  ///< median over columns of the open length's centroid (x)
+};
+
+GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_mm,
                                      double half_window_mm, const JointOptions& o,
                                      const std::vector<double>& x) {
   const double row_mm = map.RowMm(), s0 = map.fine.station0_mm;
@@ -101,10 +103,10 @@ std::pair<double, double> MeasureGap(const CoarseMap& map, const Sides& sides, d
     deepest.push_back(most);
   }
   const double bottom = MedianOf(deepest);
-  const bool seen = bottom >= o.min_gap_depth_mm;
-  std::vector<double> widths;
+  const bool seen = bottom >= 4.0 * o.min_gap_depth_mm;
+  std::vector<double> widths, centres;
   for (std::size_t i = 0; i < sides.cols.size(); ++i) {
-    double open = 0.0;
+    double open = 0.0, moment = 0.0;
     for (int r = r0; r < r1; ++r) {
       const int c = sides.cols[i];
       const float v = map.displacement_mm(r, c), frac = map.measured(r, c);
@@ -114,10 +116,12 @@ std::pair<double, double> MeasureGap(const CoarseMap& map, const Sides& sides, d
               ? std::clamp((v - (line.value + line.slope * x[r])) / bottom, 0.0, 1.0)
               : 0.0;
       open += (1.0 - frac) + frac * deep;
+      moment += ((1.0 - frac) + frac * deep) * x[r];
     }
     widths.push_back(open * row_mm);
+    if (open > 0.0) centres.push_back(moment / open);
   }
-  return {MedianOf(widths), seen ? bottom : 0.0};
+  return {MedianOf(widths), seen ? bottom : 0.0, MedianOf(centres)};
 }
 
 }  // namespace
@@ -131,9 +135,15 @@ JointMeasure MeasureJoint(const CoarseMap& map, const Centreline& centreline, do
   JointMeasure m;
   m.station_mm = station_mm;
   if (gap_guess_mm > 0.0) {
+    // The gap measured between sides left clear of the guess; then the joint moved to its
+    // centre, and the sides fitted again clear of the measured gap.
     const Sides first = FitSides(map, station_mm, gap_guess_mm + 2.0 * row_mm, o, x);
-    std::tie(m.gap_mm, m.gap_depth_mm) =
+    const GapMeasure g =
         MeasureGap(map, first, station_mm, 0.5 * gap_guess_mm + 2.0 * row_mm, o, x);
+    m.gap_mm = g.gap_mm;
+    m.gap_depth_mm = g.depth_mm;
+    m.station_mm = station_mm += g.centre_mm;
+    for (double& xr : x) xr -= g.centre_mm;
   }
   const Sides sides = FitSides(map, station_mm, m.gap_mm, o, x);
   std::vector<double> theta, step, bend;

@@ -133,7 +133,7 @@ void WriteObservationsIsybau(const std::filesystem::path& path,
   xml += "            <Inspektionsdaten>\n";
   int continuous = 0;
   for (const Observation& o : observations) {
-    if (o.length_mm > 0.0) {
+    if (IsContinuous(o)) {
       ++continuous;
       Condition(xml, o, o.station_mm, "A", continuous);
       Condition(xml, o, o.station_mm + o.length_mm, "B", continuous);
