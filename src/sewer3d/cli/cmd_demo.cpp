@@ -98,6 +98,7 @@ int RunDemo(const DemoArgs& a) {
   RunEvaluateRgbd(run.string(), ws.string(), "", RgbdEvaluationOptions{}.colour_smoothing_px);
   RunEvaluateRegistration(run.string(), ws.string(), "");
   RunEvaluateModel(run.string(), ws.string(), "", 0);
+  RunEvaluateInspection(run.string(), ws.string(), "");
   const double evaluate_s = SecondsSince(evaluate_start);
 
   std::string times = fmt::format("simulate {:.1f} s{}", simulate_s, simulated ? "" : " (reused)");
@@ -112,6 +113,8 @@ int RunDemo(const DemoArgs& a) {
              d);
   fmt::print("  {}/ws/model/mesh.glb               the displaced 3D model (any glTF viewer)\n", d);
   fmt::print("  {}/ws/model/mesh.obj               the textured cylinder (MeshLab, Blender)\n", d);
+  fmt::print("  {}/ws/inspection/observations.csv  EN 13508-2 observations (crops/: their maps)\n",
+             d);
   fmt::print("  {}/ws/evaluation/model/error_map.png  the model against the true wall\n", d);
   fmt::print("  {}/run/truth/overview.png          the unrolled pipe and every image's footprint\n",
              d);

@@ -61,6 +61,19 @@ std::vector<double> SignedValues(const cv::Mat1f& res, const Wall& wall,
   return v;
 }
 
+/// The region's core: its cells at least half as deep (sign +1) or high (−1) as its median.
+/// Its outline is the half-depth contour, which blurred edges leave where it was.
+std::vector<cv::Point> Core(const Wall& wall, const cv::Mat1f& res,
+                            const std::vector<cv::Point>& cells, double sign) {
+  const double half = 0.5 * Percentile(SignedValues(res, wall, cells, sign), 0.5);
+  std::vector<cv::Point> core;
+  for (const cv::Point& p : cells) {
+    const float v = res(p.y, wall.Wrap(p.x));
+    if (std::isfinite(v) && sign * v >= half) core.push_back(p);
+  }
+  return core;
+}
+
 /// The fields every observation of a region has: place, extent, crop, confidence.
 Observation Describe(const Wall& wall, const cv::Mat1f& res, const MapComponent& comp, double sign,
                      double magnitude, double threshold) {
@@ -112,12 +125,14 @@ Observation Connection(const Wall& wall, const cv::Mat1f& res, const ConnectionP
   all.cells.insert(all.cells.end(), parts.ring.begin(), parts.ring.end());
   const bool intruding = intrusion >= intrusion_threshold;
   Observation o = Describe(wall, res, all, 1.0, intruding ? intrusion : 1.0, intrusion_threshold);
-  int row_min = parts.bore.front().y, row_max = row_min;
-  for (const cv::Point& p : parts.bore) {
+  const std::vector<cv::Point> core = Core(wall, res, parts.bore, 1.0);
+  int row_min = core.front().y, row_max = row_min;
+  for (const cv::Point& p : core) {
     row_min = std::min(row_min, p.y);
     row_max = std::max(row_max, p.y);
   }
-  // Along the pipe a lateral square to it opens exactly its bore.
+  // Along the pipe a lateral square to it opens exactly its bore (its core: where the depth map
+  // bridges the lateral's end, the bore's depth is smeared over it).
   const double bore = (row_max - row_min + 1) * wall.RowMm();
   o.station_mm = wall.Station(0.5 * (row_min + row_max));
   o.clock_h = ToClockH(wall.Clock(0.5 * (parts.box.col_min + parts.box.col_max)));
@@ -152,7 +167,18 @@ Observation Deposit(const Wall& wall, const cv::Mat1f& res, const MapComponent& 
   const double theta = 2.0 * std::acos(std::clamp((r - h) / r, -1.0, 1.0));
   Observation o = Describe(wall, res, comp, -1.0, h, threshold);
   o.code = "BBC";
-  o.station_mm = wall.Station(comp.row_min - 0.5);
+  // The bed's ramps are steep and often not measured: the deposit goes on along the invert
+  // through unmeasured rows next to it (up to 50 mm).
+  int first = comp.row_min, last = comp.row_max;
+  const int invert = static_cast<int>(std::lround(0.5 * (comp.col_min + comp.col_max)));
+  const int reach = static_cast<int>(50.0 / wall.RowMm());
+  auto open = [&](int r) {
+    return r >= 0 && r < res.rows && !std::isfinite(res(r, wall.Wrap(invert)));
+  };
+  for (int k = 0; k < reach && open(first - 1); ++k) --first;
+  for (int k = 0; k < reach && open(last + 1); ++k) ++last;
+  o.station_mm = wall.Station(first - 0.5);
+  o.length_mm = (last - first + 1) * wall.RowMm();
   o.quantities = {{"cross_section_loss_pct", 100.0 * (theta - std::sin(theta)) / kTurn, "%"},
                   {"height_mm", h, "mm"}};
   o.remark = fmt::format("settled deposit {:.0f} mm high over {:.2f} m", h, o.length_mm / 1000.0);
@@ -215,10 +241,13 @@ Observation Surface(const Wall& wall, const cv::Mat1f& res, const MapComponent& 
     return o;
   }
   o.code = "BAF";
-  const double area = static_cast<double>(comp.cells.size()) * wall.CellMm2();
+  const std::vector<double> core = SignedValues(res, wall, Core(wall, res, comp.cells, 1.0), 1.0);
+  double core_sum = 0.0;
+  for (double d : core) core_sum += d;
+  const double area = static_cast<double>(core.size()) * wall.CellMm2();
   o.quantities = {{"depth_max_mm", max_depth, "mm"},
                   {"area_mm2", area, "mm2"},
-                  {"depth_mean_mm", sum / static_cast<double>(depth.size()), "mm"},
+                  {"depth_mean_mm", core_sum / static_cast<double>(core.size()), "mm"},
                   {"width_mm", (comp.col_max - comp.col_min + 1) * wall.ColMm(), "mm"}};
   o.remark = fmt::format("spalling {:.0f} cm² up to {:.1f} mm deep", area / 100.0, max_depth);
   return o;

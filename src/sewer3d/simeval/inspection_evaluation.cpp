@@ -1,6 +1,8 @@
 #include "sewer3d/simeval/inspection_evaluation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "sewer3d/core/units.hpp"
@@ -23,6 +25,39 @@ double DiameterAt(const PipeGeometry& g, double station_mm) {
     if (station_mm >= g.SectionStartMm(static_cast<int>(i))) return w.sections[i].diameter_mm;
   }
   return w.sections.front().diameter_mm;
+}
+
+struct SpallTruth {
+  double area_mm2 = 0.0;
+  double depth_mean_mm = 0.0;
+};
+
+/// The true spalled patch measured as the inspection measures one (defects.hpp): its cells at
+/// least half as deep as its median, on a 0.25 mm grid of the simulator's own rough patch.
+SpallTruth MeasureSpall(const PipeFeature& f, std::uint64_t seed, double radius_mm) {
+  constexpr double kStep = 0.25;
+  std::vector<double> depth;
+  for (double ds = -0.5 * f.length_mm - 1.0; ds <= 0.5 * f.length_mm + 1.0; ds += kStep) {
+    for (double arc = -0.5 * f.width_mm - 1.0; arc <= 0.5 * f.width_mm + 1.0; arc += kStep) {
+      const double d = -PipeFeatureDisplacementMm(f, ds, arc / radius_mm, radius_mm, seed, nullptr);
+      if (d > 0.0) depth.push_back(d);
+    }
+  }
+  std::vector<double> sorted = depth;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  const double half = 0.5 * sorted[sorted.size() / 2];
+  SpallTruth t;
+  double sum = 0.0;
+  int n = 0;
+  for (double d : depth) {
+    if (d < half) continue;
+    sum += d;
+    ++n;
+  }
+  t.area_mm2 = n * kStep * kStep;
+  t.depth_mean_mm = sum / n;
+  return t;
 }
 
 std::vector<TrueItem> TrueItems(const PipeGeometry& g) {
@@ -49,7 +84,8 @@ std::vector<TrueItem> TrueItems(const PipeGeometry& g) {
                      s.length_mm,
                      {{"deformation_pct", s.ovality_pct, 0.0}}});
   }
-  for (const PipeFeature& f : w.features) {
+  for (std::size_t k = 0; k < w.features.size(); ++k) {
+    const PipeFeature& f = w.features[k];
     const double dn = DiameterAt(g, f.station_mm);
     TrueItem t{f.id, "", f.station_mm, f.clock_h, 0.0, {}};
     switch (f.type) {
@@ -62,11 +98,9 @@ std::vector<TrueItem> TrueItems(const PipeGeometry& g) {
         }
         break;
       case PipeFeature::Type::kSpalling: {
-        // The simulator's patch is a superellipse |u|⁴ + |v|⁴ ≤ 1 over length × width.
-        const double shape = std::pow(std::tgamma(1.25), 2) / std::tgamma(1.5);
+        const SpallTruth truth = MeasureSpall(f, w.material_seed + k, 0.5 * dn);
         t.code = "BAF";
-        t.values = {{"area_mm2", shape * f.length_mm * f.width_mm, 0.0},
-                    {"depth_mean_mm", f.depth_mm, 0.0}};
+        t.values = {{"area_mm2", truth.area_mm2, 0.0}, {"depth_mean_mm", truth.depth_mean_mm, 0.0}};
         break;
       }
       case PipeFeature::Type::kCrack:
