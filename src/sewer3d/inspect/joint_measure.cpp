@@ -85,8 +85,7 @@ struct GapMeasure {
 };
 
 GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_mm,
-                                     double half_window_mm, const JointOptions& o,
-                                     const std::vector<double>& x) {
+                      double half_window_mm, const JointOptions& o, const std::vector<double>& x) {
   const double row_mm = map.RowMm(), s0 = map.fine.station0_mm;
   const int r0 =
       std::max(0, static_cast<int>(std::floor((station_mm - half_window_mm - s0) / row_mm)));
