@@ -1,6 +1,7 @@
-// The report's browser test (docs/report.md), driven over the Chrome DevTools protocol with
-// Node's own WebSocket (node --experimental-websocket): no npm package needed.
-// usage: node --experimental-websocket browser_test.mjs CHROMIUM INDEX_HTML EXPECTED_JSON SHOT_PNG
+// The report's browser test (docs/report.md), driven over the Chrome DevTools protocol through
+// Chromium's --remote-debugging-pipe (NUL-separated JSON on file descriptors 3 and 4): no
+// WebSocket, no port, no npm package; any Node from 18 on.
+// usage: node browser_test.mjs CHROMIUM INDEX_HTML EXPECTED_JSON SHOT_PNG
 // Checks: no console errors, exceptions or network requests; the viewer's pixels show a
 // textured pipe; a real mouse click on the red disc of the known bump reads its station within
 // 5 mm, its clock within 0.25 h and its radius within 0.5 mm.
@@ -16,13 +17,18 @@ const expected = JSON.parse(readFileSync(expectedJson, 'utf8'));
 const profile = mkdtempSync(join(tmpdir(), 'sewer3d-chromium-'));
 const failures = [];
 const t0 = Date.now();
-const check = (ok, text) => { console.log((ok ? 'ok   ' : 'FAIL ') + text + ` [${((Date.now() - t0) / 1000).toFixed(1)} s]`); if (!ok) failures.push(text); };
+const check = (ok, text) => {
+  console.log(`${ok ? 'ok   ' : 'FAIL '}${text} [${((Date.now() - t0) / 1000).toFixed(1)} s]`);
+  if (!ok) failures.push(text);
+};
 
 const chromium = spawn(chromiumPath, ['--headless=new', '--no-sandbox', '--disable-gpu-sandbox',
-  '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--remote-debugging-port=0',
+  '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--remote-debugging-pipe',
   `--user-data-dir=${profile}`, '--no-first-run', '--window-size=1280,900', 'about:blank'],
-{ stdio: ['ignore', 'ignore', 'pipe'] });
-const timer = setTimeout(() => { console.log('FAIL timed out'); finish(1); }, 60000);
+{ stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'] });
+let chromiumLog = '';
+chromium.stderr.on('data', (d) => { chromiumLog += d; });
+const timer = setTimeout(() => { console.log('FAIL timed out\n' + chromiumLog.slice(-2000)); finish(1); }, 60000);
 
 // Ends Chromium, waits for it to go (it writes its profile until then), removes the profile.
 async function finish(code) {
@@ -36,37 +42,30 @@ async function finish(code) {
   process.exit(code);
 }
 
-const browserUrl = await new Promise((resolve, reject) => {
-  let text = '';
-  chromium.stderr.on('data', (d) => {
-    text += d;
-    const m = text.match(/DevTools listening on (ws:\/\/\S+)/);
-    if (m) resolve(m[1]);
-  });
-  chromium.on('exit', (code) => reject(new Error(`chromium exited (${code}): ${text}`)));
-});
-const port = new URL(browserUrl).port;
-const targets = await (await fetch(`http://127.0.0.1:${port}/json/list`)).json();
-const page = targets.find((t) => t.type === 'page');
-
-const socket = new WebSocket(page.webSocketDebuggerUrl);
-await new Promise((resolve) => socket.addEventListener('open', resolve));
-let nextId = 1;
+let nextId = 1, session;
 const pending = new Map(), listeners = [];
-socket.addEventListener('message', (event) => {
-  const message = JSON.parse(event.data);
-  if (message.id && pending.has(message.id)) {
-    const { resolve, reject } = pending.get(message.id);
-    pending.delete(message.id);
-    if (message.error) reject(new Error(JSON.stringify(message.error))); else resolve(message.result);
-  } else if (message.method) {
-    listeners.forEach((l) => l(message));
+let buffered = '';
+chromium.stdio[4].on('data', (chunk) => {
+  const parts = (buffered + chunk.toString('utf8')).split('\0');
+  buffered = parts.pop();
+  for (const part of parts) {
+    const message = JSON.parse(part);
+    if (message.id && pending.has(message.id)) {
+      const { resolve, reject } = pending.get(message.id);
+      pending.delete(message.id);
+      if (message.error) reject(new Error(JSON.stringify(message.error))); else resolve(message.result);
+    } else if (message.method) {
+      listeners.forEach((l) => l(message));
+    }
   }
 });
-const send = (method, params = {}) => new Promise((resolve, reject) => {
+// A command to the browser, or to the page once attached (flat sessions).
+const send = (method, params = {}, toBrowser = false) => new Promise((resolve, reject) => {
   const id = nextId++;
   pending.set(id, { resolve, reject });
-  socket.send(JSON.stringify({ id, method, params }));
+  const message = { id, method, params };
+  if (!toBrowser) message.sessionId = session;
+  chromium.stdio[3].write(JSON.stringify(message) + '\0');
 });
 const evaluate = async (expression) =>
   (await send('Runtime.evaluate', { expression, awaitPromise: true, returnByValue: true })).result.value;
@@ -85,6 +84,9 @@ listeners.push(({ method, params }) => {
 });
 
 try {
+  const { targetInfos } = await send('Target.getTargets', {}, true);
+  const page = targetInfos.find((t) => t.type === 'page');
+  session = (await send('Target.attachToTarget', { targetId: page.targetId, flatten: true }, true)).sessionId;
   for (const domain of ['Runtime', 'Log', 'Page', 'Network']) await send(`${domain}.enable`);
   await send('Emulation.setDeviceMetricsOverride', { width: 1280, height: 900, deviceScaleFactor: 1, mobile: false });
   await send('Page.navigate', { url: pathToFileURL(indexHtml).href });

@@ -14,5 +14,5 @@ ws=$(mktemp -d)
 trap 'rm -rf "$ws"' EXIT
 "$fixture" "$ws"
 mkdir -p "$artifacts"
-node --experimental-websocket --no-warnings "$(dirname "$0")/browser_test.mjs" "$chromium" \
+node "$(dirname "$0")/browser_test.mjs" "$chromium" \
   "$ws/report/index.html" "$ws/expected.json" "$artifacts/report_viewer.png"

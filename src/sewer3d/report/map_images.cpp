@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <opencv2/core.hpp>
-#include <vector>
 
 namespace sewer3d {
 namespace {
@@ -44,22 +43,6 @@ cv::Mat3b HeatImage(const cv::Mat1f& displacement_mm, double range_mm) {
     }
   }
   return out;
-}
-
-double HeatRangeMm(const cv::Mat1f& displacement_mm) {
-  std::vector<float> values;
-  for (const float d : displacement_mm) {
-    if (std::isfinite(d)) values.push_back(std::abs(d));
-  }
-  if (values.empty()) return 1.0;
-  const auto k = static_cast<std::ptrdiff_t>(0.999 * static_cast<double>(values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + k, values.end());
-  const double p999 = std::max(0.1, static_cast<double>(values[k]));
-  const double decade = std::pow(10.0, std::floor(std::log10(p999)));
-  for (const double m : {1.0, 2.0, 5.0, 10.0}) {
-    if (m * decade >= p999 * (1.0 - 1e-9)) return m * decade;
-  }
-  return 10.0 * decade;
 }
 
 std::string HeatGradientCss() {

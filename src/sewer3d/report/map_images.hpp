@@ -15,10 +15,6 @@ cv::Vec3b HeatColour(double t);
 /// Colour per cell of `displacement_mm` / range_mm; NaN cells dark grey.
 cv::Mat3b HeatImage(const cv::Mat1f& displacement_mm, double range_mm);
 
-/// A round range (1, 2 or 5 × 10^k mm, at least 0.1 mm) that holds 99.9 % of the finite
-/// |displacement|; 1 mm when there is none.
-double HeatRangeMm(const cv::Mat1f& displacement_mm);
-
 /// CSS linear-gradient (left = −range, right = +range) of the same scale.
 std::string HeatGradientCss();
 

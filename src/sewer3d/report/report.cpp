@@ -51,7 +51,7 @@ void ReadPictures(const ReportInputs& in, ModelPictures& model) {
   model.preview = preview.Finish();
   model.relief = relief.Finish();
   for (const auto& c : crops) model.crops.push_back(c ? std::optional(c->Finish()) : std::nullopt);
-  model.heat_range_mm = HeatRangeMm(model.preview->displacement_mm);
+  model.heat_range_mm = model.info->view_range_mm;  // as displacement_view.png, preview.png
 }
 
 std::string InlineScript(std::string_view script) {

@@ -18,7 +18,7 @@ struct ModelPictures {
   std::optional<CoarseMaps> preview;             ///< the map pictures' cells
   std::optional<CoarseMaps> relief;              ///< the viewer's vertices
   std::vector<std::optional<CoarseMaps>> crops;  ///< per observation
-  double heat_range_mm = 1.0;
+  double heat_range_mm = 10.0;  ///< the heat maps saturate at ± this (model.json's view range)
 };
 
 /// The notes the page shows about what is missing; Add returns the note's HTML.
