@@ -129,6 +129,8 @@ try {
     const read = await evaluate(`(() => { const d = document.getElementById('viewer-readout');
       return { station: Number(d.dataset.stationMm), clock: Number(d.dataset.clockH), radius: Number(d.dataset.radiusMm), text: d.textContent }; })()`);
     console.log(`click at (${x.toFixed(1)}, ${y.toFixed(1)}) px: ${read.text}`);
+    const after = (await send('Page.captureScreenshot', { format: 'png' })).data;
+    writeFileSync(shotPath.replace(/\.png$/, '_click.png'), Buffer.from(after, 'base64'));
     check(Math.abs(read.station - expected.station_mm) <= 5, `station ${read.station} mm, expected ${expected.station_mm} ± 5`);
     check(Math.abs(read.clock - expected.clock_h) <= 0.25, `clock ${read.clock} h, expected ${expected.clock_h} ± 0.25`);
     check(Math.abs(read.radius - expected.radius_mm) <= 0.5, `radius ${read.radius} mm, expected ${expected.radius_mm} ± 0.5`);

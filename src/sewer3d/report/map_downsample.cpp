@@ -35,19 +35,23 @@ void MapDownsampler::Add(const PipeMaps& maps, int first_row) {
   const MapCrop& g = out_.region;
   const int begin = std::max(g.row0, first_row);
   const int end = std::min(g.row0 + g.rows, first_row + maps.texture.rows);
+  const int first_col = (g.col0 % grid_cols_ + grid_cols_) % grid_cols_;
   for (int row = begin; row < end; ++row) {
     const int r = row - first_row;
     const int out_row = (row - g.row0) / out_.row_factor;
-    for (int c = 0; c < g.cols; ++c) {
-      const int col = ((g.col0 + c) % grid_cols_ + grid_cols_) % grid_cols_;
+    const cv::Vec3b* texture = maps.texture[r];
+    const float* displacement = maps.displacement_mm[r];
+    const std::uint8_t* coverage = maps.coverage[r];
+    int col = first_col;  // walks the region's columns, wrapping at the grid's last
+    for (int c = 0; c < g.cols; ++c, col = col + 1 == grid_cols_ ? 0 : col + 1) {
       const int out_col = c / out_.col_factor;
       cells_(out_row, out_col) += 1.0F;
-      if (maps.coverage(r, col) != static_cast<std::uint8_t>(Coverage::kNone)) {
-        const cv::Vec3b bgr = maps.texture(r, col);
+      if (coverage[col] != static_cast<std::uint8_t>(Coverage::kNone)) {
+        const cv::Vec3b bgr = texture[col];
         colour_sum_(out_row, out_col) += cv::Vec3f(bgr[0], bgr[1], bgr[2]);
         colour_n_(out_row, out_col) += 1.0F;
       }
-      const float d = maps.displacement_mm(r, col);
+      const float d = displacement[col];
       if (std::isfinite(d)) {
         displacement_sum_(out_row, out_col) += d;
         displacement_n_(out_row, out_col) += 1.0F;

@@ -91,7 +91,7 @@ const texture = new THREE.Texture(textureImage);
 texture.flipY = false;
 texture.colorSpace = THREE.SRGBColorSpace;
 texture.anisotropy = 4;
-const material = new THREE.MeshStandardMaterial({ map: texture, roughness: 0.95, metalness: 0 });
+const material = new THREE.MeshLambertMaterial({ map: texture });  // cheap to compile in software GL
 const mesh = new THREE.Mesh(buildGeometry(1), material);
 scene.add(mesh);
 const marker = new THREE.Mesh(new THREE.SphereGeometry(R * 0.02), new THREE.MeshBasicMaterial({ color: 0x00e0ff }));
