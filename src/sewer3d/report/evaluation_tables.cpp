@@ -51,12 +51,17 @@ std::string ObjectArrayTable(const std::string& title, const Json& array) {
 // Scalars (and scalar arrays) into `rows` as "path" → value; arrays of objects into `tables`.
 void Flatten(const Json& j, const std::string& path, Rows& rows, std::string& tables) {
   for (const auto& [k, v] : j.items()) {
-    const std::string name = path.empty() ? k : path + " / " + k;
+    std::string name = path;
+    if (!name.empty()) name += " / ";
+    name += k;
     if (v.is_object()) {
       Flatten(v, name, rows, tables);
     } else if (IsScalarArray(v)) {
       std::string joined;
-      for (const Json& e : v) joined += (joined.empty() ? "" : ", ") + Scalar(e);
+      for (const Json& e : v) {
+        if (!joined.empty()) joined += ", ";
+        joined += Scalar(e);
+      }
       rows.push_back({name, joined});
     } else if (v.is_array()) {
       tables += ObjectArrayTable(name, v);

@@ -44,7 +44,7 @@ class ReportTest : public ::testing::Test {
     return in;
   }
   ReportSummary Write(const ReportInputs& in, std::string& html) const {
-    const ReportSummary s = WriteReport(in, dir_ / "report" / "index.html");
+    ReportSummary s = WriteReport(in, dir_ / "report" / "index.html");
     html = ReadTextFile(dir_ / "report" / "index.html");
     EXPECT_EQ(s.html_bytes, html.size());
     return s;
