@@ -91,10 +91,11 @@ try {
   await send('Emulation.setDeviceMetricsOverride', { width: 1280, height: 900, deviceScaleFactor: 1, mobile: false });
   await send('Page.navigate', { url: pathToFileURL(indexHtml).href });
   await loadedPromise;
+  if (!expected.viewer) throw new Error('this build has no 3D viewer: npm was unavailable when it was configured');
   const ready = await evaluate(`new Promise((resolve) => { const t0 = Date.now(); (function poll() {
     if (window.sewer3dViewer && window.sewer3dViewer.ready) resolve(true);
     else if (Date.now() - t0 > 20000) resolve(false); else setTimeout(poll, 50); })(); })`);
-  check(ready === true && expected.viewer === true, 'the viewer started (window.sewer3dViewer.ready)');
+  check(ready === true, 'the viewer started (window.sewer3dViewer.ready)');
   const rect = await evaluate(`(async () => { const c = document.getElementById('viewer-canvas');
     c.scrollIntoView({ block: 'center' });
     await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
