@@ -8,7 +8,12 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev libspectra-dev
   clang-format clang-tidy python3
+  chromium
 )
+# The report's 3D viewer fetches three.js with npm at configure time; its browser test runs
+# Chromium through Node (any Node from 18 on; a newer one already installed is kept).
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -32,6 +32,7 @@ Command AddModelCommand(CLI::App& app);
 Command AddInspectCommand(CLI::App& app);
 Command AddProcessCommand(CLI::App& app);
 Command AddDemoCommand(CLI::App& app);
+Command AddReportCommand(CLI::App& app);
 
 /// Parses "WxH" (e.g. "648x486"); nullopt when malformed or not positive.
 std::optional<std::pair<int, int>> ParseSize(const std::string& text);

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
       sewer3d::cli::AddRgbdCommand(app),     sewer3d::cli::AddRegisterCommand(app),
       sewer3d::cli::AddModelCommand(app),    sewer3d::cli::AddInspectCommand(app),
       sewer3d::cli::AddProcessCommand(app),  sewer3d::cli::AddDemoCommand(app),
+      sewer3d::cli::AddReportCommand(app),
   };
   try {
     app.parse(argc, argv);
