@@ -272,13 +272,13 @@ expect_error "model.json" "$bin" evaluate model --run "$tmp/rg/run" --workspace 
 
 # report: a workspace without a model still gets its page, and one warning line naming model.json
 mkdir -p "$tmp/rep/ws"
-"$bin" report "$tmp/rep/run" --out "$tmp/rep/ws" --quiet >"$tmp/out" 2>"$tmp/err" ||
+"$bin" report "$tmp/rg/run" --out "$tmp/rep/ws" --quiet >"$tmp/out" 2>"$tmp/err" ||
   fail "report without a model exited $?"
 [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "report without maps: .*model.json" "$tmp/err" ||
   fail "report without a model: no one-line warning naming model.json: $(cat "$tmp/err")"
 grep -q "The model could not be read" "$tmp/rep/ws/report/index.html" 2>/dev/null ||
   fail "report without a model: no page with the note"
-expect_file_error "$tmp/rep/none" "workspace folder not found" "$bin" report "$tmp/rep/run" --out "$tmp/rep/none"
+expect_file_error "$tmp/rep/none" "workspace folder not found" "$bin" report "$tmp/rg/run" --out "$tmp/rep/none"
 
 if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
 echo "all CLI checks passed"

@@ -13,6 +13,9 @@
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
+#include "sewer3d/io/run_io.hpp"
+#include "sewer3d/pipeline/report_stage.hpp"
+#include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/io/atomic_file.hpp"
@@ -100,6 +103,10 @@ int RunDemo(const DemoArgs& a) {
   RunEvaluateModel(run.string(), ws.string(), "", 0);
   RunEvaluateInspection(run.string(), ws.string(), "");
   const double evaluate_s = SecondsSince(evaluate_start);
+  // The report again, now with the accuracy section the evaluations wrote.
+  const CaptureRun loaded = LoadRun(run);
+  Workspace workspace(ws, loaded.folder);
+  const ReportStageReport page = RunReportStage(loaded, workspace, false);
 
   std::string times = fmt::format("simulate {:.1f} s{}", simulate_s, simulated ? "" : " (reused)");
   for (const ProcessStageResult& r : report.stages)
@@ -109,6 +116,7 @@ int RunDemo(const DemoArgs& a) {
       SecondsSince(start), a.threads, PeakMemoryGb(), times, evaluate_s);
   const std::string d = dir.string();
   fmt::print("look at:\n");
+  fmt::print("  {}    the inspection report (any browser, offline)\n", page.html.string());
   fmt::print("  {}/ws/model/preview.png            the unrolled pipe: texture over displacement\n",
              d);
   fmt::print("  {}/ws/model/mesh.glb               the displaced 3D model (any glTF viewer)\n", d);

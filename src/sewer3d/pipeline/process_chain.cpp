@@ -74,6 +74,13 @@ ProcessStage InspectProcessStage() {
           }};
 }
 
+ProcessStage ReportProcessStage() {
+  return {"report", [](const ProcessOptions&) { return std::string("{}"); },
+          [](const CaptureRun& run, Workspace& ws, const ProcessOptions& o, const StageProgress&) {
+            return ReportOutcome(RunReportStage(run, ws, o.force));
+          }};
+}
+
 // Recorded done with the options it would run with now, and nothing before it changed.
 bool CanSkip(const Workspace& workspace, const std::string& stage, const std::string& options) {
   const auto it = workspace.record().stages.find(stage);
@@ -102,7 +109,8 @@ void ProcessOptions::Check() const {
 
 const std::vector<ProcessStage>& ProcessStages() {
   static const std::vector<ProcessStage> stages = {RgbdProcessStage(), RegisterProcessStage(),
-                                                   ModelProcessStage(), InspectProcessStage()};
+                                                   ModelProcessStage(), InspectProcessStage(),
+                                                   ReportProcessStage()};
   return stages;
 }
 

@@ -19,6 +19,7 @@
 #include "sewer3d/pipeline/inspect_stage.hpp"
 #include "sewer3d/pipeline/model_stage.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
+#include "sewer3d/pipeline/report_stage.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/run/capture_run.hpp"
@@ -56,6 +57,8 @@ StageOutcome RegisterOutcome(const RegisterStageReport& report,
 StageOutcome ModelOutcome(const ModelStageReport& report, const std::filesystem::path& workspace);
 StageOutcome InspectOutcome(const InspectStageReport& report,
                             const std::filesystem::path& workspace);
+/// The report is always written; a page without maps is a warning line in `details`.
+StageOutcome ReportOutcome(const ReportStageReport& report);
 
 /// One stage of the chain. `options_json` is what the stage records in workspace.json (to
 /// tell whether the record is current); `run` runs it (with `options.threads` and
@@ -68,7 +71,7 @@ struct ProcessStage {
       run;
 };
 
-/// The chain in order: rgbd, register, model, inspect.
+/// The chain in order: rgbd, register, model, inspect, report.
 const std::vector<ProcessStage>& ProcessStages();
 
 /// One stage as the chain met it.

@@ -60,7 +60,7 @@ TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
   EXPECT_EQ(record.stages.at("process").notes.at("failed"), "rgbd");
   EXPECT_EQ(
       record.stages.at("process").options_json,
-      R"({"resolution_mm":0.5,"stages":["rgbd","register","model","inspect"],"start_station_mm":1200.0})");
+      R"({"resolution_mm":0.5,"stages":["rgbd","register","model","inspect","report"],"start_station_mm":1200.0})");
 
   // Mended: the rgbd stage redoes the one acquisition, register, model and inspect run.
   WriteTextFile(image, bytes);
@@ -68,16 +68,18 @@ TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
     Workspace ws(dir / "ws", run.folder);
     const ProcessReport report = RunProcess(run, ws, options);
     EXPECT_TRUE(report.ok);
-    ASSERT_EQ(report.stages.size(), 4u);
+    ASSERT_EQ(report.stages.size(), 5u);
     EXPECT_EQ(report.stages[0].name, "rgbd");
     EXPECT_EQ(report.stages[1].name, "register");
     EXPECT_EQ(report.stages[2].name, "model");
     EXPECT_EQ(report.stages[3].name, "inspect");
+    EXPECT_EQ(report.stages[4].name, "report");
     for (const ProcessStageResult& r : report.stages) EXPECT_FALSE(r.skipped) << r.name;
     EXPECT_NE(report.stages[0].outcome.summary.find("1 done, 11 skipped"), std::string::npos)
         << report.stages[0].outcome.summary;
     EXPECT_TRUE(fs::exists(dir / "ws" / "registration" / "poses.csv"));
     EXPECT_TRUE(fs::exists(dir / "ws" / "inspection" / "observations.json"));
+    EXPECT_TRUE(fs::exists(dir / "ws" / "report" / "index.html"));
     // The model took the chain's grid and start station: the carrier's first position is
     // station 1200, the rearmost camera looks ~315 mm behind it.
     const PipeModelInfo model = ReadModelJson(dir / "ws" / "model" / "model.json");
@@ -86,13 +88,14 @@ TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
     EXPECT_NEAR(model.grid.station0_mm, 1200.0 - 315.0, 30.0);
   }
   record = ReadWorkspaceRecord(dir / "ws" / "workspace.json");
-  for (const char* stage : {"rgbd", "register", "model", "inspect", "process"}) {
+  for (const char* stage : {"rgbd", "register", "model", "inspect", "report", "process"}) {
     SCOPED_TRACE(stage);
     EXPECT_TRUE(record.stages.at(stage).done);
     EXPECT_GT(record.stages.at(stage).seconds, 0.0);
   }
   EXPECT_LE(record.stages.at("rgbd").seconds + record.stages.at("register").seconds +
-                record.stages.at("model").seconds + record.stages.at("inspect").seconds,
+                record.stages.at("model").seconds + record.stages.at("inspect").seconds +
+                record.stages.at("report").seconds,
             record.stages.at("process").seconds);
 
   // Again: every stage recorded done with the same options, none is started.
@@ -100,7 +103,7 @@ TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
     Workspace ws(dir / "ws", run.folder);
     const ProcessReport again = RunProcess(run, ws, options);
     EXPECT_TRUE(again.ok);
-    ASSERT_EQ(again.stages.size(), 4u);
+    ASSERT_EQ(again.stages.size(), 5u);
     for (const ProcessStageResult& r : again.stages) {
       EXPECT_TRUE(r.skipped) << r.name;
       EXPECT_EQ(r.seconds, record.stages.at(r.name).seconds);  // as recorded
@@ -108,7 +111,7 @@ TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
   }
   EXPECT_EQ(
       ReadWorkspaceRecord(dir / "ws" / "workspace.json").stages.at("process").notes.at("skipped"),
-      "rgbd register model inspect");
+      "rgbd register model inspect report");
   if (!std::getenv("SEWER3D_KEEP")) fs::remove_all(dir);
 }
 

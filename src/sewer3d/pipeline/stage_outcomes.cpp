@@ -82,4 +82,18 @@ StageOutcome InspectOutcome(const InspectStageReport& r, const std::filesystem::
   return o;
 }
 
+StageOutcome ReportOutcome(const ReportStageReport& r) {
+  StageOutcome o;
+  o.output = r.html;
+  const ReportSummary& s = r.summary;
+  o.summary = fmt::format(
+      "report: {:.1f} MB; maps {}, 3D viewer {}, {} observations, profile {}; {:.1f} s",
+      static_cast<double>(s.html_bytes) / 1e6, s.maps ? "yes" : "no", s.viewer ? "yes" : "no",
+      r.observations >= 0 ? std::to_string(r.observations) : "no",
+      r.profile_rows >= 0 ? std::to_string(r.profile_rows) + " rows" : "no", r.seconds);
+  for (const std::string& note : s.notes) o.details.push_back("note: " + note);
+  if (!s.maps_problem.empty()) o.details.push_back("warning: report without maps: " + s.maps_problem);
+  return o;
+}
+
 }  // namespace sewer3d

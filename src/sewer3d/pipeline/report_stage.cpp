@@ -1,0 +1,32 @@
+#include "sewer3d/pipeline/report_stage.hpp"
+
+#include <chrono>
+
+#include "sewer3d/io/inspection_io.hpp"
+#include "sewer3d/report/workspace_inputs.hpp"
+
+namespace sewer3d {
+
+ReportStageReport RunReportStage(const CaptureRun& run, Workspace& workspace, bool force) {
+  const auto start = std::chrono::steady_clock::now();
+  workspace.BeginStage("report", "{}", force);
+  const std::filesystem::path ws = workspace.folder();
+  ReportInputs in = GatherReportInputs(ws, run.folder);
+  const InspectionFiles files = InspectionFilesIn(ws);
+  if (std::filesystem::exists(files.profile_csv)) in.profile = ReadProfileCsv(files.profile_csv);
+  if (std::filesystem::exists(files.observations_json))
+    in.observations = ReadObservationsJson(files.observations_json);
+  ReportStageReport r;
+  r.html = workspace.StageFolder("report") / "index.html";
+  r.summary = WriteReport(in, r.html);
+  r.observations = in.observations ? static_cast<int>(in.observations->size()) : -1;
+  r.profile_rows = in.profile ? static_cast<int>(in.profile->rows.size()) : -1;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  workspace.FinishStage("report", true,
+                        {{"maps", r.summary.maps ? "yes" : "no"},
+                         {"viewer", r.summary.viewer ? "yes" : "no"},
+                         {"bytes", std::to_string(r.summary.html_bytes)}});
+  return r;
+}
+
+}  // namespace sewer3d
