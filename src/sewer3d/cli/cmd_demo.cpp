@@ -13,13 +13,12 @@
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
-#include "sewer3d/io/run_io.hpp"
-#include "sewer3d/pipeline/report_stage.hpp"
-#include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/pipeline/report_stage.hpp"
+#include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/simeval/rgbd_evaluation.hpp"
 
 namespace sewer3d::cli {

@@ -12,6 +12,8 @@ ReportStageReport RunReportStage(const CaptureRun& run, Workspace& workspace, bo
   workspace.BeginStage("report", "{}", force);
   const std::filesystem::path ws = workspace.folder();
   ReportInputs in = GatherReportInputs(ws, run.folder);
+  // This stage is under way: its own entry says nothing yet.
+  std::erase_if(in.stages, [](const StageTime& s) { return s.stage == "report"; });
   const InspectionFiles files = InspectionFilesIn(ws);
   if (std::filesystem::exists(files.profile_csv)) in.profile = ReadProfileCsv(files.profile_csv);
   if (std::filesystem::exists(files.observations_json))

@@ -92,7 +92,8 @@ StageOutcome ReportOutcome(const ReportStageReport& r) {
       r.observations >= 0 ? std::to_string(r.observations) : "no",
       r.profile_rows >= 0 ? std::to_string(r.profile_rows) + " rows" : "no", r.seconds);
   for (const std::string& note : s.notes) o.details.push_back("note: " + note);
-  if (!s.maps_problem.empty()) o.details.push_back("warning: report without maps: " + s.maps_problem);
+  if (!s.maps_problem.empty())
+    o.details.push_back("warning: report without maps: " + s.maps_problem);
   return o;
 }
 

@@ -38,7 +38,8 @@ void ReadPictures(const ReportInputs& in, ModelPictures& model) {
   MapDownsampler relief(whole, g.cols, DownsampleFactor(g.rows, o.viewer_rows),
                         DownsampleFactor(g.cols, o.viewer_clocks));
   std::vector<MapDownsampler*> all = {&preview, &relief};
-  const std::vector<Observation> observations = in.observations.value_or(std::vector<Observation>{});
+  const std::vector<Observation> observations =
+      in.observations.value_or(std::vector<Observation>{});
   std::vector<std::optional<MapDownsampler>> crops;
   crops.reserve(observations.size());  // `all` points into it: no reallocation
   for (const Observation& obs : observations) {
