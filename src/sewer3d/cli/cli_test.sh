@@ -270,6 +270,14 @@ expect_error "--start-station-mm" "$bin" model "$tmp/rg/run" --out "$tmp/rg/ws" 
 expect_error "model.json" "$bin" evaluate model --run "$tmp/rg/run" --workspace "$tmp/rg/ws"
 [ "$rc" -eq 3 ] || fail "evaluate model without a model exited $rc, not 3"
 
+# inspect and its evaluation need the model and the inspection: one line naming the file, exit 3
+expect_error "model.json" "$bin" inspect "$tmp/rg/run" --out "$tmp/rg/ws" --quiet
+[ "$rc" -eq 3 ] || fail "inspect without a model exited $rc, not 3"
+expect_error "--intrusion-mm" "$bin" inspect "$tmp/rg/run" --out "$tmp/rg/ws" --intrusion-mm 0
+[ "$rc" -eq 2 ] || fail "inspect --intrusion-mm 0 exited $rc, not 2"
+expect_error "observations.json" "$bin" evaluate inspection --run "$tmp/rg/run" --workspace "$tmp/rg/ws"
+[ "$rc" -eq 3 ] || fail "evaluate inspection without an inspection exited $rc, not 3"
+
 # report: a workspace without a model still gets its page, and one warning line naming model.json
 mkdir -p "$tmp/rep/ws"
 "$bin" report "$tmp/rg/run" --out "$tmp/rep/ws" --quiet >"$tmp/out" 2>"$tmp/err" ||
