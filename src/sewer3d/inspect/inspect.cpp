@@ -40,7 +40,13 @@ Observation JointObservation(const JointMeasure& j, const CoarseMap& map, const 
   const int side = static_cast<int>(opt.side_length_mm / map.RowMm());
   o.crop.row0 = std::max(0, map.FineRow(j.row_begin - side));
   o.crop.rows = std::min(map.fine.rows, map.FineRow(j.row_end + side)) - o.crop.row0;
-  o.crop.cols = map.fine.cols;
+  // A quarter of the turn around where the offset is largest (the whole ring is too long a
+  // strip to look at).
+  const int quarter = map.fine.cols / 4;
+  const int at =
+      static_cast<int>(std::lround(j.offset_clock_rad / (2.0 * std::numbers::pi) * map.fine.cols));
+  o.crop.col0 = ((at - quarter / 2) % map.fine.cols + map.fine.cols) % map.fine.cols;
+  o.crop.cols = quarter;
   o.remark = fmt::format("joint: offset {:.1f} mm at {:.1f} h, gap {:.1f} mm, deflection {:.2f}°",
                          j.offset_mm, o.clock_h, j.gap_mm, j.deflection_deg);
   return o;
