@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -19,6 +20,16 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using json = nlohmann::json;
 constexpr const char* kStage = "inspect";
+
+/// Today's date (UTC) as YYYY-MM-DD.
+std::string TodayUtc() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[16];
+  std::strftime(text, sizeof text, "%Y-%m-%d", &utc);
+  return text;
+}
 
 /// Calls `fn` with each piece of the model's maps (the whole maps, or tile after tile).
 void ForEachPiece(const std::filesystem::path& model_dir, const PipeModelInfo& info,
@@ -156,6 +167,7 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
   WriteObservationsCsv(files.observations_csv, inspection.observations);
   IsybauHeader header;
   header.object_name = run.folder.filename().string();
+  header.creation_date = TodayUtc();
   header.profile_height_mm = header.profile_width_mm = profile.nominal_diameter_mm;
   WriteObservationsIsybau(files.observations_xml, inspection.observations, header);
   // observations.json last: its presence means the stage's files are complete.
