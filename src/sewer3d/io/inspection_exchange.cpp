@@ -6,6 +6,7 @@
 
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/inspection_io.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
 namespace {
@@ -24,35 +25,10 @@ std::string QuantityColumns(const Observation& o, size_t i) {
   return fmt::format("{},{:.3f},{}", CsvText(q.name), q.value, CsvText(q.unit));
 }
 
-std::string XmlText(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 /// An element on its own line at `depth` (two spaces per level).
 void Element(std::string& xml, int depth, const char* name, const std::string& value) {
-  xml += fmt::format("{:{}}<{}>{}</{}>\n", "", 2 * depth, name, XmlText(value), name);
+  xml += fmt::format("{:{}}<{}>{}</{}>\n", "", 2 * depth, name, EscapeMarkup(value), name);
 }
 
 /// EN 13508-2 clock reference: the whole hour 1 … 12, two digits as in ISYBAU files.

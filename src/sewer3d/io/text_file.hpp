@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace sewer3d {
 
@@ -11,5 +12,8 @@ namespace sewer3d {
 std::string ReadTextFile(const std::filesystem::path& path);
 /// Writes the text, creating the file's folder; FileError on failure.
 void WriteTextFile(const std::filesystem::path& path, const std::string& text);
+
+/// `text` as XML / HTML character data or attribute value: & < > " ' as entities.
+std::string EscapeMarkup(std::string_view text);
 
 }  // namespace sewer3d

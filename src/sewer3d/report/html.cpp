@@ -6,35 +6,11 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d::html {
 
-std::string Escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
+std::string Escape(std::string_view text) { return EscapeMarkup(text); }
 
 std::string Base64(std::string_view bytes) {
   static constexpr char kDigits[] =

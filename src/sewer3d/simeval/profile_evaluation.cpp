@@ -6,11 +6,6 @@
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/core/check.hpp"
-#include "sewer3d/io/file_error.hpp"
-#include "sewer3d/io/model_io.hpp"
-#include "sewer3d/io/run_io.hpp"
-#include "sewer3d/simeval/truth_alignment.hpp"
-#include "sewer3d/simio/scenario_io.hpp"
 
 namespace sewer3d {
 
@@ -126,25 +121,6 @@ ProfileEvaluation EvaluateProfileAgainstTruth(const Profile& profile, const Cent
   e.height_mm = Summarise(std::move(height));
   e.width_mm = Summarise(std::move(width));
   return e;
-}
-
-ProfileEvaluation EvaluateProfile(const std::filesystem::path& run_folder,
-                                  const std::filesystem::path& workspace,
-                                  const ProfileOptions& profile_options,
-                                  const ProfileEvaluationOptions& options) {
-  profile_options.Check();
-  options.Check();
-  const std::filesystem::path model_json = workspace / "model" / "model.json";
-  if (!std::filesystem::exists(model_json))
-    throw FileError(model_json, "missing: run the model stage first");
-  const CaptureRun run = LoadRun(run_folder);
-  const TruthAlignment alignment = AlignRegistrationToTruth(run, run_folder, workspace);
-  const PipeGeometry truth(ReadScenario(run_folder / "truth" / "scenario.json").world);
-  const PipeModel model = ReadPipeModel(workspace / "model");
-  const Profile profile =
-      ComputeProfile(model.maps, model.info.centreline.radius_mm, profile_options);
-  return EvaluateProfileAgainstTruth(profile, model.info.centreline, truth,
-                                     alignment.truth_from_model, profile_options, options);
 }
 
 std::string ProfileEvaluationToJson(const ProfileEvaluation& e) {

@@ -83,14 +83,6 @@ ProfileEvaluation EvaluateProfileAgainstTruth(const Profile& profile, const Cent
                                               const ProfileOptions& profile_options,
                                               const ProfileEvaluationOptions& options);
 
-/// Reads the run (rig, truth/), WS/registration/poses.csv and WS/model/, computes the model's
-/// profile with `profile_options` and evaluates it; FileError when a file is missing or
-/// malformed.
-ProfileEvaluation EvaluateProfile(const std::filesystem::path& run_folder,
-                                  const std::filesystem::path& workspace,
-                                  const ProfileOptions& profile_options,
-                                  const ProfileEvaluationOptions& options);
-
 /// The summaries and the per-row errors as JSON text.
 std::string ProfileEvaluationToJson(const ProfileEvaluation& evaluation);
 
