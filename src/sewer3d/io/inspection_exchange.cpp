@@ -25,7 +25,6 @@ std::string QuantityColumns(const Observation& o, size_t i) {
   return fmt::format("{},{:.3f},{}", CsvText(q.name), q.value, CsvText(q.unit));
 }
 
-
 /// An element on its own line at `depth` (two spaces per level).
 void Element(std::string& xml, int depth, const char* name, const std::string& value) {
   xml += fmt::format("{:{}}<{}>{}</{}>\n", "", 2 * depth, name, EscapeMarkup(value), name);
