@@ -10,18 +10,12 @@
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/inspect/components.hpp"
+#include "sewer3d/inspect/robust_stats.hpp"
 
 namespace sewer3d {
 namespace {
 
 constexpr double kTurn = 2.0 * std::numbers::pi;
-
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::ptrdiff_t>(std::lround(q * (v.size() - 1)));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
-}
 
 /// Where coarse cells lie on the wall.
 struct Wall {
@@ -43,12 +37,6 @@ struct Wall {
   }
   [[nodiscard]] int Wrap(int ucol) const { return ((ucol % Cols()) + Cols()) % Cols(); }
 };
-
-double ToClockH(double rad) {
-  const double h = std::fmod(rad / kTurn * 12.0, 12.0);
-  const double wrapped = h < 0.0 ? h + 12.0 : h;
-  return wrapped == 0.0 ? 12.0 : wrapped;
-}
 
 std::vector<double> SignedValues(const cv::Mat1f& res, const Wall& wall,
                                  const std::vector<cv::Point>& cells, double sign) {
@@ -84,9 +72,9 @@ Observation Describe(const Wall& wall, const cv::Mat1f& res, const MapComponent&
   }
   o.station_mm = wall.Station(0.5 * (comp.row_min + comp.row_max));
   o.length_mm = (comp.row_max - comp.row_min + 1) * wall.RowMm();
-  o.clock_h = ToClockH(wall.Clock(peak.x));
-  o.clock_from_h = ToClockH(wall.Clock(comp.col_min - 0.5));
-  o.clock_to_h = ToClockH(wall.Clock(comp.col_max + 0.5));
+  o.clock_h = ClockRadToHours(wall.Clock(peak.x));
+  o.clock_from_h = ClockRadToHours(wall.Clock(comp.col_min - 0.5));
+  o.clock_to_h = ClockRadToHours(wall.Clock(comp.col_max + 0.5));
   const int margin = 5, f = wall.map.factor;
   o.crop.row0 = std::max(0, (comp.row_min - margin) * f);
   o.crop.rows = std::min(wall.map.fine.rows, (comp.row_max + 1 + margin) * f) - o.crop.row0;
@@ -135,7 +123,7 @@ Observation Connection(const Wall& wall, const cv::Mat1f& res, const ConnectionP
   // bridges the lateral's end, the bore's depth is smeared over it).
   const double bore = (row_max - row_min + 1) * wall.RowMm();
   o.station_mm = wall.Station(0.5 * (row_min + row_max));
-  o.clock_h = ToClockH(wall.Clock(0.5 * (parts.box.col_min + parts.box.col_max)));
+  o.clock_h = ClockRadToHours(wall.Clock(0.5 * (parts.box.col_min + parts.box.col_max)));
   if (intruding) {
     o.code = "BAG";
     o.quantities = {{"intrusion_pct_of_dn", 100.0 * intrusion / dn, "%"},
@@ -322,7 +310,7 @@ std::vector<Observation> FindDefects(const CoarseMap& map, const cv::Mat1f& resi
   for (std::size_t i = 0; i < inward.size(); ++i) {
     const MapComponent& c = inward[i];
     if (used_in[i] || static_cast<double>(c.cells.size()) < min_cells) continue;
-    const double clock = ToClockH(wall.Clock(0.5 * (c.col_min + c.col_max)));
+    const double clock = ClockRadToHours(wall.Clock(0.5 * (c.col_min + c.col_max)));
     if (std::abs(clock - 6.0) <= options.invert_half_h) {
       out.push_back(Deposit(wall, residual, c, nominal_diameter_mm, in_high));
       continue;

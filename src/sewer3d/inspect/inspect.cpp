@@ -10,15 +10,10 @@
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/inspect/ring_fit.hpp"
+#include "sewer3d/inspect/robust_stats.hpp"
 
 namespace sewer3d {
 namespace {
-
-double ClockH(double rad) {
-  const double h = std::fmod(rad * 6.0 / std::numbers::pi, 12.0);
-  const double wrapped = h < 0.0 ? h + 12.0 : h;
-  return wrapped < 1e-9 ? 12.0 : wrapped;
-}
 
 Observation JointObservation(const JointMeasure& j, const CoarseMap& map, const JointOptions& opt) {
   Observation o;
@@ -27,12 +22,12 @@ Observation JointObservation(const JointMeasure& j, const CoarseMap& map, const 
       j.offset_mm >= opt.min_offset_mm ? 'B' : (j.deflection_deg >= 1.0 ? 'C' : 'A');
   o.characterisation = std::string(1, letter);
   o.station_mm = j.station_mm;
-  o.clock_h = o.clock_from_h = o.clock_to_h = ClockH(j.offset_clock_rad);
+  o.clock_h = o.clock_from_h = o.clock_to_h = ClockRadToHours(j.offset_clock_rad);
   o.at_joint = true;
   o.quantities = {{"offset_mm", j.offset_mm, "mm"},
                   {"gap_mm", j.gap_mm, "mm"},
                   {"deflection_deg", j.deflection_deg, "deg"},
-                  {"deflection_clock_h", ClockH(j.deflection_clock_rad), "h"},
+                  {"deflection_clock_h", ClockRadToHours(j.deflection_clock_rad), "h"},
                   {"gap_depth_mm", j.gap_depth_mm, "mm"}};
   const double strength =
       std::max(j.gap_depth_mm / opt.min_gap_depth_mm, j.offset_mm / opt.min_offset_mm);
@@ -79,11 +74,7 @@ bool Deformation(const CoarseMap& map, const std::vector<RingFit>& fits, const R
   }
   if (k[0].size() < 10) return false;
   double med[5];
-  for (int j = 0; j < 5; ++j) {
-    std::nth_element(k[j].begin(), k[j].begin() + static_cast<std::ptrdiff_t>(k[j].size() / 2),
-                     k[j].end());
-    med[j] = k[j][k[j].size() / 2];
-  }
+  for (int j = 0; j < 5; ++j) med[j] = Median(k[j]);
   // Diameter along θ: 2 (R + a0 + c2 cos 2θ + s2 sin 2θ); the axis terms cancel.
   const double amp = std::hypot(med[3], med[4]), phase = std::atan2(med[4], med[3]);
   auto diameter = [&](double th) {
@@ -97,7 +88,7 @@ bool Deformation(const CoarseMap& map, const std::vector<RingFit>& fits, const R
   o.characterisation = vertical >= std::sqrt(0.5) ? "A" : "B";
   o.station_mm = map.fine.station0_mm + s.begin * map.RowMm();
   o.length_mm = (s.end - s.begin) * map.RowMm();
-  o.clock_h = ClockH(theta_min);
+  o.clock_h = ClockRadToHours(theta_min);
   o.clock_from_h = o.clock_to_h = o.clock_h;
   o.quantities = {
       {"deformation_pct", reduction, "%"},

@@ -6,15 +6,11 @@
 
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/inspect/joints.hpp"
+#include "sewer3d/inspect/robust_stats.hpp"
+#include "sewer3d/model/unroll.hpp"
 
 namespace sewer3d {
 namespace {
-
-double WrapAngle(double a) {
-  const double turn = 2.0 * std::numbers::pi;
-  a = std::fmod(a, turn);
-  return a < 0.0 ? a + turn : a;
-}
 
 /// Least-squares line d = value + slope · x through the column's finite values at x.
 struct SideLine {
@@ -71,13 +67,6 @@ Sides FitSides(const CoarseMap& map, double station_mm, double gap_mm, const Joi
   return sides;
 }
 
-double MedianOf(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
-
 struct GapMeasure {
   double gap_mm = 0.0;     ///< median over columns of the open length between the side lines
   double depth_mm = 0.0;   ///< of its bottom where seen (0 where not)
@@ -86,6 +75,7 @@ struct GapMeasure {
 
 GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_mm,
                       double half_window_mm, const JointOptions& o, const std::vector<double>& x) {
+  if (sides.cols.empty()) return {};
   const double row_mm = map.RowMm(), s0 = map.fine.station0_mm;
   const int r0 =
       std::max(0, static_cast<int>(std::floor((station_mm - half_window_mm - s0) / row_mm)));
@@ -101,7 +91,7 @@ GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_m
     }
     deepest.push_back(most);
   }
-  const double bottom = MedianOf(deepest);
+  const double bottom = Median(deepest);
   const bool seen = bottom >= 4.0 * o.min_gap_depth_mm;
   std::vector<double> widths, centres;
   for (std::size_t i = 0; i < sides.cols.size(); ++i) {
@@ -120,7 +110,7 @@ GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_m
     widths.push_back(open * row_mm);
     if (open > 0.0) centres.push_back(moment / open);
   }
-  return {MedianOf(widths), seen ? bottom : 0.0, MedianOf(centres)};
+  return {Median(widths), seen ? bottom : 0.0, centres.empty() ? 0.0 : Median(centres)};
 }
 
 }  // namespace
@@ -159,7 +149,7 @@ JointMeasure MeasureJoint(const CoarseMap& map, const Centreline& centreline, do
   const Eigen::VectorXd k_bend = RobustHarmonicFit(theta, bend, 1);
   if (k_step.size() != 3 || k_bend.size() != 3) return m;
   m.offset_mm = std::hypot(k_step(1), k_step(2));
-  m.offset_clock_rad = WrapAngle(std::atan2(-k_step(2), -k_step(1)));
+  m.offset_clock_rad = WrapClock(std::atan2(-k_step(2), -k_step(1)));
   // An axis turning toward clock c moves the wall there outward along the pipe (slope +α at c,
   // −α opposite). The slopes are relative to the model's centreline: add its own turn.
   const AxisFrame f0 = centreline.FrameAt(station_mm - inner - 0.5 * o.side_length_mm);
@@ -168,7 +158,7 @@ JointMeasure MeasureJoint(const CoarseMap& map, const Centreline& centreline, do
   const Eigen::Vector3d turn = f1.tangent - f0.tangent;
   const Eigen::Vector2d v(k_bend(1) + turn.dot(at.crown), k_bend(2) + turn.dot(at.right));
   m.deflection_deg = RadToDeg(std::atan(v.norm()));
-  m.deflection_clock_rad = WrapAngle(std::atan2(v.y(), v.x()));
+  m.deflection_clock_rad = WrapClock(std::atan2(v.y(), v.x()));
   return m;
 }
 

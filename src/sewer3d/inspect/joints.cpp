@@ -6,18 +6,12 @@
 #include <limits>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/inspect/robust_stats.hpp"
 
 namespace sewer3d {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double MedianOf(std::vector<double>& v) {
-  if (v.empty()) return kNaN;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 /// Per row: among the clock columns measured on both sides within ± w rows, the share where
 /// the row is missing or lies more than min_depth_mm deeper than the column's median there.
@@ -42,7 +36,7 @@ std::vector<double> GapShare(const cv::Mat1f& d, int w, double min_depth_mm) {
       for (int j = std::max(0, r - w); j <= std::min(d.rows - 1, r + w); ++j) {
         if (std::isfinite(d(j, c))) window.push_back(d(j, c));
       }
-      if (d(r, c) - MedianOf(window) > min_depth_mm) ++open[r];
+      if (d(r, c) - Median(window) > min_depth_mm) ++open[r];
     }
   }
   for (int r = 0; r < d.rows; ++r) {

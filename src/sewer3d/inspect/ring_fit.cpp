@@ -6,18 +6,12 @@
 #include <limits>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/inspect/robust_stats.hpp"
 
 namespace sewer3d {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 Eigen::VectorXd Basis(double theta, int order) {
   Eigen::VectorXd b(1 + 2 * order);
