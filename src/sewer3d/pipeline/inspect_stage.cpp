@@ -6,6 +6,7 @@
 #include <ctime>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
@@ -31,12 +32,14 @@ std::string TodayUtc() {
   return text;
 }
 
-/// Calls `fn` with each piece of the model's maps (the whole maps, or tile after tile).
+/// Calls `fn` with each piece of the model's maps: `whole` when the model has whole-run maps
+/// (read once by the caller and used for both passes), else tile after tile.
 void ForEachPiece(const std::filesystem::path& model_dir, const PipeModelInfo& info,
+                  const std::optional<PipeMaps>& whole,
                   const std::function<void(const PipeMaps&)>& fn, const InspectProgress& progress,
                   const std::string& pass) {
-  if (info.whole_maps) {
-    fn(ReadMapFiles(WholeMapFiles(model_dir), info.grid));
+  if (whole) {
+    fn(*whole);
     if (progress) progress(pass, 1, 1);
     return;
   }
@@ -145,8 +148,10 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
 
   CoarseMapBuilder coarse(info.grid, options.inspect.cell_mm);
   Profile profile;
+  std::optional<PipeMaps> whole;
+  if (info.whole_maps) whole = ReadMapFiles(WholeMapFiles(model_dir), info.grid);
   ForEachPiece(
-      model_dir, info,
+      model_dir, info, whole,
       [&](const PipeMaps& piece) {
         coarse.Add(piece);
         const Profile part = ComputeProfile(piece, info.centreline.radius_mm, options.profile);
@@ -158,7 +163,7 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
 
   Crops crops(inspection.observations, info.grid, info.view_range_mm);
   ForEachPiece(
-      model_dir, info, [&](const PipeMaps& piece) { crops.Add(piece); }, progress, "crops");
+      model_dir, info, whole, [&](const PipeMaps& piece) { crops.Add(piece); }, progress, "crops");
   for (std::size_t i = 0; i < inspection.observations.size(); ++i) {
     WriteImage(files.folder / "crops" / (inspection.observations[i].id + ".png"),
                crops.Image(i, options.max_crop_side_px));
