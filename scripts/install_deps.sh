@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libopencv-dev libopencv-contrib-dev libceres-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libtbb-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libspectra-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libspectra-dev zlib1g-dev
   clang-format clang-tidy python3
   chromium
 )

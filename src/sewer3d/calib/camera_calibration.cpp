@@ -23,6 +23,8 @@ std::vector<Eigen::Vector3d> BoardCorners(int cols, int rows, double square_mm) 
   return corners;
 }
 
+constexpr double kMaxRelativeFocalSigma = 0.05;
+
 CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views,
                                   const std::vector<Eigen::Vector3d>& board, int width, int height,
                                   const CalibrationOptions& options) {
@@ -97,8 +99,22 @@ CalibrationResult CalibrateCamera(const std::vector<CalibrationView>& views,
       result.sigma[i] = std::sqrt(std::max(0.0, cfc[i * 4 + i] * variance));
     for (int i = 0; i < 3; ++i)
       result.sigma[4 + i] = std::sqrt(std::max(0.0, ck[i * 3 + i] * variance));
+    result.constrained = std::isfinite(result.sigma[0]) &&
+                         result.sigma[0] < kMaxRelativeFocalSigma * result.intrinsics.fx;
   }
   return result;
+}
+
+int RepeatedView(const std::vector<CalibrationView>& views, const CalibrationView& view,
+                 double tolerance_px) {
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (views[v].corners_px.size() != view.corners_px.size()) continue;
+    bool same = true;
+    for (size_t i = 0; i < view.corners_px.size() && same; ++i)
+      same = (views[v].corners_px[i] - view.corners_px[i]).norm() <= tolerance_px;
+    if (same) return static_cast<int>(v);
+  }
+  return -1;
 }
 
 }  // namespace sewer3d

@@ -32,7 +32,15 @@ struct CalibrationResult {
   std::array<double, 7> sigma{};
   int iterations = 0;
   bool converged = false;
+  /// The views fix the intrinsics: the covariance exists and σ(fx) is below 5 % of fx. False
+  /// for one pose repeated or boards that never tilt: a focal length from those is a guess.
+  bool constrained = false;
 };
+
+/// Index of the view in `views` that `view` repeats (every corner within tolerance_px: the
+/// same image twice, or a board that did not move), or -1.
+int RepeatedView(const std::vector<CalibrationView>& views, const CalibrationView& view,
+                 double tolerance_px = 0.5);
 
 struct CalibrationOptions {
   bool fix_k3 = false;  ///< estimate only k1, k2

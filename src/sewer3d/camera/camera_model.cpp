@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <tuple>
 
 #include "sewer3d/core/check.hpp"
 
@@ -47,6 +49,36 @@ void CameraIntrinsics::Check() const {
   SEWER3D_VALIDATE(std::isfinite(cx), "cx", "must be finite");
   SEWER3D_VALIDATE(std::isfinite(cy), "cy", "must be finite");
   for (double ki : k) SEWER3D_VALIDATE(std::isfinite(ki), "k", "must hold finite numbers");
+  SEWER3D_VALIDATE(width <= kMaxImageSide && height <= kMaxImageSide, "width",
+                   "an image of " << width << " x " << height << " px is larger than any camera ("
+                                  << kMaxImageSide << " px a side at most)");
+  // A field of view between 1° and 170°: outside it the focal length is a typo or a unit slip.
+  const auto fov_deg = [](double side, double f) {
+    return 2.0 * std::atan(side / (2.0 * f)) * 180 / M_PI;
+  };
+  for (const auto& [name, side, f] : {std::tuple{"fx", width, fx}, std::tuple{"fy", height, fy}}) {
+    const double fov = fov_deg(side, f);
+    SEWER3D_VALIDATE(
+        fov >= 1.0 && fov <= 170.0, name,
+        f << " px gives a field of view of " << fov << "° over " << side << " px; allowed 1..170°");
+  }
+  SEWER3D_VALIDATE(cx >= -0.5 && cx <= width - 0.5, "cx",
+                   "the principal point must lie in the image (0.." << width << "), got " << cx);
+  SEWER3D_VALIDATE(cy >= -0.5 && cy <= height - 0.5, "cy",
+                   "the principal point must lie in the image (0.." << height << "), got " << cy);
+  // The radial polynomial may fold back in the image's corners (those pixels are refused), but
+  // not inside the circle the image's sides enclose: most of the image would be ambiguous.
+  const double fold = FindFoldRadius(k);
+  if (std::isfinite(fold)) {
+    const double fold_distorted =
+        fold * (1.0 + fold * fold * (k[0] + fold * fold * (k[1] + fold * fold * k[2])));
+    const double inscribed = std::min(std::min(cx + 0.5, width - 0.5 - cx) / fx,
+                                      std::min(cy + 0.5, height - 0.5 - cy) / fy);
+    SEWER3D_VALIDATE(fold_distorted > inscribed, "k",
+                     "the radial distortion folds back at normalised radius "
+                         << fold_distorted << ", inside the image (its sides are at " << inscribed
+                         << "): two rays would share most pixels");
+  }
 }
 
 CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intrinsics) {

@@ -20,6 +20,8 @@ namespace sewer3d {
 
 /// Image size and intrinsic parameters (pixels) of a camera or projector.
 struct CameraIntrinsics {
+  /// Largest image side accepted (any camera or projector is far below).
+  static constexpr int kMaxImageSide = 1 << 15;
   int width = 0;                           ///< image width, px
   int height = 0;                          ///< image height, px
   double fx = 0.0, fy = 0.0;               ///< focal lengths, px

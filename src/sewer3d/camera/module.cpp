@@ -25,6 +25,17 @@ void ModuleDescription::Check() const {
   CheckWithin("pattern.", [&] { pattern.Check(); });
   SEWER3D_VALIDATE(projector_from_camera.translation.allFinite(),
                    "projector_from_camera.translation_mm", "must be finite");
+  // Triangulation needs a baseline; one beyond a metre is no inspection module (and makes the
+  // disparity search unbounded).
+  const double baseline = projector_from_camera.translation.norm();
+  SEWER3D_VALIDATE(baseline >= kMinBaselineMm && baseline <= kMaxBaselineMm,
+                   "projector_from_camera.translation_mm",
+                   "the baseline is " << baseline << " mm; allowed " << kMinBaselineMm << ".."
+                                      << kMaxBaselineMm << " mm");
+  SEWER3D_VALIDATE(
+      pattern.pitch_px >= 1.0 && pattern.pitch_px <= std::min(projector.width, projector.height),
+      "pattern.pitch_px",
+      "must be between 1 px and the projector's size, got " << pattern.pitch_px);
   SEWER3D_VALIDATE(std::abs(projector_from_camera.rotation.norm() - 1.0) < 1e-9,
                    "projector_from_camera.rotation", "must be a rotation");
 }

@@ -28,6 +28,8 @@ struct PatternLayout {
 };
 
 struct ModuleDescription {
+  /// Accepted baseline (projector centre to camera centre), mm; the paper's is 77.6 mm.
+  static constexpr double kMinBaselineMm = 1.0, kMaxBaselineMm = 1000.0;
   CameraIntrinsics camera;
   CameraIntrinsics projector;
   /// X_projector = R X_camera + t (mm).

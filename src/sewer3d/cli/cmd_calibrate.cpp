@@ -41,7 +41,7 @@ int RunCamera(const CameraArgs& a) {
   std::vector<cv::Mat> greys;
   cv::Size size;
   for (const std::string& path : a.images) {
-    const cv::Mat grey = ReadImage(path, cv::IMREAD_GRAYSCALE);
+    const cv::Mat grey = ReadImage(path, cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
     if (size.empty()) size = grey.size();
     if (grey.size() != size) {
       throw FileError(path,
@@ -54,19 +54,31 @@ int RunCamera(const CameraArgs& a) {
       file.skipped.push_back(path);
       continue;
     }
+    if (const int same = RepeatedView(views, {*corners}); same >= 0) {
+      fmt::print("{}: the board lies where it did in {}, skipped\n", path, file.images[same]);
+      file.skipped.push_back(path);
+      continue;
+    }
     views.push_back({*corners});
     greys.push_back(grey);
     file.images.push_back(path);
   }
   if (views.size() < 3) {
-    fmt::print(
-        stderr,
-        "sewer3d: error: the board was found in {} of {} images; calibration needs at least 3\n",
-        views.size(), a.images.size());
+    fmt::print(stderr,
+               "sewer3d: error: the board was found in {} distinct poses of {} images; "
+               "calibration needs at least 3\n",
+               views.size(), a.images.size());
     return 1;
   }
   file.result = CalibrateCamera(views, board, size.width, size.height);
   const CalibrationResult& r = file.result;
+  if (!r.constrained) {
+    fmt::print(stderr,
+               "sewer3d: error: the {} views do not fix the focal length (σ fx {:.3g} px of "
+               "{:.1f}); show the board tilted in different directions\n",
+               views.size(), r.sigma[0], r.intrinsics.fx);
+    return 1;
+  }
   WriteCameraCalibration(a.out, file);
   const std::filesystem::path folder = std::filesystem::path(a.out).parent_path();
   if (!a.no_pictures) {
@@ -127,7 +139,7 @@ int RunModule(const ModuleArgs& a) {
   // predict the lattice and pick the pattern tile.
   ModuleDescription nominal;
   BinaryArray pattern;
-  const cv::Mat first = ReadImage(poses[0] / "texture.png", cv::IMREAD_GRAYSCALE);
+  const cv::Mat first = ReadImage(poses[0] / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
   if (!a.nominal.empty()) {
     LoadedModule loaded = LoadModule(a.nominal);
     nominal = loaded.module;
@@ -151,7 +163,7 @@ int RunModule(const ModuleArgs& a) {
   ModuleCalibrator calibrator(nominal, pattern, InferConstraints(pattern), board_layout);
   std::vector<std::string> used;
   for (const fs::path& pose : poses) {
-    const cv::Mat texture = ReadImage(pose / "texture.png", cv::IMREAD_GRAYSCALE);
+    const cv::Mat texture = ReadImage(pose / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
     const cv::Mat pattern_image = ReadGreyImage(pose / "pattern.png");
     if (texture.size() != first.size() || pattern_image.size() != first.size()) {
       throw FileError(pose, "images differ in size from the first pose's");

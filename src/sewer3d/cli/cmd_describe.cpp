@@ -4,6 +4,8 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/summary.hpp"
@@ -59,9 +61,12 @@ Command AddDescribeCommand(CLI::App& app) {
   return {sub, [module_path, rig] {
             const LoadedModule loaded = LoadModule(*module_path);
             fmt::print("{}: valid module file\n", *module_path);
-            const bool ok = PrintModuleSummary(loaded.module, loaded.pattern);
+            const std::string problem = PrintModuleSummary(loaded.module, loaded.pattern);
             if (*rig) PrintRigOverlap(loaded.module);
-            return ok ? 0 : 1;
+            if (problem.empty()) return 0;
+            std::fflush(stdout);
+            fmt::print(stderr, "sewer3d: error: {}: {}\n", *module_path, problem);
+            return 1;
           }};
 }
 

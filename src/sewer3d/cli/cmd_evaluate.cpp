@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
@@ -79,6 +80,9 @@ Command AddEvaluateCommand(CLI::App& app) {
               return RunEvaluateInspection(args->run, args->workspace, args->out);
             }
             if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
+            // Every input read before any work: a bad --truth fails at once.
+            std::optional<Scene> truth;
+            if (!args->truth.empty()) truth = ReadScene(args->truth);
             const auto all = ReadPlyPoints(args->cloud);
             const auto points = InnerPoints(all, args->inner_fraction);
             if (points.size() < 10)
@@ -100,7 +104,9 @@ Command AddEvaluateCommand(CLI::App& app) {
             } else {
               const auto fit = FitCylinder(points, Eigen::Vector3d::UnitY());
               if (!fit || !fit->converged)
-                throw FileError(args->cloud, "cylinder fit did not converge");
+                throw FileError(args->cloud,
+                                "no cylinder fits the points (identical or collinear points, "
+                                "or the fit did not converge)");
               fmt::print(
                   "cylinder   diameter {:.3f} mm, axis ({:.4f}, {:.4f}, {:.4f}) through ({:.2f}, "
                   "{:.2f}, {:.2f}) mm\n",
@@ -108,15 +114,15 @@ Command AddEvaluateCommand(CLI::App& app) {
                   fit->axis_direction.z(), fit->axis_point.x(), fit->axis_point.y(),
                   fit->axis_point.z());
               fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
-              if (!args->truth.empty()) {
-                const Scene scene = ReadScene(args->truth);
+              if (truth) {
+                const Scene& scene = *truth;
                 fmt::print("truth      diameter {:.3f} mm: error {:+.3f} mm ({:+.3f} %)\n",
                            scene.diameter_mm, 2 * fit->radius_mm - scene.diameter_mm,
                            100 * (2 * fit->radius_mm - scene.diameter_mm) / scene.diameter_mm);
               }
             }
-            if (!args->truth.empty()) {
-              const Scene scene = ReadScene(args->truth);
+            if (truth) {
+              const Scene& scene = *truth;
               double sum2 = 0.0, worst = 0.0;
               int beyond_1mm = 0;
               for (const auto& p : all) {

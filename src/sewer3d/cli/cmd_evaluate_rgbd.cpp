@@ -8,6 +8,7 @@
 
 #include "sewer3d/cli/evaluate_commands.hpp"
 #include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/simeval/rgbd_evaluation.hpp"
@@ -17,9 +18,17 @@ namespace sewer3d::cli {
 int RunEvaluateRgbd(const std::string& run_folder, const std::string& workspace,
                     const std::string& out, int smoothing_px) {
   const CaptureRun run = LoadRun(run_folder);
+  const std::filesystem::path rgbd = std::filesystem::path(workspace) / "rgbd";
+  if (!std::filesystem::is_directory(rgbd))
+    throw FileError(rgbd, "no such folder: run `sewer3d rgbd` (or `process`) first");
   RgbdEvaluationOptions options;
   options.colour_smoothing_px = smoothing_px;
   const RgbdEvaluation e = EvaluateRgbd(run, workspace, options);
+  if (e.acquisitions == 0) {
+    fmt::print(stderr, "sewer3d: error: {}: no acquisition of {} has RGB-D results to evaluate\n",
+               rgbd.string(), run_folder);
+    return 1;
+  }
   const std::filesystem::path folder =
       out.empty() ? std::filesystem::path(workspace) / "evaluation" / "rgbd"
                   : std::filesystem::path(out);

@@ -2,8 +2,11 @@
 
 #include <fmt/core.h>
 
+#include <charconv>
 #include <filesystem>
+#include <string_view>
 
+#include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/summary.hpp"
@@ -15,13 +18,23 @@
 namespace sewer3d::cli {
 
 std::optional<std::pair<int, int>> ParseSize(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
-      w <= 0 || h <= 0) {
-    return std::nullopt;
-  }
-  return std::make_pair(w, h);
+  // Digits only, each side 1..32768: "4294967936x480" must not wrap to 640 x 480.
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) return std::nullopt;
+  const auto side = [](std::string_view digits) -> std::optional<int> {
+    int value = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (digits.empty() || digits[0] == '+' || digits[0] == '-' || ec != std::errc() ||
+        end != digits.data() + digits.size() || value <= 0 ||
+        value > CameraIntrinsics::kMaxImageSide) {
+      return std::nullopt;
+    }
+    return value;
+  };
+  const std::string_view view(text);
+  const auto w = side(view.substr(0, x)), h = side(view.substr(x + 1));
+  if (!w || !h) return std::nullopt;
+  return std::make_pair(*w, *h);
 }
 
 Command AddModuleCommand(CLI::App& app) {

@@ -26,7 +26,16 @@ Command AddPatternCommand(CLI::App& app) {
       "pattern", "Search a perfect-submap spot array (Morano et al.) and write it as a PNG");
   auto& s = args->search;
   sub->add_option("--out", args->out, "Matrix PNG to write; a .json report goes beside it")
-      ->required();
+      ->required()
+      ->check(CLI::Validator(
+          [](std::string& name) {
+            // The matrix must survive exactly: a lossy format would change spots.
+            return std::filesystem::path(name).extension() == ".png"
+                       ? std::string()
+                       : "the matrix is written losslessly as PNG: end the name in .png, got " +
+                             name;
+          },
+          "PNG"));
   sub->add_option("--window", s.constraints.window, "Codeword window side, elements")
       ->capture_default_str()
       ->check(CLI::Range(2, 8));
@@ -44,6 +53,7 @@ Command AddPatternCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(2, 4096));
   sub->add_option("--seed", s.seed, "Random seed (the search is deterministic for a seed)")
+      ->check(Digits())
       ->capture_default_str();
   sub->add_option("--max-moves", s.max_moves, "Give up after this many moves")
       ->capture_default_str()

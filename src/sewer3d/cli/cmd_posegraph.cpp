@@ -97,14 +97,16 @@ Command AddPoseGraphCommand(CLI::App& app) {
             fmt::print("termination {}\n", r.termination);
             fmt::print("usable      {}\n", r.usable ? "yes" : "no");
             if (options.certify) PrintCertificate(r);
-            WriteG2o(args->out, graph);
-            fmt::print("wrote {}\n", args->out);
-            if (!r.usable) {
+            if (!r.usable) {  // nothing written: a file at --out would pass for a result
+              std::fflush(stdout);
               fmt::print(stderr,
-                         "sewer3d: error: {}: optimisation did not give a usable solution ({})\n",
-                         args->in, r.termination);
+                         "sewer3d: error: {}: optimisation did not give a usable solution ({}); "
+                         "{} not written\n",
+                         args->in, r.termination, args->out);
               return 1;
             }
+            WriteG2o(args->out, graph);
+            fmt::print("wrote {}\n", args->out);
             return 0;
           }};
 }

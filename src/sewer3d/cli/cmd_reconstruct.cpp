@@ -42,7 +42,7 @@ Command AddReconstructCommand(CLI::App& app) {
         }
         cv::Mat3b texture;
         if (!args->texture.empty()) {
-          texture = ReadImage(args->texture, cv::IMREAD_COLOR);
+          texture = ReadImage(args->texture, cv::IMREAD_COLOR, kMaxCameraPixels);
           if (texture.size() != image.size())
             throw FileError(args->texture, "texture size differs from the pattern image");
         }

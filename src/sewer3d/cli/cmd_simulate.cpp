@@ -79,13 +79,16 @@ void AddRunCommand(CLI::App& sim, RunArgs& a) {
           ->check(CLI::IsMember(PresetNames()));
   scenario->excludes(preset);
   run->add_option("--out", a.out, "Run folder to write")->required();
-  run->add_option("--seed", a.seed, "Seed (overrides the scenario's)");
+  run->add_option("--seed", a.seed, "Seed (overrides the scenario's)")->check(Digits());
   run->add_option("--module", a.module, "Module file for every module (overrides the scenario's)")
       ->check(CLI::ExistingFile);
   run->add_option("--supersampling", a.supersampling,
                   "S x S samples per pixel (overrides the scenario's)")
       ->check(CLI::Range(1, 16));
   run->add_flag("--quiet", a.quiet, "No progress bar");
+  run->add_flag("--allow-large", a.allow_large,
+                "Run even when the plan exceeds 200 000 images, 20 M odometry rows or the free "
+                "disk space");
 }
 
 }  // namespace
@@ -122,11 +125,24 @@ int RunRun(const RunArgs& a) {
   // What only the simulation can check (the rig's fit, the capture plan) is still the scenario
   // file's error.
   SimulatedRun r;
+  RunSizeEstimate size;
+  auto estimate = [&] { size = EstimateRunSize(s, module); };
   auto simulate = [&] { r = SimulateRun(s, module, pattern, a.out, progress); };
-  if (a.scenario.empty())
-    simulate();
-  else
-    ValidateFileContents(a.scenario, simulate);
+  const auto in_scenario = [&](const auto& step) {
+    if (a.scenario.empty())
+      step();
+    else
+      ValidateFileContents(a.scenario, step);
+  };
+  in_scenario(estimate);
+  if (!a.allow_large) {
+    try {
+      CheckRunFits(size, a.out);
+    } catch (const InvalidValue& e) {
+      throw InvalidValue("", e.problem() + " (--allow-large runs it anyway)");
+    }
+  }
+  in_scenario(simulate);
   fmt::print("run '{}': {} acquisitions x {} modules x 3 images = {} images of {}x{} px\n", s.name,
              r.plan.acquisitions, s.rig.modules, r.images, module.camera.width,
              module.camera.height);
@@ -164,7 +180,9 @@ Command AddSimulateCommand(CLI::App& app) {
   frame->add_option("--scene", args->scene, "plane, cylinder, pipe-wall, or a scene JSON file")
       ->capture_default_str();
   frame->add_option("--out", args->out, "Output folder")->required();
-  frame->add_option("--seed", args->render.seed, "Noise / sampling seed")->capture_default_str();
+  frame->add_option("--seed", args->render.seed, "Noise / sampling seed")
+      ->capture_default_str()
+      ->check(Digits());
   frame->add_option("--material", args->material, "concrete, vitrified_clay or plastic")
       ->capture_default_str()
       ->check(CLI::IsMember({"concrete", "vitrified_clay", "plastic"}));

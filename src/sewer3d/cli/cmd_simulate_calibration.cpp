@@ -27,7 +27,7 @@ void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& a) {
       ->capture_default_str()
       ->check(CLI::Range(1, 200));
   sub->add_option("--out", a.out, "Capture folder")->required();
-  sub->add_option("--seed", a.seed, "Poses and noise seed")->capture_default_str();
+  sub->add_option("--seed", a.seed, "Poses and noise seed")->capture_default_str()->check(Digits());
   sub->add_option("--board", a.board, "Inner corners COLSxROWS")->capture_default_str();
   sub->add_option("--square-mm", a.square_mm, "Square size")
       ->capture_default_str()

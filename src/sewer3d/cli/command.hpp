@@ -34,7 +34,19 @@ Command AddProcessCommand(CLI::App& app);
 Command AddDemoCommand(CLI::App& app);
 Command AddReportCommand(CLI::App& app);
 
-/// Parses "WxH" (e.g. "648x486"); nullopt when malformed or not positive.
+/// Parses "WxH" (e.g. "648x486"): digits only, each side 1..32768; nullopt otherwise.
 std::optional<std::pair<int, int>> ParseSize(const std::string& text);
+
+/// A validator for unsigned options such as --seed: digits only (CLI11 would wrap "-1" to
+/// 18446744073709551615).
+inline CLI::Validator Digits() {
+  return CLI::Validator(
+      [](std::string& text) {
+        const bool digits =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        return digits ? std::string() : "expected a whole number >= 0, got " + text;
+      },
+      "UINT");
+}
 
 }  // namespace sewer3d::cli

@@ -9,6 +9,7 @@
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/exit_code.hpp"
+#include "sewer3d/cli/library_logs.hpp"
 
 namespace {
 
@@ -21,6 +22,7 @@ int ReportError(const std::exception_ptr& error) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sewer3d::cli::QuietLibraryLogs();
   CLI::App app{"sewer3d: metric 3D models of sewer pipes from structured-light inspection"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Show help for every subcommand");

@@ -29,6 +29,7 @@ struct RunArgs {
   std::uint64_t seed = 0;
   int supersampling = 0;
   bool quiet = false;
+  bool allow_large = false;  ///< skip CheckRunFits
 };
 
 /// Simulates the run (progress bar unless quiet), prints what it wrote; returns the exit code.

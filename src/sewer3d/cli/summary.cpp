@@ -24,7 +24,7 @@ double FieldOfView(const CameraModel& model, bool horizontal) {
 
 }  // namespace
 
-bool PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pattern) {
+std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pattern) {
   const CameraModel camera(m.camera), projector(m.projector);
   fmt::print(
       "camera     {}x{} px, f {:.1f}/{:.1f} px, principal point ({:.1f}, {:.1f}), k [{:g}, {:g}, "
@@ -67,7 +67,11 @@ bool PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pattern) 
   const int needed = static_cast<int>(std::ceil(range.max_cols));
   fmt::print("           {} columns {} the {} the disparity range needs\n", pattern.cols,
              spans ? "cover" : "do NOT cover", needed);
-  return report.valid && spans;
+  if (!report.valid) return "the pattern matrix violates its constraints: " + Describe(report);
+  if (!spans)
+    return fmt::format("the pattern's {} columns do not cover the {} the disparity range needs",
+                       pattern.cols, needed);
+  return "";
 }
 
 }  // namespace sewer3d::cli

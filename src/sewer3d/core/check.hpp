@@ -107,4 +107,11 @@ inline void ValidateNotNegative(const std::string& field, double value) {
   SEWER3D_VALIDATE(value >= 0.0, field, "must not be negative, got " << value);
 }
 
+/// Validation shorthand: a clock position in hours seen along the flow, 0..12 (0 and 12 are
+/// both the crown); NaN and anything else are refused.
+inline void ValidateClockHours(const std::string& field, double hours) {
+  SEWER3D_VALIDATE(hours >= 0.0 && hours <= 12.0, field,
+                   "a clock position must be 0..12 h, got " << hours);
+}
+
 }  // namespace sewer3d

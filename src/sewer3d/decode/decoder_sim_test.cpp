@@ -20,14 +20,19 @@ struct Outcome {
 
 // Decodes a realistic render; a decode is wrong when the projector element whose centre is
 // nearest to where the spot's camera ray meets the true surface differs, modulo the array.
-Outcome DecodeRender(const ModuleDescription& module, const Scene& scene, std::uint64_t seed) {
+// `bits`: the sensor's ADC; `stretch`: the digital numbers multiplied by it (a 16-bit file
+// using its full range).
+Outcome DecodeRender(const ModuleDescription& module, const Scene& scene, std::uint64_t seed,
+                     int bits = 8, double stretch = 1.0) {
   const BinaryArray pattern = DefaultPatternArray();
   RenderOptions render;
   render.seed = seed;
   render.images = RenderImages::kPattern;
+  render.sensor.bits = bits;
   const RenderedFrame frame = RenderFrame(module, pattern, scene, render);
+  cv::Mat1w image = frame.pattern * stretch;
   Decoder decoder(module, pattern, PatternConstraints{}, DecoderOptions{});
-  const DecodeResult decoded = decoder.Decode(frame.pattern);
+  const DecodeResult decoded = decoder.Decode(image);
   const std::vector<CodedObservation> observations = CodedObservations(decoded);
   EXPECT_EQ(observations.size(), decoded.codes.size());
   const CameraModel camera(module.camera), projector(module.projector);
@@ -74,6 +79,22 @@ TEST(Decoder, Dn300CylinderDecodesTheTruePositions) {
   const Outcome o = DecodeRender(testing::SmallDefaultModule(648), cylinder, 2);
   EXPECT_GT(o.decoded, 0.93 * o.spots);
   EXPECT_EQ(o.wrong, 0);
+}
+
+// Thresholds are relative to the image's range: 12-bit captures and 8-bit levels stretched over
+// the full 16-bit range decode like 8-bit ones (they used to give nothing: a 4-level contrast
+// floor is noise at 12 bits).
+TEST(Decoder, TwelveAndSixteenBitCapturesDecodeLikeEightBit) {
+  Scene plane;
+  plane.distance_mm = 90.0;
+  const ModuleDescription module = testing::SmallDefaultModule(648);
+  const Outcome eight = DecodeRender(module, plane, 1);
+  const Outcome twelve = DecodeRender(module, plane, 1, 12);
+  const Outcome sixteen = DecodeRender(module, plane, 1, 8, 257.0);
+  EXPECT_GT(twelve.decoded, 0.95 * eight.decoded);
+  EXPECT_GT(sixteen.decoded, 0.95 * eight.decoded);
+  EXPECT_EQ(twelve.wrong, 0);
+  EXPECT_EQ(sixteen.wrong, 0);
 }
 
 }  // namespace

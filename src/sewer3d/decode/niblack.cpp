@@ -28,8 +28,9 @@ namespace {
 // the window's pixel count n: n x − S > n c and (n x − S)² > k² (n S₂ − S²) (k ≥ 0); the
 // second only for the few pixels that pass the first.
 template <typename Pixel, typename Acc>
-void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Mat1b& mask,
-              cv::Mat1w& excess_out, std::vector<Acc>& column_sum, std::vector<Acc>& column_sum2) {
+void Binarise(const cv::Mat& image, int r, double k, double min_contrast, float excess_scale,
+              cv::Mat1b& mask, cv::Mat1w& excess_out, std::vector<Acc>& column_sum,
+              std::vector<Acc>& column_sum2) {
   const int rows = image.rows, cols = image.cols;
   column_sum.assign(cols, Acc(0));
   column_sum2.assign(cols, Acc(0));
@@ -111,8 +112,7 @@ void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Ma
       const float x = static_cast<float>(row[u]), sum = static_cast<float>(window_sum[u]);
       const float n = static_cast<float>(count_rows) * count_cols_f[u];
       out[u] = n * x - sum > threshold_f[u] ? 255 : 0;  // n (x − m) > n c
-      const float excess =
-          (x - sum * inverse_rows * inverse_count_cols[u]) * NiblackBinariser::kExcessScale;
+      const float excess = (x - sum * inverse_rows * inverse_count_cols[u]) * excess_scale;
       // Round, then clear negative values with the sign mask: no branch on the sign of
       // I − m, which is noise and would be mispredicted half the time.
       // NOLINTNEXTLINE(bugprone-incorrect-roundings): negative values are cleared below
@@ -137,20 +137,33 @@ void Binarise(const cv::Mat& image, int r, double k, double min_contrast, cv::Ma
 
 }  // namespace
 
+double NiblackBinariser::LevelScale(const cv::Mat& image) {
+  if (image.depth() != CV_16U) return 1.0;
+  double max_value = 0.0;
+  cv::minMaxLoc(image, nullptr, &max_value);
+  const int bits = std::max(8, static_cast<int>(std::ceil(std::log2(max_value + 1.0))));
+  return std::ldexp(1.0, bits - 8);
+}
+
 void NiblackBinariser::Apply(const cv::Mat& image, cv::Mat1b& mask) {
   SEWER3D_CHECK(image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U),
                 "Niblack needs an 8-bit or 16-bit grey image");
   mask.create(image.rows, image.cols);
   excess_.create(image.rows, image.cols);
   const int r = options_.window / 2;
+  // Contrast in 8-bit units whatever the bit depth: a 12-bit image's levels are 16 of an
+  // 8-bit one's (its noise too), so min_contrast and the excess scale by 2^(bits − 8).
+  const double level = LevelScale(image);
+  const double min_contrast = options_.min_contrast * level;
+  const auto excess_scale = static_cast<float>(kExcessScale / level);
   if (image.depth() == CV_8U && options_.window <= 151) {  // 151² · 255² < 2³¹
-    Binarise<std::uint8_t, std::int32_t>(image, r, options_.k, options_.min_contrast, mask, excess_,
-                                         int_sum_, int_sum2_);
+    Binarise<std::uint8_t, std::int32_t>(image, r, options_.k, min_contrast, excess_scale, mask,
+                                         excess_, int_sum_, int_sum2_);
   } else if (image.depth() == CV_8U) {
-    Binarise<std::uint8_t, double>(image, r, options_.k, options_.min_contrast, mask, excess_,
+    Binarise<std::uint8_t, double>(image, r, options_.k, min_contrast, excess_scale, mask, excess_,
                                    column_sum_, column_sum2_);
   } else {
-    Binarise<std::uint16_t, double>(image, r, options_.k, options_.min_contrast, mask, excess_,
+    Binarise<std::uint16_t, double>(image, r, options_.k, min_contrast, excess_scale, mask, excess_,
                                     column_sum_, column_sum2_);
   }
 }

@@ -14,8 +14,9 @@ namespace sewer3d {
 struct NiblackOptions {
   int window = 21;  ///< odd window side, px (about 2.5 spot pitches)
   double k = 0.3;   ///< weight of the local standard deviation
-  /// Foreground also needs I − m ≥ min_contrast (image units), which keeps flat dark
-  /// background (where s is only noise) from turning into speckle.
+  /// Foreground also needs I − m ≥ min_contrast (8-bit grey levels; scaled to the image's
+  /// bit depth, see LevelScale), which keeps flat dark background (where s is only noise) from
+  /// turning into speckle.
   double min_contrast = 4.0;
   void Check() const;
 };
@@ -29,11 +30,16 @@ class NiblackBinariser {
   void Apply(const cv::Mat& image, cv::Mat1b& mask);
 
   /// Contrast of the last image over its local mean (valid after Apply), the weights of spot
-  /// centroids: round(kExcessScale · max(0, I − m)), saturated at 65535 (I − m > 4095 DN,
-  /// beyond 12-bit images). 2 bytes a pixel instead of a float mean: the spot stage is
-  /// limited by memory traffic.
+  /// centroids: round(kExcessScale · max(0, I − m) / LevelScale) in 8-bit levels, saturated at
+  /// 65535 (4095 levels, beyond any spot). 2 bytes a pixel instead of a float mean: the spot
+  /// stage is limited by memory traffic.
   const cv::Mat1w& excess() const { return excess_; }
   static constexpr float kExcessScale = 16.0f;
+
+  /// Grey levels of `image` per 8-bit level: 1 for 8-bit images; for 16-bit ones 2^(b − 8)
+  /// with b the bits its largest value needs (at least 8), so 10-, 12- and full 16-bit
+  /// captures decode alike.
+  static double LevelScale(const cv::Mat& image);
 
  private:
   NiblackOptions options_;

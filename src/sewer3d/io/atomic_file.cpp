@@ -45,8 +45,7 @@ void WriteFileAtomically(const std::filesystem::path& path,
 }
 
 void WriteTextFileAtomically(const std::filesystem::path& path, const std::string& text) {
-  WriteFileAtomically(
-      path, [&](const std::filesystem::path& temporary) { WriteTextFile(temporary, text); });
+  WriteTextFile(path, text);
 }
 
 bool IsRegularFile(const std::filesystem::path& path) {

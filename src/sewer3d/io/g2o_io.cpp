@@ -4,11 +4,14 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/input_file.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
 namespace {
@@ -76,8 +79,7 @@ class LineParser {
 }  // namespace
 
 PoseGraph ReadG2o(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw FileError(path, "no such file");
+  CheckInputFile(path, std::numeric_limits<std::uintmax_t>::max());
   std::ifstream file(path);
   if (!file) throw FileError(path, "cannot open file");
   PoseGraph graph;
@@ -145,10 +147,7 @@ PoseGraph ReadG2o(const std::filesystem::path& path) {
 }
 
 void WriteG2o(const std::filesystem::path& path, const PoseGraph& graph) {
-  std::error_code ec;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  std::ofstream file(path);
-  if (!file) throw FileError(path, "cannot open for writing");
+  std::ostringstream file;
   file.precision(17);
   auto write_pose = [&file](const Rigid3d& pose) {
     const Eigen::Vector3d& t = pose.translation;
@@ -170,7 +169,7 @@ void WriteG2o(const std::filesystem::path& path, const PoseGraph& graph) {
     file << '\n';
   }
   for (int id : graph.fixed_nodes()) file << "FIX " << id << '\n';
-  if (!file.flush()) throw FileError(path, "write failed");
+  WriteTextFile(path, file.str());
 }
 
 }  // namespace sewer3d

@@ -1,50 +1,43 @@
 #include "sewer3d/io/image_io.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <fstream>
-#include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/input_file.hpp"
 
 namespace sewer3d {
-namespace {
-
-void EnsureParent(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  if (ec) throw FileError(path.parent_path(), "cannot create folder: " + ec.message());
-}
-
-}  // namespace
-
 void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
-  EnsureParent(path);
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception& e) {
-    throw FileError(path, std::string("cannot write image: ") + e.err);
-  }
-  if (!ok) throw FileError(path, "cannot write image");
+  WriteFileAtomically(path, [&](const std::filesystem::path& temporary) {
+    bool ok = false;
+    try {
+      ok = cv::imwrite(temporary.string(), image);
+    } catch (const cv::Exception& e) {
+      throw FileError(path, std::string("cannot write image: ") + e.err);
+    }
+    if (!ok) throw FileError(path, "cannot write image");
+  });
 }
 
-cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw FileError(path, "no such file");
-  std::ifstream file(path, std::ios::binary);
-  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(file)), {});
-  if (!file.good() && !file.eof()) throw FileError(path, "cannot read file");
-  // A PNG ends with an IEND chunk; checking it first keeps libpng from printing its own
-  // error for the common case of a file cut short.
+cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags, std::uint64_t max_pixels) {
+  const std::vector<std::uint8_t> bytes = ReadFileBytes(path);
+  if (const auto size = ImageHeaderSize(bytes)) {
+    if (size->width == 0 || size->height == 0 || size->width * size->height > max_pixels) {
+      throw FileError(path, fmt::format("the header declares {} x {} pixels; at most {} are read",
+                                        size->width, size->height, max_pixels));
+    }
+  }
   static constexpr std::uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  static constexpr std::uint8_t kIend[8] = {'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
   const bool png = bytes.size() >= 8 && std::equal(kPngSignature, kPngSignature + 8, bytes.begin());
-  if (png && (bytes.size() < 20 || !std::equal(kIend, kIend + 8, bytes.end() - 8))) {
-    throw FileError(path, "cannot decode image: truncated PNG (no IEND chunk)");
+  if (png) {
+    if (const std::string problem = PngStructureProblem(bytes); !problem.empty())
+      throw FileError(path, "cannot decode image: " + problem);
   }
   cv::Mat image;
   try {
@@ -57,7 +50,7 @@ cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags) {
 }
 
 cv::Mat ReadGreyImage(const std::filesystem::path& path) {
-  cv::Mat image = ReadImage(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE);
+  cv::Mat image = ReadImage(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
   if (image.depth() != CV_8U && image.depth() != CV_16U) {
     throw FileError(path, "expected an 8-bit or 16-bit image");
   }
@@ -86,7 +79,7 @@ std::pair<double, double> WriteDepthPreview(const std::filesystem::path& path,
 }
 
 BinaryArray ReadPatternMatrix(const std::filesystem::path& path) {
-  cv::Mat image = ReadImage(path, cv::IMREAD_UNCHANGED);
+  cv::Mat image = ReadImage(path, cv::IMREAD_UNCHANGED, std::uint64_t{kMaxPatternElements});
   if (image.channels() > 1) {
     std::vector<cv::Mat> channels;
     cv::split(image, channels);
@@ -103,6 +96,7 @@ BinaryArray ReadPatternMatrix(const std::filesystem::path& path) {
 }
 
 void WritePatternMatrix(const std::filesystem::path& path, const BinaryArray& array) {
+  if (path.extension() != ".png") throw FileError(path, "a pattern matrix is written as PNG only");
   cv::Mat1b image(array.rows, array.cols);
   for (int r = 0; r < array.rows; ++r) {
     for (int c = 0; c < array.cols; ++c) image(r, c) = array.at(r, c) ? 255 : 0;

@@ -2,6 +2,7 @@
 /// \file
 /// Reading and writing images and pattern matrices. Errors are FileError.
 
+#include <cstdint>
 #include <filesystem>
 #include <opencv2/core/mat.hpp>
 #include <utility>
@@ -13,9 +14,15 @@ namespace sewer3d {
 /// Writes any image OpenCV can encode (format from the extension); creates parent folders.
 void WriteImage(const std::filesystem::path& path, const cv::Mat& image);
 
+/// Most pixels ReadImage decodes by default (256 M: a 100 m model's texture in tiles is far
+/// below) and of a camera image (64 M). A pattern matrix is limited to kMaxPatternElements.
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
+inline constexpr std::uint64_t kMaxCameraPixels = std::uint64_t{1} << 26;
+
 /// Reads an image file (OpenCV imread flags), with a clear error for missing, truncated or
-/// undecodable files.
-cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags);
+/// undecodable files, and for a header declaring more than max_pixels (checked before decoding).
+cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags,
+                  std::uint64_t max_pixels = kMaxImagePixels);
 
 /// Reads a camera image as one grey channel, 8 or 16 bits (colour is converted).
 cv::Mat ReadGreyImage(const std::filesystem::path& path);

@@ -1,6 +1,8 @@
 #include "sewer3d/io/json_reader.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 
 namespace sewer3d {
@@ -68,8 +70,23 @@ int JsonReader::Integer(const json& j, const char* key, const std::string& prefi
                         int fallback) const {
   const auto it = j.find(key);
   if (it == j.end()) return fallback;
-  if (!it->is_number_integer()) Fail(prefix + key, "must be an integer");
+  const bool fits = it->is_number_unsigned()
+                        ? it->get<std::uint64_t>() <= std::uint64_t{std::numeric_limits<int>::max()}
+                        : it->is_number_integer() &&
+                              it->get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                              it->get<std::int64_t>() <= std::numeric_limits<int>::max();
+  if (!fits) Fail(prefix + key, "must be an integer within ±2147483647, got " + it->dump());
   return it->get<int>();
+}
+
+std::uint64_t JsonReader::Seed(const json& j, const char* key, const std::string& prefix,
+                               std::uint64_t fallback) const {
+  const auto it = j.find(key);
+  if (it == j.end()) return fallback;
+  const bool whole =
+      it->is_number_unsigned() || (it->is_number_integer() && it->get<std::int64_t>() >= 0);
+  if (!whole) Fail(prefix + key, "must be an integer 0..18446744073709551615, got " + it->dump());
+  return it->get<std::uint64_t>();
 }
 
 bool JsonReader::Bool(const json& j, const char* key, const std::string& prefix,

@@ -9,6 +9,7 @@
 /// missing member as "use the fallback"; getters without one require the member.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
@@ -37,7 +38,11 @@ class JsonReader {
   const json& Object(const json& j, const char* key, const std::string& prefix) const;
   const json& Array(const json& j, const char* key, const std::string& prefix) const;
   double Number(const json& j, const char* key, const std::string& prefix, double fallback) const;
+  /// An integer that fits an int exactly (1e10 or 2.5 are errors, not wrapped or cut).
   int Integer(const json& j, const char* key, const std::string& prefix, int fallback) const;
+  /// A seed: an integer 0 .. 2^64 − 1, kept exactly (never through a double).
+  std::uint64_t Seed(const json& j, const char* key, const std::string& prefix,
+                     std::uint64_t fallback) const;
   bool Bool(const json& j, const char* key, const std::string& prefix, bool fallback) const;
   std::string Text(const json& j, const char* key, const std::string& prefix,
                    const std::string& fallback) const;

@@ -8,6 +8,7 @@
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/json_reader.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
 namespace {
@@ -58,14 +59,8 @@ ModuleDescription ParseModule(const std::string& text, const std::filesystem::pa
 }
 
 LoadedModule LoadModule(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !file)
-    throw FileError(path, "cannot open file");
-  std::ostringstream text;
-  text << file.rdbuf();
   LoadedModule loaded;
-  loaded.module = ParseModule(text.str(), path);
+  loaded.module = ParseModule(ReadTextFile(path), path);
   std::filesystem::path matrix = loaded.module.pattern.matrix_path;
   if (matrix.is_relative()) matrix = path.parent_path() / matrix;
   try {
@@ -103,12 +98,7 @@ std::string ModuleToJson(const ModuleDescription& m) {
 
 void SaveModule(const std::filesystem::path& path, const ModuleDescription& module) {
   module.Check();
-  std::error_code ec;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  std::ofstream file(path, std::ios::binary);
-  if (!file) throw FileError(path, "cannot open for writing");
-  file << ModuleToJson(module);
-  if (!file.flush()) throw FileError(path, "write failed");
+  WriteTextFile(path, ModuleToJson(module));
 }
 
 }  // namespace sewer3d

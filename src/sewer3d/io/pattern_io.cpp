@@ -1,10 +1,10 @@
 #include "sewer3d/io/pattern_io.hpp"
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
 
@@ -47,10 +47,7 @@ void WritePatternSidecar(const std::filesystem::path& path, const PatternProvena
                      {"max_weight", report.max_weight_found},
                      {"adjacent_spot_pairs", report.adjacent_spot_pairs},
                      {"density", report.density}};
-  std::ofstream file(path, std::ios::binary);
-  if (!file) throw FileError(path, "cannot open for writing");
-  file << doc.dump(2) << "\n";
-  if (!file.flush()) throw FileError(path, "write failed");
+  WriteTextFile(path, doc.dump(2) + "\n");
 }
 
 }  // namespace sewer3d

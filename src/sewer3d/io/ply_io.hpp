@@ -15,7 +15,9 @@ namespace sewer3d {
 void WritePly(const std::filesystem::path& path, const std::vector<Eigen::Vector3d>& points,
               const std::vector<std::array<std::uint8_t, 3>>& colours);
 
-/// Reads x y z (float or double, binary little-endian or ASCII) of a PLY's vertices.
+/// Reads x y z of a PLY's vertices: ASCII or binary (either byte order), any scalar type
+/// (char … double). FileError for a malformed header, a count the body does not match, a
+/// list property in the vertex element, or a file that is not a regular file.
 std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path);
 
 }  // namespace sewer3d

@@ -147,11 +147,71 @@ TEST_F(PlyIoTest, BrokenFilesAreFileErrors) {
                 "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
                 "end_header\n1 2\n");
   ExpectReadError(dir_ / "no_z.ply", "vertices lack x, y or z");
-  WriteTextFile(dir_ / "big.ply",
-                "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\n"
+  WriteTextFile(dir_ / "odd.ply",
+                "ply\nformat binary_middle_endian 1.0\nelement vertex 1\nproperty float x\n"
                 "property float y\nproperty float z\nend_header\n123456789012");
-  ExpectReadError(dir_ / "big.ply", "unsupported PLY format binary_big_endian");
-  ExpectReadError(dir_ / "missing.ply", "cannot open file");
+  ExpectReadError(dir_ / "odd.ply", "unsupported PLY format 'binary_middle_endian'");
+  ExpectReadError(dir_ / "missing.ply", "no such file");
+  ExpectReadError(dir_, "is a folder, not a file");
+  WriteTextFile(dir_ / "header.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n");
+  ExpectReadError(dir_ / "header.ply", "PLY header has no end_header line");
+  WriteTextFile(dir_ / "list.ply",
+                "ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar int x\n"
+                "end_header\n1 2\n");
+  ExpectReadError(dir_ / "list.ply", "list property in vertex element");
+}
+
+// A count the body does not match is an error either way, never a silently shorter cloud, and
+// a count far beyond the file's size is refused before anything is allocated for it.
+TEST_F(PlyIoTest, CountsMustMatchTheBody) {
+  const std::string points = "1 2 3\n4 5 6\n7 8 9\n";
+  const auto header = [](const std::string& count) {
+    return "ply\nformat ascii 1.0\nelement vertex " + count +
+           "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  };
+  WriteTextFile(dir_ / "low.ply", header("2") + points);
+  ExpectReadError(dir_ / "low.ply", "the body holds more than the 2 vertices the header declares");
+  WriteTextFile(dir_ / "high.ply", header("4") + points);
+  ExpectReadError(dir_ / "high.ply", "truncated: 3 of 4 vertices");
+  WriteTextFile(dir_ / "huge.ply", header("1000000000000000000") + points);
+  ExpectReadError(dir_ / "huge.ply", "truncated");
+  // An element after the vertices keeps its own count.
+  WriteTextFile(dir_ / "faces.ply",
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                "end_header\n" +
+                    points + "3 0 1 2\n");
+  ExpectSamePoints(ReadPlyPoints(dir_ / "faces.ply"), {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}});
+}
+
+// Every scalar type, either byte order: signed values keep their sign.
+TEST_F(PlyIoTest, ReadsEveryScalarTypeInBothByteOrders) {
+  const std::vector<Eigen::Vector3d> expected{{-100, 7, 120}, {55, -128, 127}};
+  for (const bool big : {false, true}) {
+    for (const auto& [type, bytes] : std::vector<std::pair<std::string, int>>{
+             {"char", 1}, {"short", 2}, {"int", 4}, {"int16", 2}, {"int32", 4}, {"double", 8}}) {
+      std::string body;
+      for (const auto& p : expected) {
+        for (int k = 0; k < 3; ++k) {
+          unsigned char raw[8];
+          if (type == "double") {
+            std::memcpy(raw, &p[k], 8);
+          } else {
+            const auto v = static_cast<std::int64_t>(p[k]);
+            for (int i = 0; i < bytes; ++i) raw[i] = static_cast<unsigned char>(v >> (8 * i));
+          }
+          for (int i = 0; i < bytes; ++i) body += static_cast<char>(raw[big ? bytes - 1 - i : i]);
+        }
+      }
+      const fs::path file = dir_ / (type + (big ? "_big.ply" : "_little.ply"));
+      WriteTextFile(file, "ply\nformat " +
+                              std::string(big ? "binary_big_endian" : "binary_little_endian") +
+                              " 1.0\nelement vertex 2\nproperty " + type + " x\nproperty " + type +
+                              " y\nproperty " + type + " z\nend_header\n" + body);
+      SCOPED_TRACE(file.filename().string());
+      ExpectSamePoints(ReadPlyPoints(file), expected);
+    }
+  }
 }
 
 }  // namespace

@@ -1,29 +1,26 @@
 #include "sewer3d/io/text_file.hpp"
 
 #include <fstream>
-#include <sstream>
+#include <vector>
 
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/input_file.hpp"
 
 namespace sewer3d {
 
 std::string ReadTextFile(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !file)
-    throw FileError(path, "cannot open file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
+  const std::vector<std::uint8_t> bytes = ReadFileBytes(path);
+  return {bytes.begin(), bytes.end()};
 }
 
 void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
-  std::error_code ec;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  std::ofstream file(path, std::ios::binary);
-  if (!file) throw FileError(path, "cannot open for writing");
-  file << text;
-  if (!file.flush()) throw FileError(path, "write failed");
+  WriteFileAtomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream file(temporary, std::ios::binary);
+    if (!file) throw FileError(path, "cannot open for writing");
+    file << text;
+    if (!file.flush()) throw FileError(path, "write failed (disk full?)");
+  });
 }
 
 std::string EscapeMarkup(std::string_view text) {

@@ -8,9 +8,11 @@
 
 namespace sewer3d {
 
-/// The file's bytes; FileError "cannot open file" when it is missing or not a regular file.
+/// The file's bytes; FileError when it is missing, not a regular file or over 2 GiB
+/// (CheckInputFile).
 std::string ReadTextFile(const std::filesystem::path& path);
-/// Writes the text, creating the file's folder; FileError on failure.
+/// Writes the text atomically (temporary + rename, atomic_file.hpp), creating the file's
+/// folder; FileError on failure, and then `path` is left as it was.
 void WriteTextFile(const std::filesystem::path& path, const std::string& text);
 
 /// `text` as XML / HTML character data or attribute value: & < > " ' as entities.

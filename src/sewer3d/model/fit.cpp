@@ -65,7 +65,17 @@ std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& point
     m.row(i) << x, y, 1.0;
     rhs(i) = -(x * x + y * y);
   }
-  const Eigen::Vector3d def = m.colPivHouseholderQr().solve(rhs);
+  // Identical or collinear points (a line seen across the axis) fix no circle: the projected
+  // points must spread in both directions of the cross-section.
+  const Eigen::Vector2d mean = m.leftCols<2>().colwise().mean();
+  const Eigen::MatrixX2d centred = m.leftCols<2>().rowwise() - mean.transpose();
+  const Eigen::Matrix2d spread = centred.transpose() * centred / static_cast<double>(points.size());
+  const Eigen::Vector2d extent =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread).eigenvalues();
+  if (!(extent(0) > 1e-9 * extent(1) && extent(0) > 1e-12)) return std::nullopt;
+  const auto qr = m.colPivHouseholderQr();
+  if (qr.rank() < 3) return std::nullopt;
+  const Eigen::Vector3d def = qr.solve(rhs);
   const double cx = -def(0) / 2, cy = -def(1) / 2;
   const double r2 = cx * cx + cy * cy - def(2);
   if (!(r2 > 0.0) || !std::isfinite(r2)) return std::nullopt;

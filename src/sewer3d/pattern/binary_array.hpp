@@ -9,6 +9,10 @@
 
 namespace sewer3d {
 
+/// Most elements of a pattern matrix sewer3d searches, reads or verifies: VerifyPattern compares
+/// every pair of windows (2·10⁹ pairs at this size, a few seconds). The default has 1 200.
+inline constexpr int kMaxPatternElements = 1 << 16;
+
 /// rows x cols binary matrix, row-major; 1 = spot. Element (r, c) of the tiled projector
 /// image takes the value of (r mod rows, c mod cols) (DESIGN.md, module contract).
 struct BinaryArray {

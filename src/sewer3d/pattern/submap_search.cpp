@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <utility>
@@ -259,9 +260,9 @@ void SubmapSearchOptions::Check() const {
   SEWER3D_VALIDATE(rows >= n && cols >= n, "rows",
                    "the array (" << rows << "x" << cols << ") must be at least the window (" << n
                                  << "x" << n << ")");
-  SEWER3D_VALIDATE(
-      rows * cols <= 4'000'000, "cols",
-      "the array (" << rows << "x" << cols << ") must have at most 4 000 000 elements");
+  SEWER3D_VALIDATE(static_cast<std::int64_t>(rows) * cols <= kMaxPatternElements, "cols",
+                   "the array (" << rows << "x" << cols << ") must have at most "
+                                 << kMaxPatternElements << " elements");
   SEWER3D_VALIDATE(max_moves > 0, "max_moves", "must be > 0, got " << max_moves);
   SEWER3D_VALIDATE(noise >= 0.0 && noise <= 1.0, "noise", "must be 0..1, got " << noise);
   SEWER3D_VALIDATE(tabu_tenure >= 0, "tabu_tenure", "must not be negative, got " << tabu_tenure);
@@ -295,11 +296,11 @@ SubmapSearchResult SearchPerfectSubmap(const SubmapSearchOptions& options) {
       result.termination = "reached";
       break;
     }
+    if (options.max_seconds > 0.0 && move % 64 == 0 && elapsed() > options.max_seconds) {
+      result.termination = "time budget";
+      break;
+    }
     if (move % options.progress_interval_moves == 0 && move > 0) {
-      if (options.max_seconds > 0.0 && elapsed() > options.max_seconds) {
-        result.termination = "time budget";
-        break;
-      }
       if (options.progress &&
           !options.progress({move, state.cost(), best_cost, state.violated().size(), elapsed()})) {
         result.termination = "stopped";

@@ -50,11 +50,11 @@ cv::Mat ReadPatternImage(const CaptureRun& run, const Acquisition& a) {
 cv::Mat3b ReadTextureImage(const CaptureRun& run, const Acquisition& a, ImageKind kind) {
   const std::filesystem::path file = ExistingImageFile(run, a, kind);
   if (run.info.color_filter == "none") {
-    cv::Mat image = ReadImage(file, cv::IMREAD_COLOR);
+    cv::Mat image = ReadImage(file, cv::IMREAD_COLOR, kMaxCameraPixels);
     CheckSize(file, image, CameraOf(run, a), a.module);
     return image;
   }
-  cv::Mat raw = ReadImage(file, cv::IMREAD_UNCHANGED);
+  cv::Mat raw = ReadImage(file, cv::IMREAD_UNCHANGED, kMaxCameraPixels);
   if (raw.channels() != 1)
     throw FileError(file,
                     "run.json says the camera has a colour filter array, but the image "

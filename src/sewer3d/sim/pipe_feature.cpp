@@ -1,6 +1,7 @@
 #include "sewer3d/sim/pipe_feature.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "sewer3d/core/check.hpp"
@@ -36,6 +37,9 @@ std::optional<PipeFeature::Type> PipeFeatureTypeFromName(const std::string& name
 }
 
 void PipeFeature::Check() const {
+  // A pipe's features sit at 0..12 h (PipeWorld checks that); a pipe-wall scene counts from
+  // the view direction, either way round.
+  SEWER3D_VALIDATE(std::abs(clock_h) <= 12.0, "clock_h", "must be within ±12 h, got " << clock_h);
   ValidateNotNegative("gap_mm", gap_mm);
   ValidateNotNegative("length_mm", length_mm);
   ValidateNotNegative("width_mm", width_mm);

@@ -83,10 +83,12 @@ inline double SmoothStep(double x) {
   return u * u * (3.0 - 2.0 * u);
 }
 
-/// Angle into [−π, π] (cheaper than std::remainder for the small multiples of 2π met here).
+/// Angle into [−π, π]: one subtraction for the small multiples of 2π met here, closed form
+/// (std::remainder) for anything farther out.
 inline double WrapAngle(double a) {
-  while (a > std::numbers::pi) a -= kTwoPi;
-  while (a < -std::numbers::pi) a += kTwoPi;
+  if (a > std::numbers::pi) a -= kTwoPi;
+  if (a < -std::numbers::pi) a += kTwoPi;
+  if (a > std::numbers::pi || a < -std::numbers::pi) a = std::remainder(a, kTwoPi);
   return a;
 }
 

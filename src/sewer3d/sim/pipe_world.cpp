@@ -56,17 +56,25 @@ void PipeWorld::Check() const {
                      "must be 50..5000, got " << s.diameter_mm);
     SEWER3D_VALIDATE(s.ovality_pct >= 0.0 && s.ovality_pct < 30.0, field + "ovality_pct",
                      "must be >= 0 and < 30, got " << s.ovality_pct);
+    ValidateClockHours(field + "ovality_clock_h", s.ovality_clock_h);
+    ValidateClockHours(field + "bend_clock_h", s.bend_clock_h);
     SEWER3D_VALIDATE(s.bend_radius_mm == 0.0 || s.bend_radius_mm >= 10.0 * s.diameter_mm,
                      field + "bend_radius_mm",
                      "must be 0 (straight) or at least 10 diameters ("
                          << 10.0 * s.diameter_mm << "), got " << s.bend_radius_mm);
   }
+  SEWER3D_VALIDATE(LengthMm() <= kMaxLengthMm, "sections",
+                   "the pipe is " << LengthMm() / 1000.0
+                                  << " m long; a run between two manholes is at most "
+                                  << kMaxLengthMm / 1000.0 << " m");
   for (size_t i = 0; i < joints.size(); ++i) {
     const PipeJoint& j = joints[i];
     const std::string field = "joints[" + std::to_string(i) + "].";
     ValidateNotNegative(field + "gap_mm", j.gap_mm);
     ValidateNotNegative(field + "gap_depth_mm", j.gap_depth_mm);
     ValidateNotNegative(field + "offset_mm", j.offset_mm);
+    ValidateClockHours(field + "offset_clock_h", j.offset_clock_h);
+    ValidateClockHours(field + "deflection_clock_h", j.deflection_clock_h);
     const double max_gap = 0.5 * std::min(sections[i].length_mm, sections[i + 1].length_mm);
     SEWER3D_VALIDATE(j.gap_mm < max_gap, field + "gap_mm",
                      "must be less than half the shorter neighbouring section ("
@@ -89,6 +97,7 @@ void PipeWorld::Check() const {
                          << " (bump, pit and joint belong to pipe-wall scenes; a pipe's joints "
                             "go in \"joints\")");
     CheckWithin(field, [&] { f.Check(); });
+    ValidateClockHours(field + "clock_h", f.clock_h);
     for (const PipeSection& s : sections) {
       SEWER3D_VALIDATE(f.intrusion_mm < 0.4 * s.diameter_mm, field + "intrusion_mm",
                        "must be less than 40 % of every section's diameter (Ø"

@@ -46,6 +46,7 @@ struct PipeJoint {
 };
 
 struct PipeWorld {
+  static constexpr double kMaxLengthMm = 2.0e6;  ///< 2 km: longer than any manhole-to-manhole run
   std::vector<PipeSection> sections;
   std::vector<PipeJoint> joints;  ///< sections.size() - 1
   /// Wall features (sim/pipe_feature.hpp): connections, spalling, cracks and deposits.

@@ -14,6 +14,7 @@ namespace sewer3d {
 void RigOptions::Check() const {
   SEWER3D_VALIDATE(modules >= 1 && modules <= 12, "modules", "must be 1..12, got " << modules);
   ValidateNotNegative("stagger_mm", stagger_mm);
+  ValidateClockHours("first_clock_h", first_clock_h);
   ValidatePositive("carrier_diameter_mm", carrier_diameter_mm);
   ValidatePositive("carrier_length_mm", carrier_length_mm);
 }
@@ -113,8 +114,8 @@ std::vector<NeighbourOverlap> NeighbourOverlaps(const Rig& rig, double diameter,
     NeighbourOverlap o{k, next, -360.0, 0.0};
     if (cover[k].any && cover[next].any) {
       // Bring the next module's interval next to this one's (they differ by about 360°/n).
-      double shift = 0.0;
-      while (cover[next].clock_from_deg + shift < cover[k].clock_from_deg) shift += 360.0;
+      const double behind = cover[k].clock_from_deg - cover[next].clock_from_deg;
+      const double shift = behind > 0.0 ? 360.0 * std::ceil(behind / 360.0) : 0.0;
       o.overlap_deg = cover[k].clock_to_deg - (cover[next].clock_from_deg + shift);
     }
     o.overlap_mm = DegToRad(o.overlap_deg) * 0.5 * diameter;

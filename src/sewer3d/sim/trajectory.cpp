@@ -16,8 +16,9 @@ constexpr double kSpeedPeriodS = 2.3;
 }  // namespace
 
 void MotionOptions::Check() const {
-  SEWER3D_VALIDATE(speed_mm_s > 0.0 && speed_mm_s <= 1000.0, "speed_mm_s",
-                   "must be > 0 and <= 1000, got " << speed_mm_s);
+  // A crawler between 1 mm/s (100 m in a day) and 1 m/s.
+  SEWER3D_VALIDATE(speed_mm_s >= 1.0 && speed_mm_s <= 1000.0, "speed_mm_s",
+                   "a crawler's speed must be 1..1000 mm/s, got " << speed_mm_s);
   SEWER3D_VALIDATE(speed_variation >= 0.0 && speed_variation < 0.5, "speed_variation",
                    "must be >= 0 and < 0.5, got " << speed_variation);
   ValidatePositive("travel_mm", travel_mm);

@@ -86,7 +86,7 @@ json WorldJson(const PipeWorld& w) {
 PipeWorld ReadWorld(const JsonReader& in, const json& j) {
   in.OnlyKnown(j, "pipe.", {"material_seed", "sections", "joints", "features"});
   PipeWorld w;
-  w.material_seed = static_cast<std::uint64_t>(in.Number(j, "material_seed", "pipe.", 1.0));
+  w.material_seed = in.Seed(j, "material_seed", "pipe.", 1);
   const json& sections = in.Array(j, "sections", "pipe.");
   for (size_t i = 0; i < sections.size(); ++i) {
     const std::string p = "pipe.sections[" + std::to_string(i) + "].";
@@ -213,7 +213,7 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
                 "odometry", "render", "truth_depth", "truth_albedo", "white_balance_error"});
   Scenario s;
   s.name = in.Text(j, "name", "", path.stem().string());
-  s.seed = static_cast<std::uint64_t>(in.Number(j, "seed", "", 1.0));
+  s.seed = in.Seed(j, "seed", "", 1);
   s.module_file = in.Text(j, "module", "", "");
   s.camera_width = in.Integer(j, "camera_width", "", s.camera_width);
   const json& rig = in.Object(j, "rig", "");

@@ -49,7 +49,7 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
   else
     in.Fail("type", "must be plane, cylinder or pipe_wall, got '" + type + "'");
   s.material = ParseMaterial(in, in.Text(j, "material", "", "concrete"), "material");
-  s.material_seed = static_cast<std::uint64_t>(in.Number(j, "material_seed", "", 1.0));
+  s.material_seed = in.Seed(j, "material_seed", "", 1);
   s.distance_mm = in.Number(j, "distance_mm", "", s.distance_mm);
   s.tilt_deg = in.Number(j, "tilt_deg", "", s.tilt_deg);
   s.diameter_mm = in.Number(j, "diameter_mm", "", s.diameter_mm);
@@ -172,9 +172,7 @@ void WriteRenderedFrame(const std::filesystem::path& dir, const RenderedFrame& f
   doc["module"] = module_path.string();
   doc["render"] = RenderOptionsToJson(o);
   doc["depth_range_mm"] = {lo, hi};
-  std::ofstream file(dir / "scene.json");
-  if (!file) throw FileError(dir / "scene.json", "cannot open for writing");
-  file << doc.dump(2) << "\n";
+  WriteTextFile(dir / "scene.json", doc.dump(2) + "\n");
 }
 
 }  // namespace sewer3d

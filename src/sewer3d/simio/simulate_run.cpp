@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/run_io.hpp"
@@ -47,23 +48,95 @@ void WriteRunJson(const fs::path& out, const Scenario& s, const CapturePlan& pla
                {s.rig.modules, plan.acquisitions, static_cast<int>(plan.shots.size()), seconds});
 }
 
+// The rig, pipe, trajectory and capture plan of a scenario; errors in the scenario file's
+// terms ("rig.stagger_mm", "capture.nominal_diameter_mm").
+struct RunSetup {
+  RunSetup(const Scenario& scenario, const ModuleDescription& module)
+      : rig(CheckedRig(scenario, module)),
+        pipe(scenario.world),
+        trajectory(pipe, scenario.motion, scenario.seed) {
+    CheckWithin("capture.", [&] { plan = PlanCaptures(rig, trajectory, scenario.capture); });
+  }
+  static Rig CheckedRig(const Scenario& scenario, const ModuleDescription& module) {
+    scenario.Check();
+    Rig rig;
+    CheckWithin("rig.", [&] { rig = MakeRig(module, scenario.rig); });
+    return rig;
+  }
+  Rig rig;
+  PipeGeometry pipe;
+  Trajectory trajectory;
+  CapturePlan plan;
+};
+
+// An earlier run in `out` loses its images and truth (a shorter run must not leave stale images
+// behind); a folder with anything else in it is not ours to fill.
+void PrepareRunFolder(const fs::path& out) {
+  std::error_code ec;
+  if (!fs::exists(out, ec)) return;
+  if (!fs::is_directory(out, ec)) throw FileError(out, "exists and is not a folder");
+  if (fs::is_empty(out, ec)) return;
+  if (!fs::is_regular_file(out / "run.json", ec))
+    throw FileError(out, "the folder is not empty and holds no run; choose a new or empty folder");
+  for (const char* sub : {"images", "truth"}) RemoveFolder(out / sub);
+}
+
 }  // namespace
+
+RunSizeEstimate EstimateRunSize(const Scenario& scenario, const ModuleDescription& module) {
+  const RunSetup setup(scenario, module);
+  RunSizeEstimate size;
+  size.images = static_cast<int>(setup.plan.shots.size());
+  size.duration_s = setup.trajectory.DurationS();
+  size.odometry_rows = static_cast<std::uint64_t>(size.duration_s * scenario.odometry.rate_hz) + 1;
+  // Bytes per pixel measured on simulated runs: a pattern or raw texture PNG about 0.15 (0.5
+  // allowed), a truth depth TIFF 4 (float), a truth albedo PNG about 1.5 (2 allowed).
+  const double pixels = double(module.camera.width) * module.camera.height;
+  int depth_maps = 0;
+  for (const RunImage& shot : setup.plan.shots) {
+    depth_maps +=
+        scenario.truth_depth == TruthDepth::kAll ||
+        (scenario.truth_depth == TruthDepth::kPattern && shot.kind == ImageKind::kPattern);
+  }
+  const double per_image = 0.5 + (scenario.truth_albedo ? 2.0 : 0.0);
+  size.bytes = static_cast<std::uintmax_t>(pixels * (per_image * size.images + 4.0 * depth_maps));
+  return size;
+}
+
+void CheckRunFits(const RunSizeEstimate& size, const fs::path& out) {
+  SEWER3D_VALIDATE(size.images <= kMaxPlannedImages, "",
+                   "the run would take " << size.images << " images, more than the "
+                                         << kMaxPlannedImages << " allowed");
+  SEWER3D_VALIDATE(size.odometry_rows <= kMaxOdometryRows, "",
+                   "the run would last " << size.duration_s << " s, " << size.odometry_rows
+                                         << " odometry rows, more than the " << kMaxOdometryRows
+                                         << " allowed");
+  // The nearest existing folder above `out` tells the file system.
+  fs::path probe = fs::absolute(out);
+  std::error_code ec;
+  while (!fs::exists(probe, ec) && probe.has_parent_path() && probe != probe.parent_path())
+    probe = probe.parent_path();
+  const fs::space_info space = fs::space(probe, ec);
+  SEWER3D_VALIDATE(ec || size.bytes <= space.available, "",
+                   "the run would take about "
+                       << size.bytes / 1e9 << " GB with its truth, more than the "
+                       << space.available / 1e9 << " GB free under " << probe.string());
+}
 
 SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& module_in,
                          const BinaryArray& pattern, const fs::path& out,
                          const RunProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  scenario.Check();
   ModuleDescription module = module_in;
   module.pattern.matrix_path = "pattern.png";
-  // Errors in the scenario file's terms: "rig.stagger_mm", "capture.nominal_diameter_mm".
-  Rig rig;
-  CheckWithin("rig.", [&] { rig = MakeRig(module, scenario.rig); });
-  const PipeGeometry pipe(scenario.world);
-  const Trajectory trajectory(pipe, scenario.motion, scenario.seed);
+  const RunSetup setup(scenario, module);
+  const Rig& rig = setup.rig;
+  const PipeGeometry& pipe = setup.pipe;
+  const Trajectory& trajectory = setup.trajectory;
   SimulatedRun result;
-  CheckWithin("capture.", [&] { result.plan = PlanCaptures(rig, trajectory, scenario.capture); });
+  result.plan = setup.plan;
   result.duration_s = trajectory.DurationS();
+  PrepareRunFolder(out);
   result.overlap =
       NeighbourOverlaps(rig, scenario.capture.nominal_diameter_mm, Eigen::Vector2d::Zero(), true);
   const CapturePlan& plan = result.plan;

@@ -27,7 +27,29 @@ struct SimulatedRun {
 /// done / total images; called from the rendering threads, one call at a time.
 using RunProgress = std::function<void(int done, int total)>;
 
+/// What a run will take before it starts: images, bytes on disk (an estimate from measured
+/// PNG and TIFF sizes), odometry rows, robot time.
+struct RunSizeEstimate {
+  int images = 0;
+  std::uintmax_t bytes = 0;
+  std::uint64_t odometry_rows = 0;
+  double duration_s = 0.0;
+};
+
+/// Plans the run (as SimulateRun will) and estimates its size. InvalidValue in the scenario
+/// file's terms when the scenario is invalid.
+RunSizeEstimate EstimateRunSize(const Scenario& scenario, const ModuleDescription& module);
+
+/// Refuses (InvalidValue naming the scenario's size, the estimate and the limit) a run of more
+/// than kMaxPlannedImages images or kMaxOdometryRows odometry rows, or more bytes than the file
+/// system holding `out` has free. Call before SimulateRun unless the user overrides it.
+void CheckRunFits(const RunSizeEstimate& size, const std::filesystem::path& out);
+inline constexpr int kMaxPlannedImages = 200'000;
+inline constexpr std::uint64_t kMaxOdometryRows = 20'000'000;
+
 /// Every module of the rig uses `module` and `pattern` (its matrix is written as pattern.png).
+/// A folder holding an earlier run has that run's images and truth removed first (no stale
+/// image survives); a non-empty folder that is not a run is refused (FileError).
 SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& module,
                          const BinaryArray& pattern, const std::filesystem::path& out,
                          const RunProgress& progress);

@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// Checks on a file before it is opened or decoded: a regular file (never a FIFO, device or
+/// folder, which would block or stream forever), of a bounded size, and for images a pixel
+/// count read from the header before any decoding allocates it. Errors are FileError.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sewer3d {
+
+/// Largest input file read whole (text, JSON, CSV, image): 2 GiB.
+inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{2} << 30;
+
+/// Throws FileError "no such file", "is a folder, not a file", "not a regular file (a FIFO,
+/// socket or device)" or "N bytes, more than the M allowed" unless `path` is a regular file of
+/// at most max_bytes; returns its size. Call it before opening the file.
+std::uintmax_t CheckInputFile(const std::filesystem::path& path,
+                              std::uintmax_t max_bytes = kMaxInputFileBytes);
+
+/// CheckInputFile, then the whole file's bytes.
+std::vector<std::uint8_t> ReadFileBytes(const std::filesystem::path& path,
+                                        std::uintmax_t max_bytes = kMaxInputFileBytes);
+
+struct ImageSize {
+  std::uint64_t width = 0, height = 0;
+};
+
+/// Width and height as a PNG, TIFF or JPEG header declares them (nullopt for other formats
+/// or a header too short to tell).
+std::optional<ImageSize> ImageHeaderSize(const std::vector<std::uint8_t>& bytes);
+
+/// For a PNG: what is wrong with its chunk structure ("" when nothing): a chunk running past
+/// the end, a CRC mismatch, no IHDR first or no IEND. Checked before decoding, so that libpng
+/// never meets (and prints about) a broken file.
+std::string PngStructureProblem(const std::vector<std::uint8_t>& bytes);
+
+}  // namespace sewer3d

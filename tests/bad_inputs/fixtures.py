@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Writes the binary fixtures of the bad-input table into the folder given as argument.
+
+Only the standard library: PNG chunks are assembled by hand (zlib + crc32), PLY files with
+struct, so every fixture is exactly the malformed thing its name says.
+"""
+import os
+import struct
+import sys
+import zlib
+
+
+def png_chunk(kind, data):
+    body = kind + data
+    return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+
+def png(width, height, bit_depth, rows_data, colour_type=0):
+    header = struct.pack(">IIBBBBB", width, height, bit_depth, colour_type, 0, 0, 0)
+    return (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", header) +
+            png_chunk(b"IDAT", rows_data) + png_chunk(b"IEND", b""))
+
+
+def zero_rows(width, height, bytes_per_px):
+    """Compressed filter-0 rows of zeros, streamed so a 20000 x 20000 image costs little."""
+    comp = zlib.compressobj(9)
+    row = b"\x00" * (1 + width * bytes_per_px)
+    out = [comp.compress(row) for _ in range(height)]
+    out.append(comp.flush())
+    return b"".join(out)
+
+
+def ply(path, vertex_type, values, count=None, extra_header=""):
+    n = len(values) if count is None else count
+    fmt = {"char": "b", "short": "h", "int": "i", "uchar": "B", "ushort": "H", "uint": "I",
+           "float": "f", "double": "d"}[vertex_type]
+    head = ("ply\nformat binary_little_endian 1.0\n"
+            f"element vertex {n}\n"
+            f"property {vertex_type} x\nproperty {vertex_type} y\nproperty {vertex_type} z\n"
+            f"{extra_header}end_header\n")
+    with open(path, "wb") as f:
+        f.write(head.encode())
+        for v in values:
+            f.write(struct.pack("<" + fmt * 3, *v))
+
+
+def ascii_ply(path, points, count):
+    with open(path, "w") as f:
+        f.write(f"ply\nformat ascii 1.0\nelement vertex {count}\n"
+                "property float x\nproperty float y\nproperty float z\nend_header\n")
+        for p in points:
+            f.write(" ".join(str(c) for c in p) + "\n")
+
+
+def main(out):
+    os.makedirs(out, exist_ok=True)
+    j = lambda name: os.path.join(out, name)
+    # A 20000 x 20000 8-bit pattern matrix, a few hundred kB on disk.
+    with open(j("huge_matrix.png"), "wb") as f:
+        f.write(png(20000, 20000, 8, zero_rows(20000, 20000, 1)))
+    # A 60000 x 60000 header over a few bytes of data.
+    with open(j("huge_header.png"), "wb") as f:
+        f.write(png(60000, 60000, 8, zlib.compress(b"\x00" * 100)))
+    # Integer-typed coordinates on a 100 mm cylinder patch (x^2 + z^2 = 50^2 about the y axis).
+    ring = [(int(round(50 * c)), y, int(round(50 * s)) + 150)
+            for y in range(-20, 21, 10)
+            for c, s in ((1, 0), (0.6, 0.8), (0, 1), (-0.6, 0.8), (-1, 0), (0.8, 0.6))]
+    for t in ("char", "short", "int"):
+        pts = ring if t != "char" else [(x, y, z - 100) for x, y, z in ring]
+        ply(j(f"coords_{t}.ply"), t, pts)
+    # Header says 3 vertices, the body holds 30.
+    plane = [(float(x), float(y), 100.0) for x in range(6) for y in range(5)]
+    ply(j("count_low.ply"), "float", plane, count=3)
+    ascii_ply(j("count_low_ascii.ply"), plane, 3)
+    # Identical and collinear points.
+    ply(j("identical.ply"), "float", [(1.0, 2.0, 100.0)] * 50)
+    ply(j("collinear.ply"), "float", [(float(i), 2.0 * i, 100.0 + i) for i in range(50)])
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])

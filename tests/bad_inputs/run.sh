@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The bad-input table: every case in cases.txt is one sewer3d command with malformed or extreme
+# input, the exit code it must end with and a fragment its one stderr line must hold.
+# Each case runs under a time limit and an address-space limit, so a hang or a memory blow-up
+# fails its case instead of the machine.
+#   SEWER3D=build/sewer3d bash tests/bad_inputs/run.sh [NAME_REGEX]
+set -u
+S=${SEWER3D:?set SEWER3D to the sewer3d binary}
+S=$(cd "$(dirname "$S")" && pwd)/$(basename "$S")
+here=$(cd "$(dirname "$0")" && pwd)
+only=${1:-}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+export S T
+
+bash "$here/fixtures.sh" "$T" || { echo "FAIL: fixtures"; exit 1; }
+
+failures=0
+cases=0
+while IFS='|' read -r name want needle cmd; do
+  case "$name" in '' | '#'*) continue ;; esac
+  [[ -n "$only" && ! "$name" =~ $only ]] && continue
+  cases=$((cases + 1))
+  want=${want// /}
+  needle=${needle#"${needle%%[![:space:]]*}"}
+  needle=${needle%"${needle##*[![:space:]]}"}
+  cd "$T" || exit 1
+  (ulimit -v 6000000; timeout -s KILL 60 bash -c "$cmd" </dev/null >"$T/out" 2>"$T/err")
+  rc=$?
+  why=""
+  if [ "$rc" -eq 137 ]; then why="killed (hang or memory)";
+  elif [ "$rc" -ne "$want" ]; then why="exit $rc, not $want";
+  elif [ "$want" -ne 0 ]; then
+    lines=$(wc -l <"$T/err")
+    if [ "$lines" -ne 1 ]; then why="$lines stderr lines";
+    elif ! grep -qF -- "$needle" "$T/err"; then why="no '$needle'";
+    elif grep -q "check failed\|\.cpp:[0-9]\|terminate called" "$T/err"; then why="internals shown"; fi
+  elif [ -n "$needle" ] && ! grep -qF -- "$needle" "$T/out" "$T/err"; then why="no '$needle'"; fi
+  if [ -n "$why" ]; then
+    failures=$((failures + 1))
+    echo "FAIL $name: $why: $(head -c 300 "$T/err" | tr '\n' ' ')"
+  else
+    echo "ok   $name"
+  fi
+done <"$here/cases.txt"
+echo "$((cases - failures)) of $cases cases pass"
+[ "$failures" -eq 0 ]
