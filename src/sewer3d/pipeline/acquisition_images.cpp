@@ -2,13 +2,12 @@
 
 #include <fmt/core.h>
 
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
@@ -43,7 +42,7 @@ std::filesystem::path ExistingImageFile(const CaptureRun& run, const Acquisition
 constexpr int kTries = 3;
 template <typename It>
 std::optional<std::pair<cv::Size, std::string>> FirstReadableSize(const CaptureRun& run, It begin,
-                                                                   It end) {
+                                                                  It end) {
   int tries = 0;
   for (It it = begin; it != end && tries < kTries; ++it) {
     const RunImage& image = run.images[*it];

@@ -92,8 +92,8 @@ std::vector<std::string> OdometryWarnings(const CaptureRun& run,
     int count = 0;
     for (const AcquisitionNode& n : nodes) {
       if (n.time_s <= g.from_s || n.time_s >= g.to_s) continue;
-      if (count++ < 6) inside += fmt::format("{}m{} counter {}", inside.empty() ? "" : ", ",
-                                             n.module, n.counter);
+      if (count++ < 6)
+        inside += fmt::format("{}m{} counter {}", inside.empty() ? "" : ", ", n.module, n.counter);
       sigma = std::max(sigma, n.distance_sigma_mm);
     }
     if (count > 6) inside += fmt::format(" and {} more", count - 6);

@@ -27,8 +27,9 @@ StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::p
   if (report.failed > 0 && report.done + report.skipped == 0) {
     const RgbdAcquisitionResult* first = report.FirstFailure();
     o.ok = false;
-    o.error = fmt::format("no acquisition could be processed: all {} failed (first: {}: {}; see {})",
-                          report.failed, first->file, first->reason, o.output.string());
+    o.error =
+        fmt::format("no acquisition could be processed: all {} failed (first: {}: {}; see {})",
+                    report.failed, first->file, first->reason, o.output.string());
   } else if (report.acquisitions == 0) {
     o.ok = false;
     o.error = "the run has no acquisition";
@@ -54,9 +55,10 @@ StageOutcome RegisterOutcome(const RegisterStageReport& report,
     o.details.push_back(fmt::format("left out: m{} counter {}: {}", l.module, l.counter, l.reason));
   if (report.nodes == 0) {
     o.ok = false;
-    o.error = fmt::format("no acquisition with depth to register: {} of {} left out{}",
-                          report.left_out.size(), report.acquisitions,
-                          report.left_out.empty() ? "" : " (first: " + report.left_out[0].reason + ")");
+    o.error =
+        fmt::format("no acquisition with depth to register: {} of {} left out{}",
+                    report.left_out.size(), report.acquisitions,
+                    report.left_out.empty() ? "" : " (first: " + report.left_out[0].reason + ")");
   } else if (!report.fusion.usable) {
     o.ok = false;
     o.error =

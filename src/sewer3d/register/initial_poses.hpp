@@ -22,8 +22,8 @@ namespace sewer3d {
 struct AcquisitionNode {
   int module = 0;
   int counter = 0;
-  double time_s = 0.0;        ///< the pattern image's time
-  double distance_mm = 0.0;   ///< odometry distance at time_s, relative to the first image
+  double time_s = 0.0;       ///< the pattern image's time
+  double distance_mm = 0.0;  ///< odometry distance at time_s, relative to the first image
   /// Where time_s lies in a gap of the odometry (CaptureRun::odometry_findings): σ of
   /// distance_mm and of the carrier's speed there beyond what a reading has (0 elsewhere).
   double distance_sigma_mm = 0.0;

@@ -133,10 +133,11 @@ std::vector<RegistrationEdge> RigEdges(const std::vector<AcquisitionNode>& nodes
       const double dd = std::abs(nodes[b].distance_mm - nodes[a].distance_mm);
       // In an odometry gap the carrier's speed, hence d_b − d_a, is uncertain.
       const double gap = std::max(nodes[a].speed_sigma_mm_s, nodes[b].speed_sigma_mm_s) * dt;
-      const double along = dt > 0.0 ? std::hypot(std::hypot(std::sqrt(2.0) * options.odometry_noise_mm,
-                                                            options.odometry_scale_sigma * dd),
-                                                 gap)
-                                    : 1e-3;
+      const double along = dt > 0.0
+                               ? std::hypot(std::hypot(std::sqrt(2.0) * options.odometry_noise_mm,
+                                                       options.odometry_scale_sigma * dd),
+                                            gap)
+                               : 1e-3;
       const Matrix6d motion = Diagonal(std::max(options.lateral_speed_mm_s * dt, 1e-3), along,
                                        std::max(options.turn_rate_deg_s * dt, 1e-4) * kDegToRad,
                                        std::max(options.turn_rate_deg_s * dt, 1e-4) * kDegToRad);

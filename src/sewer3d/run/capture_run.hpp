@@ -63,8 +63,8 @@ struct CaptureRun {
   std::filesystem::path folder;
   RunInfo info;
   Rig rig;
-  std::vector<BinaryArray> patterns;      ///< each module's pattern matrix, as rig.modules
-  std::vector<RunImage> images;           ///< sorted by time
+  std::vector<BinaryArray> patterns;  ///< each module's pattern matrix, as rig.modules
+  std::vector<RunImage> images;       ///< sorted by time
   /// Sorted by time; as LoadRun gives it, the readings CheckOdometry kept.
   std::vector<OdometryReading> odometry;
   /// What LoadRun's CheckOdometry dropped (reversals) and the gaps left: where `odometry` is

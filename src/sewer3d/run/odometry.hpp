@@ -75,8 +75,8 @@ OdometryCheck CheckOdometry(const std::vector<OdometryReading>& readings,
 
 /// How well the kept readings give the distance at `time_s`.
 struct OdometryUncertainty {
-  double sigma_mm = 0.0;         ///< of the interpolated distance, beyond the reading noise
-  double speed_sigma_mm_s = 0.0;  ///< of the carrier's speed there (0 outside gaps)
+  double sigma_mm = 0.0;             ///< of the interpolated distance, beyond the reading noise
+  double speed_sigma_mm_s = 0.0;     ///< of the carrier's speed there (0 outside gaps)
   const OdometryGap* gap = nullptr;  ///< the gap holding time_s, or null
 };
 
