@@ -80,7 +80,9 @@ Command AddRgbdCommand(CLI::App& app) {
               return 2;
             }
             const StageOutcome outcome = RgbdOutcome(report, args->out);
-            fmt::print("{}\nwrote {}\n", outcome.summary, outcome.output.string());
+            fmt::print("{}\n", outcome.summary);
+            for (const std::string& line : outcome.details) fmt::print("{}\n", line);
+            fmt::print("wrote {}\n", outcome.output.string());
             if (!outcome.ok) {
               fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);
               return 1;

@@ -171,7 +171,7 @@ std::vector<OdometryReading> ReadOdometry(const fs::path& path) {
   std::vector<OdometryReading> out;
   for (const CsvRow& row : ReadCsv(path, kOdometryHeader)) {
     const OdometryReading r{CsvNumber(path, row, 0, "time_s"),
-                            CsvNumber(path, row, 1, "distance_mm")};
+                            CsvNumber(path, row, 1, "distance_mm"), row.line};
     if (!out.empty() && r.time_s <= out.back().time_s) {
       throw FileError(path,
                       fmt::format("line {}: time_s {} does not increase", row.line, r.time_s));
@@ -198,8 +198,10 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
   std::set<std::tuple<int, int, int>> seen;
   for (RunImage& image : ReadIndex(index)) {
     if (image.module >= static_cast<int>(run.rig.modules.size())) {
-      throw FileError(index, fmt::format("image {}: module {} is not in rig.json ({} modules)",
-                                         image.file, image.module, run.rig.modules.size()));
+      // The rig and the images disagree; the rig is what describes the robot.
+      throw FileError(folder / "rig.json",
+                      fmt::format("modules: {} modules, but acquisitions.csv lists {} of module {}",
+                                  run.rig.modules.size(), image.file, image.module));
     }
     if (!seen.emplace(image.module, image.counter, static_cast<int>(image.kind)).second) {
       throw FileError(index, fmt::format("module {} counter {} lists two {} images", image.module,
@@ -207,11 +209,14 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
     }
     if (!fs::is_regular_file(folder / image.file, ec)) {
       if (options.allow_incomplete && !run.info.complete) continue;
-      throw FileError(folder / image.file, "listed in acquisitions.csv but missing");
+      image.missing = true;  // its acquisition fails, the others are processed
     }
     run.images.push_back(std::move(image));
   }
-  run.odometry = ReadOdometry(folder / "odometry.csv");
+  OdometryCheck odometry = CheckOdometry(ReadOdometry(folder / "odometry.csv"));
+  if (odometry.kept.empty()) throw FileError(folder / "odometry.csv", "has no reading");
+  run.odometry = std::move(odometry.kept);
+  run.odometry_findings = std::move(odometry.findings);
   return run;
 }
 

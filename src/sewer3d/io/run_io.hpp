@@ -50,7 +50,10 @@ struct LoadRunOptions {
 
 /// Reads run.json, rig.json (with the pattern matrices), acquisitions.csv and odometry.csv of
 /// the run folder `folder` and checks them against each other: every image's module exists in
-/// the rig, no image is listed twice, every listed image file exists. Reads no image.
+/// the rig (else FileError naming rig.json), no image is listed twice. A listed image whose
+/// file is missing is kept with `missing` set (its acquisition fails in the rgbd stage, the
+/// others are processed). The odometry goes through CheckOdometry: `run.odometry` holds the
+/// readings kept, `run.odometry_findings` what was dropped and the gaps. Reads no image.
 CaptureRun LoadRun(const std::filesystem::path& folder, const LoadRunOptions& options = {});
 
 }  // namespace sewer3d

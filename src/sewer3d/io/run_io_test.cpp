@@ -149,16 +149,34 @@ TEST_F(RunIoTest, ColorFilterRoundTripsDefaultsToNoneAndRefusesUnknownNames) {
   EXPECT_NE(error.find("color_filter"), std::string::npos) << error;
 }
 
-TEST_F(RunIoTest, RefusesInconsistentRuns) {
+TEST_F(RunIoTest, KeepsAMissingImageMarkedAndChecksTheOdometry) {
   WriteRun();
   fs::remove(dir_ / images_[4].file);
-  EXPECT_NE(ErrorOf().find(images_[4].file + ": listed in acquisitions.csv but missing"),
-            std::string::npos);
+  WriteOdometry(dir_ / "odometry.csv",
+                {{0.0, 0.0}, {0.05, 5.0}, {0.10, -20.0}, {0.15, 14.9}, {0.60, 60.0}});
+  const CaptureRun run = LoadRun(dir_);
+  ASSERT_EQ(run.images.size(), images_.size());
+  for (size_t i = 0; i < images_.size(); ++i) EXPECT_EQ(run.images[i].missing, i == 4) << i;
+  // Line 4 (-20 mm after 5 mm) is dropped; 0.15 s to 0.60 s is a gap.
+  ASSERT_EQ(run.odometry.size(), 4u);
+  EXPECT_EQ(run.odometry[2].line, 5);
+  ASSERT_EQ(run.odometry_findings.reversals.size(), 1u);
+  EXPECT_EQ(run.odometry_findings.reversals[0].first_line, 4);
+  ASSERT_EQ(run.odometry_findings.gaps.size(), 1u);
+  EXPECT_EQ(run.odometry_findings.gaps[0].from_line, 5);
+}
 
+TEST_F(RunIoTest, RefusesInconsistentRuns) {
   WriteRun();
   images_[3].module = 2;
   WriteIndex(dir_ / "acquisitions.csv", images_);
-  EXPECT_NE(ErrorOf().find("module 2 is not in rig.json (2 modules)"), std::string::npos);
+  EXPECT_NE(ErrorOf().find("rig.json: modules: 2 modules, but acquisitions.csv lists"),
+            std::string::npos)
+      << ErrorOf();
+
+  WriteRun();
+  WriteOdometry(dir_ / "odometry.csv", {});
+  EXPECT_NE(ErrorOf().find("odometry.csv: has no reading"), std::string::npos) << ErrorOf();
 
   WriteRun();
   images_[5] = images_[4];

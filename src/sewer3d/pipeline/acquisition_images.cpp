@@ -4,6 +4,10 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
@@ -28,10 +32,53 @@ std::filesystem::path ExistingImageFile(const CaptureRun& run, const Acquisition
   std::filesystem::path file = AcquisitionImageFile(run, a, kind);
   if (a.Image(kind) < 0)
     throw FileError(file, std::string("no ") + ImageKindName(kind) + " image in acquisitions.csv");
+  if (run.images[a.Image(kind)].missing)
+    throw FileError(file, "listed in acquisitions.csv but missing");
   return file;
 }
 
+// The size of the first of `images` (indices into the run's) that decodes, trying at most
+// kTries; nullopt when none does.
+constexpr int kTries = 3;
+template <typename It>
+std::optional<std::pair<cv::Size, std::string>> FirstReadableSize(const CaptureRun& run, It begin,
+                                                                  It end) {
+  int tries = 0;
+  for (It it = begin; it != end && tries < kTries; ++it) {
+    const RunImage& image = run.images[*it];
+    if (image.missing) continue;
+    ++tries;
+    try {
+      return std::make_pair(ReadImage(run.folder / image.file, cv::IMREAD_UNCHANGED).size(),
+                            image.file);
+    } catch (const FileError&) {  // a bad image: its acquisition fails on its own
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+void CheckRigMatchesImages(const CaptureRun& run) {
+  for (size_t k = 0; k < run.rig.modules.size(); ++k) {
+    std::vector<int> images;
+    for (size_t i = 0; i < run.images.size(); ++i)
+      if (run.images[i].module == static_cast<int>(k)) images.push_back(static_cast<int>(i));
+    const auto first = FirstReadableSize(run, images.begin(), images.end());
+    if (!first) continue;
+    const auto last = FirstReadableSize(run, images.rbegin(), images.rend());
+    const CameraIntrinsics& camera = run.rig.modules[k].module.camera;
+    const cv::Size expected(camera.width, camera.height);
+    if (first->first == expected || (last && last->first == expected)) continue;
+    std::string files = first->second;
+    if (last && last->second != first->second) files += " and " + last->second;
+    throw FileError(run.folder / "rig.json",
+                    fmt::format("modules[{}].module.camera: {}x{} px, but module m{}'s images are "
+                                "{}x{} ({}): the rig does not match the images",
+                                k, camera.width, camera.height, k, first->first.width,
+                                first->first.height, files));
+  }
+}
 
 std::filesystem::path AcquisitionImageFile(const CaptureRun& run, const Acquisition& a,
                                            ImageKind kind) {

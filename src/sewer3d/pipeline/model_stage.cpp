@@ -1,5 +1,7 @@
 #include "sewer3d/pipeline/model_stage.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -179,8 +181,12 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
   CentrelineFit fit = FitCentreline(all, fit_options);
   report.centreline = fit.report;
   if (!fit.converged) {
-    report.message = "no centreline: " + std::to_string(fit.report.slices_used) +
-                     " usable cross-section slices in " + std::to_string(all.size()) + " points";
+    // Usually too little of the circumference measured (acquisitions left out, few modules).
+    report.message = fmt::format(
+        "no centreline: {} of {} cross-section slices usable in {} points from {} acquisitions "
+        "(a slice needs {} points over {:.0f} deg of the wall): too little of the pipe measured",
+        fit.report.slices_used, fit.report.slices_used + fit.report.slices_rejected, all.size(),
+        acquisitions.size(), fit_options.min_slice_points, fit_options.min_slice_coverage_deg);
     workspace.FinishStage(kStage, false, {{"error", report.message}});
     return report;
   }

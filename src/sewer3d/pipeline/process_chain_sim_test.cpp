@@ -1,12 +1,15 @@
-// The chain of stages over the tiny simulated run (2 acquisitions × 6 modules, 648 × 486): a
-// stage that fails stops the chain and keeps what it wrote; once the input is mended the chain
-// resumes and runs every stage; run again, every stage is skipped from workspace.json.
+// The chain of stages over the tiny simulated run (2 acquisitions × 6 modules, 648 × 486): bad
+// acquisitions (a truncated pattern image, a missing texture image) are left out and listed,
+// the chain goes on and makes the model from the rest; once the input is mended the chain
+// resumes, redoing only those acquisitions; run again, every stage is skipped from
+// workspace.json.
 
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "sewer3d/io/model_io.hpp"
@@ -23,47 +26,76 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(ProcessChainTiny, LeavesOutBadAcquisitionsResumesAndSkipsWhatIsDone) {
   const fs::path dir = fs::temp_directory_path() / "sewer3d_process_chain_sim_test";
   fs::remove_all(dir);
   Scenario s = PresetScenario("tiny");
   s.truth_depth = TruthDepth::kNone;
   SimulateRun(s, testing::SmallDefaultModule(s.camera_width), DefaultPatternArray(), dir / "run",
               {});
-  const CaptureRun run = LoadRun(dir / "run");
   ProcessOptions options;
   options.threads = 2;
   options.resolution_mm = 0.5;
   options.start_station_mm = 1200.0;
 
-  // A truncated pattern image fails its acquisition, so the rgbd stage fails: register is
-  // never started.
+  // A truncated pattern image and a missing texture image: those two acquisitions are left
+  // out and listed, the other ten make the model.
   const fs::path image = dir / "run" / "images" / (ImageStem(3, 1, ImageKind::kPattern) + ".png");
-  const std::string bytes = ReadTextFile(image);
+  const fs::path texture =
+      dir / "run" / "images" / (ImageStem(1, 1, ImageKind::kTextureAfter) + ".png");
+  const std::string bytes = ReadTextFile(image), texture_bytes = ReadTextFile(texture);
   WriteTextFile(image, bytes.substr(0, bytes.size() / 2));
+  fs::remove(texture);
   std::set<std::string> passes;
   {
+    const CaptureRun run = LoadRun(dir / "run");
     Workspace ws(dir / "ws", run.folder);
-    const ProcessReport failed = RunProcess(
+    const ProcessReport report = RunProcess(
         run, ws, options, [&](const std::string& pass, int, int) { passes.insert(pass); });
-    EXPECT_FALSE(failed.ok);
-    ASSERT_EQ(failed.stages.size(), 1u);
-    ASSERT_NE(failed.Failure(), nullptr);
-    EXPECT_EQ(failed.Failure()->name, "rgbd");
-    EXPECT_NE(failed.Failure()->outcome.error.find("000001_pattern.png"), std::string::npos);
+    EXPECT_TRUE(report.ok);
+    ASSERT_EQ(report.stages.size(), 5u);
+    for (const ProcessStageResult& r : report.stages) EXPECT_TRUE(r.outcome.ok) << r.name;
+    const StageOutcome& rgbd = report.stages[0].outcome;
+    EXPECT_TRUE(Contains(rgbd.summary, "10 done, 0 skipped (done before), 2 failed"))
+        << rgbd.summary;
+    ASSERT_EQ(rgbd.details.size(), 2u);
+    EXPECT_TRUE(Contains(rgbd.details[0], "m1 counter 1 left out: "));
+    EXPECT_TRUE(Contains(rgbd.details[0],
+                         "000001_texture_after.png: listed in acquisitions.csv but missing"))
+        << rgbd.details[0];
+    EXPECT_TRUE(Contains(rgbd.details[1], "m3 counter 1 left out: "));
+    EXPECT_TRUE(Contains(rgbd.details[1], "000001_pattern.png: cannot decode image"))
+        << rgbd.details[1];
+    EXPECT_EQ(passes.count("model tiles"), 1u);
+    EXPECT_TRUE(Contains(report.stages[1].outcome.summary, "12 acquisitions, 10 nodes, 2 left out"))
+        << report.stages[1].outcome.summary;
   }
-  EXPECT_EQ(passes, (std::set<std::string>{"rgbd geometry", "rgbd reference", "rgbd colour"}));
+  const nlohmann::json failures =
+      nlohmann::json::parse(ReadTextFile(dir / "ws" / "rgbd" / "report.json"))["failures"];
+  ASSERT_EQ(failures.size(), 2u);
+  EXPECT_EQ(failures[1]["module"], 3);
+  EXPECT_EQ(failures[1]["counter"], 1);
+  EXPECT_EQ(failures[1]["file"], image.string());
+  EXPECT_TRUE(Contains(failures[1]["reason"].get<std::string>(), "truncated"));
+  EXPECT_TRUE(fs::exists(dir / "ws" / "model" / "model.json"));
+  EXPECT_TRUE(fs::exists(dir / "ws" / "report" / "index.html"));
   WorkspaceRecord record = ReadWorkspaceRecord(dir / "ws" / "workspace.json");
-  EXPECT_EQ(record.stages.count("register"), 0u);
-  EXPECT_FALSE(record.stages.at("rgbd").done);
-  EXPECT_FALSE(record.stages.at("process").done);
-  EXPECT_EQ(record.stages.at("process").notes.at("failed"), "rgbd");
+  EXPECT_FALSE(record.stages.at("rgbd").done);  // so that the next process retries them
+  EXPECT_EQ(record.stages.at("rgbd").notes.at("failed"), "2");
+  EXPECT_TRUE(record.stages.at("register").done);
+  EXPECT_TRUE(record.stages.at("process").done);
   EXPECT_EQ(
       record.stages.at("process").options_json,
       R"({"resolution_mm":0.5,"stages":["rgbd","register","model","inspect","report"],"start_station_mm":1200.0})");
 
-  // Mended: the rgbd stage redoes the one acquisition, register, model and inspect run.
+  // Mended: the rgbd stage redoes the two acquisitions, register, model and inspect run again.
   WriteTextFile(image, bytes);
+  WriteTextFile(texture, texture_bytes);
+  const CaptureRun run = LoadRun(dir / "run");
   {
     Workspace ws(dir / "ws", run.folder);
     const ProcessReport report = RunProcess(run, ws, options);
@@ -75,8 +107,10 @@ TEST(ProcessChainTiny, StopsAtAFailedStageResumesAndSkipsWhatIsDone) {
     EXPECT_EQ(report.stages[3].name, "inspect");
     EXPECT_EQ(report.stages[4].name, "report");
     for (const ProcessStageResult& r : report.stages) EXPECT_FALSE(r.skipped) << r.name;
-    EXPECT_NE(report.stages[0].outcome.summary.find("1 done, 11 skipped"), std::string::npos)
+    EXPECT_TRUE(Contains(report.stages[0].outcome.summary, "2 done, 10 skipped"))
         << report.stages[0].outcome.summary;
+    EXPECT_TRUE(report.stages[0].outcome.details.empty());
+    EXPECT_TRUE(Contains(report.stages[1].outcome.summary, "12 nodes, 0 left out"));
     EXPECT_TRUE(fs::exists(dir / "ws" / "registration" / "poses.csv"));
     EXPECT_TRUE(fs::exists(dir / "ws" / "inspection" / "observations.json"));
     EXPECT_TRUE(fs::exists(dir / "ws" / "report" / "index.html"));

@@ -1,5 +1,8 @@
 #include "sewer3d/pipeline/register_stage.hpp"
 
+#include <fmt/core.h>
+
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 
@@ -66,6 +69,46 @@ CarrierOffsetEstimate FirstInstantOffset(const std::vector<AcquisitionNode>& nod
   return EstimateCarrierOffset(run.rig, walls, options.carrier_offset);
 }
 
+/// The odometry's problems (CaptureRun::odometry_findings) in words, naming the file, its
+/// lines and the acquisitions they concern.
+std::vector<std::string> OdometryWarnings(const CaptureRun& run,
+                                          const std::vector<AcquisitionNode>& nodes) {
+  const std::string file = (run.folder / "odometry.csv").string();
+  const OdometryFindings& f = run.odometry_findings;
+  std::vector<std::string> lines;
+  for (const OdometryReversal& r : f.reversals) {
+    lines.push_back(fmt::format(
+        "{}: line{} {}: the distance goes back from {:.1f} mm to {:.1f} mm (more than {} mm): "
+        "{} reading{} dropped, a cable counter only counts forward",
+        file, r.first_line == r.last_line ? "" : "s",
+        r.first_line == r.last_line ? std::to_string(r.first_line)
+                                    : fmt::format("{}-{}", r.first_line, r.last_line),
+        r.before_mm, r.lowest_mm, f.options.reversal_tolerance_mm, r.readings,
+        r.readings == 1 ? "" : "s"));
+  }
+  for (const OdometryGap& g : f.gaps) {
+    std::string inside;
+    double sigma = 0.0;
+    int count = 0;
+    for (const AcquisitionNode& n : nodes) {
+      if (n.time_s <= g.from_s || n.time_s >= g.to_s) continue;
+      if (count++ < 6)
+        inside += fmt::format("{}m{} counter {}", inside.empty() ? "" : ", ", n.module, n.counter);
+      sigma = std::max(sigma, n.distance_sigma_mm);
+    }
+    if (count > 6) inside += fmt::format(" and {} more", count - 6);
+    lines.push_back(fmt::format(
+        "{}: no reading between line {} ({:.3f} s) and line {} ({:.3f} s), {:.2f} s (more than "
+        "{} s): {}",
+        file, g.from_line, g.from_s, g.to_line, g.to_s, g.to_s - g.from_s, f.options.max_gap_s,
+        count == 0 ? std::string("no acquisition in it")
+                   : fmt::format("{} acquisition{} placed by interpolation with σ up to {:.1f} mm "
+                                 "along the pipe ({})",
+                                 count, count == 1 ? "" : "s", sigma, inside)));
+  }
+  return lines;
+}
+
 }  // namespace
 
 void RegisterStageOptions::Check() const {
@@ -97,11 +140,16 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   const InitialPosesResult initial = InitialPoses(run);
   report.initial = initial.report;
   report.acquisitions = static_cast<int>(initial.nodes.size());
+  report.odometry_warnings = OdometryWarnings(run, initial.nodes);
   const std::vector<AcquisitionNode> nodes =
       UsableNodes(initial.nodes, rgbd_folder, options.min_depth_points, report);
   report.nodes = static_cast<int>(nodes.size());
-  if (nodes.empty())
-    throw FileError(rgbd_folder, "no acquisition with depth to register (run the rgbd stage)");
+  if (nodes.empty()) {  // nothing to register: the outcome says why, nothing is written
+    report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    workspace.FinishStage(kStage, false,
+                          {{"nodes", "0"}, {"left_out", std::to_string(report.left_out.size())}});
+    return report;
+  }
 
   NeighbourOptions neighbours = options.neighbours;
   report.carrier_offset = FirstInstantOffset(nodes, run, rgbd_folder, options);

@@ -50,6 +50,9 @@ struct RegisterStageReport {
   int nodes = 0;         ///< in the graph
   std::vector<LeftOutAcquisition> left_out;
   InitialPosesReport initial;
+  /// One line per problem of odometry.csv that LoadRun found (readings dropped because the
+  /// distance went backwards; gaps longer than the bound, with the acquisitions in them).
+  std::vector<std::string> odometry_warnings;
   CarrierOffsetEstimate carrier_offset;
   NeighbourReport neighbours;
   int pairs = 0, pairs_done = 0, pairs_skipped = 0, pairs_failed = 0;
@@ -70,7 +73,8 @@ using RegisterProgress = std::function<void(const std::string& pass, int finishe
 
 /// Runs the registration stage of `run` into `workspace`. Throws std::invalid_argument on
 /// invalid options, WorkspaceConflict (other options recorded, !force), FileError when the
-/// workspace's files cannot be read or written or no acquisition is usable.
+/// workspace's files cannot be read or written. No acquisition usable: `nodes` 0, nothing
+/// written, the stage recorded not done.
 RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace,
                                      const RegisterStageOptions& options,
                                      const RegisterProgress& progress = {});

@@ -12,6 +12,7 @@
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pattern/constraints.hpp"
+#include "sewer3d/pipeline/acquisition_images.hpp"
 #include "sewer3d/pipeline/parallel_items.hpp"
 
 namespace sewer3d {
@@ -215,6 +216,7 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
       "one pattern per module: " << run.patterns.size() << " for " << run.rig.modules.size());
   const auto start = Clock::now();
   const std::vector<PatternConstraints> constraints = RigConstraints(run);
+  CheckRigMatchesImages(run);
   workspace.BeginStage(kStage, RgbdOptionsJson(options), options.force);
   const std::filesystem::path folder = workspace.StageFolder(kStage);
   const std::vector<Acquisition> acquisitions = GroupAcquisitions(run.images);

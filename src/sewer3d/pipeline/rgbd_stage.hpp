@@ -90,8 +90,9 @@ using StageProgress = std::function<void(const std::string& pass, int finished, 
 /// Runs the RGB-D stage of `run` into `workspace` (records it there, workspace.hpp). Throws
 /// std::invalid_argument on invalid options, WorkspaceConflict when the stage was recorded with
 /// other options and !options.force, FileError when the rig cannot decode (a module's pattern
-/// fails InferConstraints) or the workspace cannot be written. Failures of single acquisitions
-/// are in the report, not thrown.
+/// fails InferConstraints), does not match the images (CheckRigMatchesImages) or the workspace
+/// cannot be written. Failures of single acquisitions (a missing, truncated or wrongly sized
+/// image, a pattern that does not decode) are in the report, not thrown.
 RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
                              const RgbdStageOptions& options, const StageProgress& progress = {});
 

@@ -12,10 +12,27 @@ StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::p
       "{:.2f} s per acquisition, {:.1f} s in all ({} threads); colour: {}",
       report.acquisitions, report.done, report.skipped, report.failed, report.points,
       report.seconds_per_acquisition, report.seconds, report.threads, kRgbdColorSource);
-  if (const RgbdAcquisitionResult* first = report.FirstFailure()) {
+  // A bad acquisition is left out and named; the stage fails only when nothing is left.
+  constexpr int kListed = 10;
+  int listed = 0;
+  for (const RgbdAcquisitionSummary& s : report.results) {
+    const RgbdAcquisitionResult* f = s.Failure();
+    if (f == nullptr || listed++ >= kListed) continue;
+    o.details.push_back(fmt::format("warning: rgbd: m{} counter {} left out: {}: {}", s.module,
+                                    s.counter, f->file, f->reason));
+  }
+  if (listed > kListed)
+    o.details.push_back(fmt::format("warning: rgbd: {} more acquisitions left out (see {})",
+                                    listed - kListed, o.output.string()));
+  if (report.failed > 0 && report.done + report.skipped == 0) {
+    const RgbdAcquisitionResult* first = report.FirstFailure();
     o.ok = false;
-    o.error = fmt::format("{}: {}; {} of {} acquisitions failed (see {})", first->file,
-                          first->reason, report.failed, report.acquisitions, o.output.string());
+    o.error =
+        fmt::format("no acquisition could be processed: all {} failed (first: {}: {}; see {})",
+                    report.failed, first->file, first->reason, o.output.string());
+  } else if (report.acquisitions == 0) {
+    o.ok = false;
+    o.error = "the run has no acquisition";
   }
   return o;
 }
@@ -33,9 +50,16 @@ StageOutcome RegisterOutcome(const RegisterStageReport& report,
       report.pairs_skipped, report.pairs_failed, report.feature_edges, report.projection_edges,
       report.degenerate_edges, report.prior_edges, report.fusion.rejected, report.seconds,
       report.seconds_per_pair);
+  for (const std::string& w : report.odometry_warnings) o.details.push_back("warning: " + w);
   for (const LeftOutAcquisition& l : report.left_out)
     o.details.push_back(fmt::format("left out: m{} counter {}: {}", l.module, l.counter, l.reason));
-  if (!report.fusion.usable) {
+  if (report.nodes == 0) {
+    o.ok = false;
+    o.error =
+        fmt::format("no acquisition with depth to register: {} of {} left out{}",
+                    report.left_out.size(), report.acquisitions,
+                    report.left_out.empty() ? "" : " (first: " + report.left_out[0].reason + ")");
+  } else if (!report.fusion.usable) {
     o.ok = false;
     o.error =
         fmt::format("the pose graph did not converge (see {})", (folder / "report.json").string());

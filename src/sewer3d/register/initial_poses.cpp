@@ -70,6 +70,8 @@ InitialPosesResult InitialPoses(const CaptureRun& run) {
   InitialPosesReport& report = out.report;
   for (size_t i = 1; i < run.odometry.size(); ++i)
     if (run.odometry[i].distance_mm < run.odometry[i - 1].distance_mm) ++report.odometry_backwards;
+  for (const OdometryReversal& r : run.odometry_findings.reversals)
+    report.odometry_dropped += r.readings;
   double t0 = run.images.front().time_s;
   for (const RunImage& image : run.images) t0 = std::min(t0, image.time_s);
   report.first_image_time_s = t0;
@@ -95,6 +97,10 @@ InitialPosesResult InitialPoses(const CaptureRun& run) {
     bool outside = false;
     node.distance_mm = DistanceAt(run.odometry, node.time_s, &outside) - d0;
     if (outside) ++report.outside_odometry;
+    const OdometryUncertainty u = OdometryUncertaintyAt(run.odometry_findings, node.time_s);
+    node.distance_sigma_mm = u.sigma_mm;
+    node.speed_sigma_mm_s = u.speed_sigma_mm_s;
+    if (u.gap != nullptr) ++report.in_odometry_gap;
     const Rigid3d world_from_carrier(Eigen::Quaterniond::Identity(),
                                      Eigen::Vector3d(0.0, 0.0, node.distance_mm));
     node.world_from_camera = world_from_carrier * run.rig.modules[acq.module].carrier_from_camera;

@@ -22,8 +22,12 @@ namespace sewer3d {
 struct AcquisitionNode {
   int module = 0;
   int counter = 0;
-  double time_s = 0.0;        ///< the pattern image's time
-  double distance_mm = 0.0;   ///< odometry distance at time_s, relative to the first image
+  double time_s = 0.0;       ///< the pattern image's time
+  double distance_mm = 0.0;  ///< odometry distance at time_s, relative to the first image
+  /// Where time_s lies in a gap of the odometry (CaptureRun::odometry_findings): σ of
+  /// distance_mm and of the carrier's speed there beyond what a reading has (0 elsewhere).
+  double distance_sigma_mm = 0.0;
+  double speed_sigma_mm_s = 0.0;
   Rigid3d world_from_camera;  ///< model frame
 };
 
@@ -32,7 +36,9 @@ struct InitialPosesReport {
   int nodes = 0;               ///< with a pattern image, hence a pose
   int without_pattern = 0;     ///< skipped: no pattern image
   int outside_odometry = 0;    ///< time outside the odometry's span: nearest reading used
-  int odometry_backwards = 0;  ///< consecutive readings whose distance decreases
+  int odometry_backwards = 0;  ///< consecutive readings (of those kept) whose distance decreases
+  int odometry_dropped = 0;    ///< readings LoadRun dropped: the distance went backwards
+  int in_odometry_gap = 0;     ///< nodes placed by interpolation across a long gap
   double first_image_time_s = 0.0;
 };
 

@@ -131,9 +131,13 @@ std::vector<RegistrationEdge> RigEdges(const std::vector<AcquisitionNode>& nodes
       const int a = list[k], b = list[k + 1];
       const double dt = std::abs(nodes[b].time_s - nodes[a].time_s);
       const double dd = std::abs(nodes[b].distance_mm - nodes[a].distance_mm);
-      const double along = dt > 0.0 ? std::hypot(std::sqrt(2.0) * options.odometry_noise_mm,
-                                                 options.odometry_scale_sigma * dd)
-                                    : 1e-3;
+      // In an odometry gap the carrier's speed, hence d_b − d_a, is uncertain.
+      const double gap = std::max(nodes[a].speed_sigma_mm_s, nodes[b].speed_sigma_mm_s) * dt;
+      const double along = dt > 0.0
+                               ? std::hypot(std::hypot(std::sqrt(2.0) * options.odometry_noise_mm,
+                                                       options.odometry_scale_sigma * dd),
+                                            gap)
+                               : 1e-3;
       const Matrix6d motion = Diagonal(std::max(options.lateral_speed_mm_s * dt, 1e-3), along,
                                        std::max(options.turn_rate_deg_s * dt, 1e-4) * kDegToRad,
                                        std::max(options.turn_rate_deg_s * dt, 1e-4) * kDegToRad);
@@ -152,8 +156,11 @@ std::vector<RegistrationEdge> OdometryEdges(const std::vector<AcquisitionNode>& 
     for (size_t k = 0; k + 1 < list.size(); ++k) {
       const int a = list[k], b = list[k + 1];
       const double dd = std::abs(nodes[b].distance_mm - nodes[a].distance_mm);
-      const double along =
-          std::hypot(std::sqrt(2.0) * options.odometry_noise_mm, options.odometry_scale_sigma * dd);
+      // A distance interpolated across an odometry gap adds its σ (independent: conservative).
+      const double along = std::sqrt(std::pow(std::sqrt(2.0) * options.odometry_noise_mm, 2) +
+                                     std::pow(options.odometry_scale_sigma * dd, 2) +
+                                     std::pow(nodes[a].distance_sigma_mm, 2) +
+                                     std::pow(nodes[b].distance_sigma_mm, 2));
       const double turn = options.odometry_rotation_sigma_deg * kDegToRad;
       const Matrix6d motion = Diagonal(options.odometry_lateral_sigma_mm, along, turn, turn);
       edges.push_back(

@@ -91,7 +91,9 @@ Matrix6d StraightnessCovariance(double length_mm, const PriorEdgeOptions& option
 std::vector<RegistrationEdge> RigEdges(const std::vector<AcquisitionNode>& nodes, const Rig& rig,
                                        const PriorEdgeOptions& options);
 
-/// Odometry edges between consecutive acquisitions (by counter) of each module.
+/// Odometry edges between consecutive acquisitions (by counter) of each module. A node in an
+/// odometry gap adds its distance_sigma_mm along the axis (and a rig edge its speed_sigma_mm_s
+/// times the two cameras' time difference).
 std::vector<RegistrationEdge> OdometryEdges(const std::vector<AcquisitionNode>& nodes,
                                             const Rig& rig, const PriorEdgeOptions& options);
 

@@ -53,20 +53,4 @@ std::vector<Acquisition> GroupAcquisitions(const std::vector<RunImage>& images) 
   return out;
 }
 
-std::optional<double> OdometryDistanceAt(const std::vector<OdometryReading>& readings,
-                                         double time_s) {
-  if (readings.empty() || time_s < readings.front().time_s || time_s > readings.back().time_s)
-    return std::nullopt;
-  const auto after =
-      std::upper_bound(readings.begin(), readings.end(), time_s,
-                       [](double t, const OdometryReading& r) { return t < r.time_s; });
-  if (after == readings.end()) return readings.back().distance_mm;
-  const OdometryReading& b = *after;
-  const OdometryReading& a = *(after - 1);
-  const double span = b.time_s - a.time_s;
-  if (span <= 0.0) return a.distance_mm;
-  const double w = (time_s - a.time_s) / span;
-  return (1.0 - w) * a.distance_mm + w * b.distance_mm;
-}
-
 }  // namespace sewer3d

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sewer3d/pattern/binary_array.hpp"
+#include "sewer3d/run/odometry.hpp"
 #include "sewer3d/run/rig.hpp"
 
 namespace sewer3d {
@@ -36,17 +37,14 @@ struct RunImage {
   double time_s = 0.0;  ///< middle of the exposure, seconds from the start of the run
   double exposure_ms = 0.0;
   std::string file;  ///< relative to the run folder
+  /// Listed in acquisitions.csv but no file there when the run was loaded (LoadRun): its
+  /// acquisition fails when its images are read, the others are processed.
+  bool missing = false;
 };
 
 /// Where a run keeps an image: "m<module>/<counter, 6 digits>_<kind>" (docs/formats.md), under
 /// images/ with ".png" and, in simulated runs, under truth/depth/ with ".tiff".
 std::string ImageStem(int module, int counter, ImageKind kind);
-
-/// What the robot's cable counter reported: a row of odometry.csv.
-struct OdometryReading {
-  double time_s = 0.0;
-  double distance_mm = 0.0;  ///< cable paid out since the start of the run
-};
 
 /// run.json: what the folder is and where it came from.
 struct RunInfo {
@@ -65,9 +63,13 @@ struct CaptureRun {
   std::filesystem::path folder;
   RunInfo info;
   Rig rig;
-  std::vector<BinaryArray> patterns;      ///< each module's pattern matrix, as rig.modules
-  std::vector<RunImage> images;           ///< sorted by time
-  std::vector<OdometryReading> odometry;  ///< sorted by time
+  std::vector<BinaryArray> patterns;  ///< each module's pattern matrix, as rig.modules
+  std::vector<RunImage> images;       ///< sorted by time
+  /// Sorted by time; as LoadRun gives it, the readings CheckOdometry kept.
+  std::vector<OdometryReading> odometry;
+  /// What LoadRun's CheckOdometry dropped (reversals) and the gaps left: where `odometry` is
+  /// only a guess (OdometryUncertaintyAt). Empty for a run not read by LoadRun.
+  OdometryFindings odometry_findings;
 };
 
 /// One module's acquisition `counter`: its triplet as indices into the run's images (−1 where
@@ -83,10 +85,5 @@ struct Acquisition {
 /// Groups images into acquisitions, ordered by (module, counter). Throws std::invalid_argument
 /// when two images share module, counter and kind.
 std::vector<Acquisition> GroupAcquisitions(const std::vector<RunImage>& images);
-
-/// The odometry distance at `time_s`, linear between the two readings around it; nullopt
-/// outside the readings' time span or without readings. Readings must be sorted by time.
-std::optional<double> OdometryDistanceAt(const std::vector<OdometryReading>& readings,
-                                         double time_s);
 
 }  // namespace sewer3d

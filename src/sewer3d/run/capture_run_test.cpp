@@ -43,16 +43,5 @@ TEST(GroupAcquisitions, RejectsTwoImagesOfOneKind) {
   EXPECT_THROW(GroupAcquisitions(images), std::invalid_argument);
 }
 
-TEST(OdometryDistanceAt, LinearBetweenReadingsNothingOutside) {
-  const std::vector<OdometryReading> r = {{0.0, 0.0}, {0.05, 5.0}, {0.10, 9.0}};
-  EXPECT_DOUBLE_EQ(*OdometryDistanceAt(r, 0.0), 0.0);
-  EXPECT_NEAR(*OdometryDistanceAt(r, 0.025), 2.5, 1e-12);
-  EXPECT_NEAR(*OdometryDistanceAt(r, 0.075), 7.0, 1e-12);
-  EXPECT_DOUBLE_EQ(*OdometryDistanceAt(r, 0.10), 9.0);
-  EXPECT_FALSE(OdometryDistanceAt(r, -0.001));
-  EXPECT_FALSE(OdometryDistanceAt(r, 0.101));
-  EXPECT_FALSE(OdometryDistanceAt({}, 0.0));
-}
-
 }  // namespace
 }  // namespace sewer3d
