@@ -25,6 +25,9 @@ void CheckAgainstBruteForce(int max_value) {
   NiblackBinariser binariser(options);
   cv::Mat1b mask;
   binariser.Apply(image, mask);
+  // Contrast is in 8-bit levels: a 10-bit image's are 4 of its own.
+  const double level = NiblackBinariser::LevelScale(image);
+  EXPECT_EQ(level, max_value > 255 ? 4.0 : 1.0);
   for (int v = 0; v < image.rows; ++v) {
     for (int u = 0; u < image.cols; ++u) {
       double s = 0, s2 = 0;
@@ -37,9 +40,10 @@ void CheckAgainstBruteForce(int max_value) {
         }
       }
       const double mean = s / n, sd = std::sqrt(std::max(0.0, s2 / n - mean * mean));
-      const bool expected = image(v, u) > std::max(mean + 0.4 * sd, mean + 2.0);
+      const bool expected = image(v, u) > std::max(mean + 0.4 * sd, mean + 2.0 * level);
       ASSERT_EQ(mask(v, u) != 0, expected) << v << "," << u;
-      const double excess = std::max(0.0, image(v, u) - mean) * NiblackBinariser::kExcessScale;
+      const double excess =
+          std::max(0.0, image(v, u) - mean) * NiblackBinariser::kExcessScale / level;
       ASSERT_NEAR(binariser.excess()(v, u), std::min(excess, 65535.0), 0.5 + 1e-3);  // rounded
     }
   }
@@ -60,12 +64,10 @@ TEST(Spots, FindsRenderedSpotsWithSubpixelPrecision) {
   options.sensor.bits = 10;
   const RenderedFrame frame = RenderFrame(module, pattern, plane, options);
 
-  // The binariser's min_contrast is in image units, 4 for 8-bit images; this image has 10 bits,
-  // so 16. Left at 4 (0.4 % of full scale), the concrete's grains lit by the ambient light
-  // between the spots pass as ~200 faint spots (contrast 5-9 DN, real spots 40-540 DN).
-  NiblackOptions niblack;
-  niblack.min_contrast = 4.0 * 1023.0 / 255.0;
-  NiblackBinariser binariser(niblack);
+  // The binariser's min_contrast is in 8-bit levels, 4 by default, so 16 of this 10-bit image's.
+  // Taken in raw levels (4, 0.4 % of full scale), the concrete's grains lit by the ambient light
+  // between the spots would pass as ~200 faint spots (contrast 5-9 DN, real spots 40-540 DN).
+  NiblackBinariser binariser(NiblackOptions{});
   cv::Mat1b mask;
   binariser.Apply(frame.pattern, mask);
   const std::vector<Spot> spots = DetectSpots(mask, binariser.excess(), SpotOptions{});
