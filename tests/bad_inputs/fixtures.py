@@ -61,6 +61,9 @@ def main(out):
     # A 60000 x 60000 header over a few bytes of data.
     with open(j("huge_header.png"), "wb") as f:
         f.write(png(60000, 60000, 8, zlib.compress(b"\x00" * 100)))
+    # A 1 x 1 grey image.
+    with open(j("one_pixel.png"), "wb") as f:
+        f.write(png(1, 1, 8, zlib.compress(b"\x00\x80")))
     # Integer-typed coordinates on a 100 mm cylinder patch (x^2 + z^2 = 50^2 about the y axis).
     ring = [(int(round(50 * c)), y, int(round(50 * s)) + 150)
             for y in range(-20, 21, 10)

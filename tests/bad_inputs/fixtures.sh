@@ -122,3 +122,4 @@ mkdir -p not_a_run && echo x >not_a_run/file.txt
 printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\n' >one.g2o
 "$S" simulate calibration --module m/module.json --poses 1 --out calib --supersampling 1 \
   --texture-supersampling 1 >/dev/null 2>&1
+: >zero.tiff

@@ -14,8 +14,11 @@ std::optional<std::vector<Eigen::Vector2d>> DetectChessboard(const cv::Mat& grey
                                                              int rows) {
   SEWER3D_CHECK(grey.channels() == 1 && grey.depth() == CV_8U,
                 "checkerboard detection needs an 8-bit grey image");
-  SEWER3D_VALIDATE(cols >= 2 && rows >= 2, "board",
-                   "needs at least 2x2 inner corners, got " << cols << "x" << rows);
+  // OpenCV's detector needs more than 2 corners a side, and an image where each square spans
+  // a few pixels (smaller ones trip its adaptive threshold): no board is found in those.
+  SEWER3D_VALIDATE(cols >= 3 && rows >= 3, "board",
+                   "needs at least 3x3 inner corners, got " << cols << "x" << rows);
+  if (grey.cols < 4 * (cols + 1) || grey.rows < 4 * (rows + 1)) return std::nullopt;
   std::vector<cv::Point2f> corners;
   if (!cv::findChessboardCorners(grey, cv::Size(cols, rows), corners,
                                  cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE)) {

@@ -119,7 +119,7 @@ printf '{"pipe": {"sections": [{"length_mm": 500}, {"length_mm": 500}]}}' >"$tmp
 expect_file_error "$tmp/nojoint.json" "pipe.joints: 2 sections need 1 joint" \
   "$bin" simulate run --scenario "$tmp/nojoint.json" --out "$tmp/r"
 printf '{"pipe": {"sections": [{"length_mm": 3000}]}, "motion": {"speed_mm_s": -5}}' >"$tmp/slow.json"
-expect_file_error "$tmp/slow.json" "motion.speed_mm_s: must be > 0" \
+expect_file_error "$tmp/slow.json" "motion.speed_mm_s: a crawler's speed must be 1..1000 mm/s" \
   "$bin" simulate run --scenario "$tmp/slow.json" --out "$tmp/r"
 printf '{"pipe": {"sections": [{"length_mm": 3000}]}, "rig": {"stagger_mm": 200}}' >"$tmp/long_rig.json"
 expect_file_error "$tmp/long_rig.json" "rig.stagger_mm" \
@@ -220,11 +220,12 @@ expect_error "--force" "$bin" rgbd "$tmp/rg/run" --out "$tmp/rg/ws" --quiet --ma
 [ -s "$tmp/rg/ws/rgbd/m0/000000_report.json" ] || fail "refused rgbd removed outputs"
 cut=$tmp/rg/run/images/m3/000001_pattern.png
 head -c 2000 "$cut" >"$tmp/rg/cut.png" && mv "$tmp/rg/cut.png" "$cut"
-expect_error "000001_pattern.png: cannot decode image: truncated PNG" \
-  "$bin" rgbd "$tmp/rg/run" --out "$tmp/rg/ws2" --quiet
-grep -q "1 of 12 acquisitions failed" "$tmp/err" || fail "rgbd error does not count failures: $(cat "$tmp/err")"
-"$bin" rgbd "$tmp/rg/run" --out "$tmp/rg/ws2" --quiet >/dev/null 2>&1
-[ $? -eq 1 ] || fail "rgbd with a truncated image did not exit 1"
+# A bad image costs its acquisition only: a warning naming the file, the rest processed.
+"$bin" rgbd "$tmp/rg/run" --out "$tmp/rg/ws2" --quiet >"$tmp/out" 2>"$tmp/err"
+rc=$?
+[ "$rc" -eq 0 ] || fail "rgbd with one truncated image exited $rc: $(cat "$tmp/err")"
+grep -q "000001_pattern.png: cannot decode image: truncated PNG" "$tmp/err" ||
+  fail "rgbd does not name the truncated image: $(cat "$tmp/err")"
 [ -s "$tmp/rg/ws2/rgbd/m3/000000_report.json" ] || fail "rgbd did not process the other acquisitions"
 [ -e "$tmp/rg/ws2/rgbd/m3/000001_report.json" ] && fail "rgbd wrote a report for the bad acquisition"
 grep -q "$cut" "$tmp/rg/ws2/rgbd/report.json" || fail "rgbd/report.json does not list the bad image"
@@ -249,11 +250,7 @@ expect_error "--start-station-mm: must be finite" \
   "$bin" process "$tmp/rg/run" --out "$tmp/rg/ws5" --start-station-mm nan
 [ "$rc" -eq 2 ] || fail "process --start-station-mm nan exited $rc, not 2"
 [ -e "$tmp/rg/ws5" ] && fail "a refused process wrote its workspace"
-expect_error "rgbd: .*000001_pattern.png: cannot decode image" \
-  "$bin" process "$tmp/rg/run" --out "$tmp/rg/ws2" --quiet
-[ "$rc" -eq 1 ] || fail "process with a truncated image exited $rc, not 1"
-[ -e "$tmp/rg/ws2/registration" ] && fail "process went on to register after rgbd failed"
-grep -q '"process"' "$tmp/rg/ws2/workspace.json" || fail "workspace.json does not record process"
+# (process over a run with bad images: pipeline/process_chain_sim.)
 
 # model: refused without a registration (exit 3, one line naming poses.csv) or with a bad grid.
 expect_ok "$bin" model --help

@@ -239,8 +239,9 @@ Command AddCalibrateCommand(CLI::App& app) {
       ->check(CLI::Validator(
           [](std::string& s) {
             const auto size = ParseSize(s);
-            return size && size->first >= 2 && size->second >= 2 ? std::string()
-                                                                 : "expected COLSxROWS, got " + s;
+            return size && size->first >= 3 && size->second >= 3
+                       ? std::string()
+                       : "expected COLSxROWS, at least 3x3 inner corners, got " + s;
           },
           "COLSxROWS"));
   camera->add_option("--square-mm", args->square_mm, "Square size")
@@ -262,8 +263,9 @@ Command AddCalibrateCommand(CLI::App& app) {
       ->check(CLI::Validator(
           [](std::string& s) {
             const auto size = ParseSize(s);
-            return size && size->first >= 2 && size->second >= 2 ? std::string()
-                                                                 : "expected COLSxROWS, got " + s;
+            return size && size->first >= 3 && size->second >= 3
+                       ? std::string()
+                       : "expected COLSxROWS, at least 3x3 inner corners, got " + s;
           },
           "COLSxROWS"));
   module->add_option("--square-mm", module_args->square_mm, "Square size")

@@ -13,6 +13,11 @@ void PatternConstraints::Check() const {
                    "must be 1.." << window * window << ", got " << min_hamming);
   SEWER3D_VALIDATE(min_weight >= 0 && min_weight <= window * window, "min_weight",
                    "must be 0.." << window * window << ", got " << min_weight);
+  // Isolated spots (no two 8-adjacent) fit at most ceil(n/2)² in an n x n window.
+  const int most_isolated = ((window + 1) / 2) * ((window + 1) / 2);
+  SEWER3D_VALIDATE(!isolated || min_weight <= most_isolated, "min_weight",
+                   "isolated spots fit at most " << most_isolated << " in a " << window << "x"
+                                                 << window << " window, got " << min_weight);
 }
 
 int WindowCount(int rows, int cols, const PatternConstraints& constraints) {
