@@ -38,7 +38,7 @@ for t in "${targets[@]}"; do
   status=0
   # -timeout: one input taking 10 s is a hang; -rss_limit_mb: 2 GB is a memory blow-up (one
   # malloc above it is reported too).
-  "$build_dir/fuzz/fuzz_$t" "$build_dir/corpus/$t" "tests/data/fuzz/$t" \
+  "$build_dir/fuzz/fuzz_$t" "$build_dir/corpus/$t" "tests/data/fuzz/$t" -dict="fuzz/$t.dict" \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$build_dir/findings/$t-" >"$log" 2>&1 || status=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
