@@ -83,10 +83,20 @@ json WorldJson(const PipeWorld& w) {
   return j;
 }
 
+/// A seed: a non-negative JSON integer, kept exactly (a number through double would lose
+/// seeds above 2^53, and casting a negative or huge one to an integer is undefined).
+std::uint64_t Seed(const JsonReader& in, const json& j, const char* key,
+                   const std::string& prefix) {
+  const auto it = j.find(key);
+  if (it == j.end()) return 1;
+  if (!it->is_number_unsigned()) in.Fail(prefix + key, "must be a non-negative integer");
+  return it->get<std::uint64_t>();
+}
+
 PipeWorld ReadWorld(const JsonReader& in, const json& j) {
   in.OnlyKnown(j, "pipe.", {"material_seed", "sections", "joints", "features"});
   PipeWorld w;
-  w.material_seed = static_cast<std::uint64_t>(in.Number(j, "material_seed", "pipe.", 1.0));
+  w.material_seed = Seed(in, j, "material_seed", "pipe.");
   const json& sections = in.Array(j, "sections", "pipe.");
   for (size_t i = 0; i < sections.size(); ++i) {
     const std::string p = "pipe.sections[" + std::to_string(i) + "].";
@@ -213,7 +223,7 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
                 "odometry", "render", "truth_depth", "truth_albedo", "white_balance_error"});
   Scenario s;
   s.name = in.Text(j, "name", "", path.stem().string());
-  s.seed = static_cast<std::uint64_t>(in.Number(j, "seed", "", 1.0));
+  s.seed = Seed(in, j, "seed", "");
   s.module_file = in.Text(j, "module", "", "");
   s.camera_width = in.Integer(j, "camera_width", "", s.camera_width);
   const json& rig = in.Object(j, "rig", "");
