@@ -17,7 +17,8 @@
 namespace sewer3d::fuzz {
 
 /// Writes the input to one file per process (in /dev/shm when it exists, so each run costs no
-/// disk I/O) and returns its path. The name ends in `extension`, as a user's file would.
+/// disk I/O) and returns its path. The name ends in `extension`, as a user's file would; call
+/// it with one extension per process.
 inline std::filesystem::path InputFile(const std::uint8_t* data, std::size_t size,
                                        const std::string& extension) {
   const std::filesystem::path folder = std::filesystem::is_directory("/dev/shm")
@@ -25,6 +26,14 @@ inline std::filesystem::path InputFile(const std::uint8_t* data, std::size_t siz
                                            : std::filesystem::temp_directory_path();
   const std::filesystem::path path =
       folder / ("sewer3d_fuzz_" + std::to_string(getpid()) + extension);
+  // Removed when the process exits normally (a crash leaves it, beside the finding).
+  static const struct Remover {
+    std::filesystem::path path;
+    ~Remover() {
+      std::error_code ec;
+      std::filesystem::remove(path, ec);
+    }
+  } remover{path};
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
   file.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   if (!file.flush()) throw std::runtime_error("fuzz harness: cannot write " + path.string());

@@ -6,8 +6,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   const int reader = data[0] % 3;
-  const char* name = reader == 0 ? ".json" : ".csv";
-  const auto path = sewer3d::fuzz::InputFile(data + 1, size - 1, name);
+  const auto path = sewer3d::fuzz::InputFile(data + 1, size - 1, ".index");
   sewer3d::fuzz::Refusing([&] {
     if (reader == 0)
       sewer3d::ReadRunInfo(path);
