@@ -4,7 +4,7 @@
 # corpus tests/data/fuzz/<target>/ (docs/hardening.md). New inputs go to BUILD/corpus/<target>,
 # findings to BUILD/findings/. Ends with one line per target (executions, result) and
 # "fuzz: PASS" or "fuzz: FAIL".
-# usage: fuzz.sh [SECONDS_PER_TARGET] [TARGET...]   targets: module_json scenario_json g2o ply
+# usage: fuzz.sh [SECONDS_PER_TARGET] [TARGET...]   (0 seconds: build only)   targets: module_json scenario_json g2o ply
 #                                                   run_index png
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,6 +26,7 @@ if ! cmake --build "$build_dir" --parallel "$jobs" --target "${targets[@]/#/fuzz
   exit 1
 fi
 echo "fuzz: built ${#targets[@]} targets in $(($(date +%s) - t0)) s"
+[ "$seconds" -gt 0 ] || exit 0
 
 export ASAN_OPTIONS=detect_leaks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
