@@ -24,11 +24,13 @@ JsonReader::json JsonReader::ParseObject(const std::string& text) const {
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
+    // Without nlohmann's "[json.exception...] " prefix (through "parse error at ...: ").
     const std::string what = e.what();
-    const auto colon = what.find(": ");  // drop nlohmann's "[json.exception...] " prefix
-    throw FileError(
-        path_, "invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
+    auto cut = what.find(": ");
+    if (cut == std::string::npos) cut = what.find("] ");
+    throw FileError(path_,
+                    "invalid JSON: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
   }
   if (!j.is_object()) throw FileError(path_, "must hold a JSON object");
   return j;

@@ -26,14 +26,14 @@ struct PatternConstraints {
 /// What the verifier found. `valid` is true when every constraint holds.
 struct PatternReport {
   int rows = 0, cols = 0;
-  int windows = 0;            ///< windows checked (rows*cols on a torus)
-  int duplicate_pairs = 0;    ///< pairs of identical windows
-  int close_pairs = 0;        ///< pairs closer than min_hamming (duplicates included)
+  int windows = 0;                   ///< windows checked (rows*cols on a torus)
+  std::int64_t duplicate_pairs = 0;  ///< pairs of identical windows (up to windows^2 / 2)
+  std::int64_t close_pairs = 0;      ///< pairs closer than min_hamming (duplicates included)
   int min_hamming_found = 0;  ///< smallest pairwise distance (window*window+1 if < 2 windows)
   int min_weight_found = 0;   ///< lightest window
   int max_weight_found = 0;
-  int adjacent_spot_pairs = 0;  ///< 8-adjacent spot pairs (with wrap on a torus)
-  double density = 0.0;         ///< spots per element
+  std::int64_t adjacent_spot_pairs = 0;  ///< 8-adjacent spot pairs (with wrap on a torus)
+  double density = 0.0;                  ///< spots per element
   bool valid = false;
 };
 
