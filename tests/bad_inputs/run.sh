@@ -34,7 +34,7 @@ while IFS='|' read -r name want needle cmd; do
     lines=$(wc -l <"$T/err")
     if [ "$lines" -ne 1 ]; then why="$lines stderr lines";
     elif ! grep -qF -- "$needle" "$T/err"; then why="no '$needle'";
-    elif grep -q "check failed\|\.cpp:[0-9]\|terminate called\|json.exception\|OpenCV(\|bad_alloc\|libpng\|TIFF" "$T/err"; then why="internals shown"; fi
+    elif grep -q "check failed\|\.cpp:[0-9]\|terminate called\|json.exception\|OpenCV(\|bad_alloc\|libpng\|TIFFRead\|TIFFFetch" "$T/err"; then why="internals shown"; fi
   elif [ -n "$needle" ] && ! grep -qF -- "$needle" "$T/out" "$T/err"; then why="no '$needle'"; fi
   if [ -n "$why" ]; then
     failures=$((failures + 1))

@@ -28,7 +28,10 @@ void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
 cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags, std::uint64_t max_pixels) {
   const std::vector<std::uint8_t> bytes = ReadFileBytes(path);
   if (bytes.empty()) throw FileError(path, "empty file, not an image");
-  if (const auto size = ImageHeaderSize(bytes)) {
+  // Only PNG, TIFF and JPEG reach OpenCV: its other decoders (GDCM among them) may abort.
+  const auto header = ImageHeaderSize(bytes);
+  if (!header) throw FileError(path, "not a PNG, TIFF or JPEG image");
+  if (const auto& size = header) {
     if (size->width == 0 || size->height == 0 || size->width * size->height > max_pixels) {
       throw FileError(path, fmt::format("the header declares {} x {} pixels; at most {} are read",
                                         size->width, size->height, max_pixels));
