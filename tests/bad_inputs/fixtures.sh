@@ -16,49 +16,30 @@ cat >scenario_ok.json <<'JSON'
           "features": [{"id": "C1", "type": "connection", "station_mm": 300, "clock_h": 2,
                         "diameter_mm": 100, "intrusion_mm": 10, "wall_mm": 12}]}}
 JSON
-# scenario_with KEY=JSON...: scenario_ok.json with members replaced (python, dotted keys).
-scenario_with() {
+# json_with SOURCE DEST KEY=JSON...: SOURCE with members replaced (dotted keys, list indices).
+json_with() {
   python3 - "$@" <<'PY'
 import json, sys
-d = json.load(open("scenario_ok.json"))
-for arg in sys.argv[2:]:
+d = json.load(open(sys.argv[1]))
+for arg in sys.argv[3:]:
     key, value = arg.split("=", 1)
     node = d
     parts = key.split(".")
     for p in parts[:-1]:
         node = node[int(p)] if isinstance(node, list) else node[p]
     last = parts[-1]
-    if isinstance(node, list):
-        node[int(last)] = json.loads(value)
-    else:
-        node[last] = json.loads(value)
-open(sys.argv[1], "w").write(json.dumps(d))
+    node[int(last) if isinstance(node, list) else last] = json.loads(value)
+json.dump(d, open(sys.argv[2], "w"))
 PY
 }
+scenario_with() { json_with scenario_ok.json "$@"; }
 scenario_with clock_huge.json 'pipe.features.0.clock_h=1e6'
 scenario_with slow.json 'motion.speed_mm_s=1e-6'
 scenario_with far.json 'motion.travel_mm=1e9'
 scenario_with seed_big.json 'seed=9007199254740993'
 scenario_with nan_speed.json 'motion.speed_mm_s=NaN'
 # Modules with degenerate geometry.
-module_with() {
-  python3 - "$@" <<'PY'
-import json, sys
-d = json.load(open("m/module.json"))
-for arg in sys.argv[2:]:
-    key, value = arg.split("=", 1)
-    node = d
-    parts = key.split(".")
-    for p in parts[:-1]:
-        node = node[int(p)] if isinstance(node, list) else node[p]
-    last = parts[-1]
-    if isinstance(node, list):
-        node[int(last)] = json.loads(value)
-    else:
-        node[last] = json.loads(value)
-json.dump(d, open(sys.argv[1], "w"))
-PY
-}
+module_with() { json_with m/module.json "$@"; }
 module_with m/zero_baseline.json 'projector_from_camera.translation_mm=[0,0,0]'
 module_with m/huge_baseline.json 'projector_from_camera.translation_mm=[-1e6,0,0]'
 module_with m/tiny_focal.json 'camera.fx=1e-6' 'camera.fy=1e-6'
