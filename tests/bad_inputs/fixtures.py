@@ -64,6 +64,12 @@ def main(out):
     # A 1 x 1 grey image.
     with open(j("one_pixel.png"), "wb") as f:
         f.write(png(1, 1, 8, zlib.compress(b"\x00\x80")))
+    # Valid chunk CRCs over bad image data: rows short, a row too many, a bad filter type.
+    rows = b"".join(b"\x00" + bytes(range(8)) for _ in range(8))
+    for name, data in (("short_data", rows[:-9]), ("too_much_data", rows + rows[:9]),
+                       ("bad_filter", b"\x07" + rows[1:])):
+        with open(j(name + ".png"), "wb") as f:
+            f.write(png(8, 8, 8, zlib.compress(data)))
     # Integer-typed coordinates on a 100 mm cylinder patch (x^2 + z^2 = 50^2 about the y axis).
     ring = [(int(round(50 * c)), y, int(round(50 * s)) + 150)
             for y in range(-20, 21, 10)
@@ -75,6 +81,9 @@ def main(out):
     plane = [(float(x), float(y), 100.0) for x in range(6) for y in range(5)]
     ply(j("count_low.ply"), "float", plane, count=3)
     ascii_ply(j("count_low_ascii.ply"), plane, 3)
+    with open(j("nan_ascii.ply"), "w") as f:
+        f.write("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                "property float z\nend_header\n1 2 3\nnan 2 3\n")
     # Identical and collinear points.
     ply(j("identical.ply"), "float", [(1.0, 2.0, 100.0)] * 50)
     ply(j("collinear.ply"), "float", [(float(i), 2.0 * i, 100.0 + i) for i in range(50)])

@@ -38,6 +38,8 @@ scenario_with slow.json 'motion.speed_mm_s=1e-6'
 scenario_with far.json 'motion.travel_mm=1e9'
 scenario_with seed_big.json 'seed=9007199254740993'
 scenario_with nan_speed.json 'motion.speed_mm_s=NaN'
+scenario_with station_beyond.json 'pipe.features.0.station_mm=5000'
+scenario_with id_twice.json 'pipe.features.0.id="J1"'
 # Modules with degenerate geometry.
 module_with() { json_with m/module.json "$@"; }
 module_with m/zero_baseline.json 'projector_from_camera.translation_mm=[0,0,0]'
@@ -63,6 +65,7 @@ module_with m/width_neg.json 'camera.width=-5'
 module_with m/matrix_dir.json 'pattern.matrix="../dir"'
 module_with m/matrix_text.json 'pattern.matrix="module.json"'
 module_with m/principal_out.json 'camera.cx=5000'
+module_with m/width_u64.json 'camera.width=18446744073709551615'
 python3 -c "import json; d=json.load(open('m/module.json')); del d['camera']; json.dump(d, open('m/no_camera.json','w'))"
 printf '%s trailing' "$(cat m/module.json)" >m/trailing.json
 # Broken scenarios.
@@ -84,6 +87,10 @@ printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0\n' >short_vertex.g2o
 printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nEDGE_SE3:QUAT 0 7 1 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n' >missing_node.g2o
 printf 'VERTEX_SE3:QUAT 0 nan 0 0 0 0 0 1\n' >nan_vertex.g2o
 printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 0\n' >zero_quat.g2o
+printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n\0VERTEX_SE3:QUAT 1 0 0 0 0 0 0 1\n' >nul.g2o
+# Two vertices and an edge, and a third vertex no edge reaches.
+printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_SE3:QUAT 1 1 0 0 0 0 0 1\nVERTEX_SE3:QUAT 2 5 0 0 0 0 0 1\nEDGE_SE3:QUAT 0 1 1 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\nFIX 0\n' >apart.g2o
+ln -s loop loop
 # Broken clouds.
 printf 'ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n' >no_end_header.ply
 printf 'ply\nformat ascii 1.0\nelement vertex 1000000000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 2 3\n' >count_huge.ply
@@ -100,6 +107,19 @@ echo 'not an image' >text.png
 # A finished tiny run, and copies broken.
 "$S" simulate run --scenario scenario_ok.json --out run_ok --quiet >/dev/null
 mkdir -p not_a_run && echo x >not_a_run/file.txt
+# run_ok copied with one file broken: run_<what>.
+broken_run() {
+  cp -r run_ok "run_$1"
+  case "$2" in
+    *.csv) sed -i "$3" "run_$1/$2" ;;
+    *) json_with "run_ok/$2" "run_$1/$2" "${@:3}" ;;
+  esac
+}
+broken_run clock rig.json 'modules.0.clock_h=13'
+broken_run names rig.json 'modules.1.name="m0"'
+broken_run period run.json 'acquisition_period_s=-0.5'
+broken_run count run.json 'images=7'
+broken_run odometry odometry.csv '3s/,.*/,1e308/'
 printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\n' >one.g2o
 "$S" simulate calibration --module m/module.json --poses 1 --out calib --supersampling 1 \
   --texture-supersampling 1 >/dev/null 2>&1

@@ -148,7 +148,7 @@ expect_error "no spot pattern" "$bin" reconstruct --module "$tmp/m/module.json" 
 expect_error "but the module's camera is" "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/m/pattern.png" --out "$tmp/r/x"
 head -c 2000 "$tmp/s/plane/pattern.png" >"$tmp/r/cut.png"
 expect_error "truncated" "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/r/cut.png" --out "$tmp/r/x"
-expect_error "cannot decode" "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/m/module.json" --out "$tmp/r/x"
+expect_error "not a PNG, TIFF or JPEG image" "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/m/module.json" --out "$tmp/r/x"
 
 # Pose graphs.
 data=${SEWER3D_DATA:?set SEWER3D_DATA to tests/data}

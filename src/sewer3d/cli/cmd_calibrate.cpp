@@ -2,23 +2,19 @@
 
 #include <fmt/core.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <set>
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/chessboard.hpp"
-#include "sewer3d/calib/module_from_captures.hpp"
-#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/cli/calibrate_commands.hpp"
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/calibration_io.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
-#include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/text_file.hpp"
-#include "sewer3d/pattern/constraints.hpp"
-#include "sewer3d/pattern/default_pattern.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -32,6 +28,7 @@ struct CameraArgs {
 
 int RunCamera(const CameraArgs& a) {
   const auto board_size = ParseSize(a.board);
+  CheckOutputFile(a.out);
   CameraCalibrationFile file;
   file.board_cols = board_size->first;
   file.board_rows = board_size->second;
@@ -112,117 +109,20 @@ int RunCamera(const CameraArgs& a) {
   return 0;
 }
 
-struct ModuleArgs {
-  std::string captures, board = "9x6", out, nominal;
-  double square_mm = 10.0;
-};
-
-int RunModule(const ModuleArgs& a) {
-  namespace fs = std::filesystem;
-  const auto board_size = ParseSize(a.board);
-  std::vector<fs::path> poses;
-  for (const auto& entry : fs::directory_iterator(a.captures)) {
-    if (entry.is_directory() && fs::exists(entry.path() / "texture.png") &&
-        fs::exists(entry.path() / "pattern.png")) {
-      poses.push_back(entry.path());
-    }
-  }
-  std::sort(poses.begin(), poses.end());
-  if (poses.size() < 3) {
-    throw FileError(
-        a.captures,
-        fmt::format("{} pose folders with texture.png and pattern.png; calibration needs at "
-                    "least 3 (layout: docs/calibration.md)",
-                    poses.size()));
-  }
-  // The nominal (design) module: pattern, projector size, and a geometry close enough to
-  // predict the lattice and pick the pattern tile.
-  ModuleDescription nominal;
-  BinaryArray pattern;
-  const cv::Mat first = ReadImage(poses[0] / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
-  if (!a.nominal.empty()) {
-    LoadedModule loaded = LoadModule(a.nominal);
-    nominal = loaded.module;
-    pattern = loaded.pattern;
-  } else {
-    DefaultModuleOptions options;
-    options.camera_width = first.cols;
-    options.camera_height = first.rows;
-    nominal = MakeDefaultModule(options);
-    pattern = DefaultPatternArray();
-  }
-  if (first.cols != nominal.camera.width || first.rows != nominal.camera.height) {
-    throw FileError(poses[0] / "texture.png",
-                    fmt::format("image is {}x{}, the nominal module's camera {}x{}", first.cols,
-                                first.rows, nominal.camera.width, nominal.camera.height));
-  }
-  BoardLayout board_layout;
-  board_layout.cols = board_size->first;
-  board_layout.rows = board_size->second;
-  board_layout.square_mm = a.square_mm;
-  ModuleCalibrator calibrator(nominal, pattern, InferConstraints(pattern), board_layout);
-  std::vector<std::string> used;
-  for (const fs::path& pose : poses) {
-    const cv::Mat texture = ReadImage(pose / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
-    const cv::Mat pattern_image = ReadGreyImage(pose / "pattern.png");
-    if (texture.size() != first.size() || pattern_image.size() != first.size()) {
-      throw FileError(pose, "images differ in size from the first pose's");
-    }
-    const CaptureOutcome outcome = calibrator.AddCapture(texture, pattern_image);
-    if (outcome.status == CaptureOutcome::Status::kBoardNotFound) {
-      fmt::print("{}: {} board not found, skipped\n", pose.string(), a.board);
-      continue;
-    }
-    if (outcome.status == CaptureOutcome::Status::kCornersNotCarried) {
-      fmt::print("{}: {} of {} corners without enough decoded spots around them, skipped\n",
-                 pose.string(), outcome.corners_missing, outcome.corners);
-      continue;
-    }
-    used.push_back(pose.filename().string());
-    fmt::print(stderr, "\rcalibrate module: {} of {} poses read ", used.size(), poses.size());
-  }
-  fmt::print(stderr, "\n");
-  if (used.size() < 3) {
-    fmt::print(stderr,
-               "sewer3d: error: {} of {} poses usable; module calibration needs at least 3\n",
-               used.size(), poses.size());
-    return 1;
-  }
-  const ModuleFromCapturesResult calibrated = calibrator.Calibrate();
-  const ModuleCalibrationResult& r = calibrated.second_pass;
-  ModuleDescription module = calibrated.module;
-  module.pattern.matrix_path = "pattern.png";
-  module.source_json.clear();
-  SaveModule(a.out, module);
-  WritePatternMatrix(fs::path(a.out).parent_path() / "pattern.png", pattern);
-  fmt::print(
-      "calibrated module from {} of {} poses: camera RMS {:.4f} px, projector RMS {:.4f} px{}\n",
-      used.size(), poses.size(), r.camera_rms_px, r.projector_rms_px,
-      r.converged ? "" : " (not converged)");
-  fmt::print(
-      "camera     fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  "
-      "k ({:.5f}, {:.5f}, {:.5f})\n",
-      r.camera.fx, r.sigma[0], r.camera.fy, r.sigma[1], r.camera.cx, r.sigma[2], r.camera.cy,
-      r.sigma[3], r.camera.k[0], r.camera.k[1], r.camera.k[2]);
-  fmt::print(
-      "projector  fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  "
-      "k ({:.5f}, {:.5f}, {:.5f})\n",
-      r.projector.fx, r.sigma[4], r.projector.fy, r.sigma[5], r.projector.cx, r.sigma[6],
-      r.projector.cy, r.sigma[7], r.projector.k[0], r.projector.k[1], r.projector.k[2]);
-  const Eigen::Vector3d c = r.projector_from_camera.Inverse().translation;
-  fmt::print(
-      "extrinsics baseline {:.3f} ± {:.3f} mm, projector centre ({:.3f}, {:.3f}, {:.3f}) mm, "
-      "rotation ± {:.4f} deg\n",
-      c.norm(), r.sigma[8], c.x(), c.y(), c.z(), r.sigma[9]);
-  for (size_t v = 0; v < used.size(); ++v) {
-    fmt::print("  {}  camera {:.4f} px  projector {:.4f} px\n", used[v], r.view_camera_rms_px[v],
-               r.view_projector_rms_px[v]);
-  }
-  fmt::print("wrote {} and pattern.png beside it\n", a.out);
-  return 0;
-}
-
 }  // namespace
+
+CLI::Option* AddBoardOption(CLI::App& sub, std::string& board) {
+  return sub.add_option("--board", board, "Inner corners COLSxROWS")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            const auto size = ParseSize(s);
+            return size && size->first >= 3 && size->second >= 3
+                       ? std::string()
+                       : "expected COLSxROWS, at least 3x3 inner corners, got " + s;
+          },
+          "COLSxROWS"));
+}
 
 Command AddCalibrateCommand(CLI::App& app) {
   auto args = std::make_shared<CameraArgs>();
@@ -234,54 +134,16 @@ Command AddCalibrateCommand(CLI::App& app) {
   camera->add_option("--images", args->images, "Checkerboard images (one camera, one size)")
       ->required()
       ->check(CLI::ExistingFile);
-  camera->add_option("--board", args->board, "Inner corners COLSxROWS")
-      ->capture_default_str()
-      ->check(CLI::Validator(
-          [](std::string& s) {
-            const auto size = ParseSize(s);
-            return size && size->first >= 3 && size->second >= 3
-                       ? std::string()
-                       : "expected COLSxROWS, at least 3x3 inner corners, got " + s;
-          },
-          "COLSxROWS"));
+  AddBoardOption(*camera, args->board);
   camera->add_option("--square-mm", args->square_mm, "Square size")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   camera->add_option("--out", args->out, "Result JSON (camera.json)")->required();
   camera->add_flag("--no-pictures", args->no_pictures,
                    "Do not write the per-image corner pictures");
-  auto module_args = std::make_shared<ModuleArgs>();
-  CLI::App* module = sub->add_subcommand(
-      "module", "Camera, projector and their extrinsics from checkerboard captures");
-  module
-      ->add_option("--captures", module_args->captures,
-                   "Folder of pose folders (pose_NN/texture.png, pattern.png)")
-      ->required()
-      ->check(CLI::ExistingDirectory);
-  module->add_option("--board", module_args->board, "Inner corners COLSxROWS")
-      ->capture_default_str()
-      ->check(CLI::Validator(
-          [](std::string& s) {
-            const auto size = ParseSize(s);
-            return size && size->first >= 3 && size->second >= 3
-                       ? std::string()
-                       : "expected COLSxROWS, at least 3x3 inner corners, got " + s;
-          },
-          "COLSxROWS"));
-  module->add_option("--square-mm", module_args->square_mm, "Square size")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  module
-      ->add_option("--out", module_args->out,
-                   "Calibrated module.json (pattern.png is written beside it)")
-      ->required();
-  module
-      ->add_option(
-          "--nominal", module_args->nominal,
-          "Design module (pattern, projector size, rough geometry); default: the default module")
-      ->check(CLI::ExistingFile);
-  return {sub, [args, camera, module_args, module] {
-            if (module->parsed()) return RunModule(*module_args);
+  const Command module = AddCalibrateModuleCommand(*sub);
+  return {sub, [args, camera, module] {
+            if (module.app->parsed()) return module.run();
             return camera->parsed() ? RunCamera(*args) : 2;
           }};
 }

@@ -26,8 +26,7 @@ const char* PassUnit(const std::string& pass) {
 }
 
 void PrintStage(const ProcessStageResult& r) {
-  fmt::print("{}\n", r.outcome.summary);
-  for (const std::string& line : r.outcome.details) fmt::print("{}\n", line);
+  PrintStageOutcome(r.outcome);
   if (r.skipped)
     fmt::print("{}: {:.1f} s when it was done\n", r.name, r.seconds);
   else
@@ -36,6 +35,18 @@ void PrintStage(const ProcessStageResult& r) {
 }
 
 }  // namespace
+
+void PrintStageOutcome(const StageOutcome& outcome) {
+  fmt::print("{}\n", outcome.summary);
+  std::fflush(stdout);
+  const std::string warning = "warning: ";
+  for (const std::string& line : outcome.details) {
+    if (line.rfind(warning, 0) == 0)
+      fmt::print(stderr, "sewer3d: {}\n", line);
+    else
+      fmt::print("{}\n", line);
+  }
+}
 
 int RunProcessCommand(const ProcessArgs& args, ProcessReport* report_out) {
   ProcessOptions options;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
@@ -71,8 +72,7 @@ Command AddRegisterCommand(CLI::App& app) {
               return 2;
             }
             const StageOutcome outcome = RegisterOutcome(report, args->out);
-            fmt::print("{}\n", outcome.summary);
-            for (const std::string& line : outcome.details) fmt::print("{}\n", line);
+            PrintStageOutcome(outcome);
             fmt::print("wrote {}\n", outcome.output.string());
             if (!outcome.ok) {
               fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
@@ -80,8 +81,7 @@ Command AddRgbdCommand(CLI::App& app) {
               return 2;
             }
             const StageOutcome outcome = RgbdOutcome(report, args->out);
-            fmt::print("{}\n", outcome.summary);
-            for (const std::string& line : outcome.details) fmt::print("{}\n", line);
+            PrintStageOutcome(outcome);
             fmt::print("wrote {}\n", outcome.output.string());
             if (!outcome.ok) {
               fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);

@@ -24,4 +24,8 @@ struct ProcessArgs {
 /// the workspace refuses (another run, other options without --force). Other errors throw.
 int RunProcessCommand(const ProcessArgs& args, ProcessReport* report = nullptr);
 
+/// Prints a stage's summary on stdout and its detail lines after it: those that are warnings
+/// ("warning: …") go to stderr as `sewer3d: warning: …`, the others to stdout.
+void PrintStageOutcome(const StageOutcome& outcome);
+
 }  // namespace sewer3d::cli

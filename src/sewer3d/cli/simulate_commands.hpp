@@ -32,6 +32,8 @@ struct RunArgs {
   bool allow_large = false;  ///< skip CheckRunFits
 };
 
+/// Registers `simulate run` under `simulate`.
+CLI::App* AddRunCommand(CLI::App& sim, RunArgs& args);
 /// Simulates the run (progress bar unless quiet), prints what it wrote; returns the exit code.
 int RunRun(const RunArgs& args);
 

@@ -48,6 +48,19 @@ void WriteTextFileAtomically(const std::filesystem::path& path, const std::strin
   WriteTextFile(path, text);
 }
 
+void CheckOutputFile(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw FileError(path, "is a folder, not a file");
+  fs::path above = fs::absolute(path, ec).parent_path();
+  while (!fs::exists(above, ec) && above.has_parent_path() && above != above.parent_path())
+    above = above.parent_path();
+  if (!fs::is_directory(above, ec))
+    throw FileError(path, "cannot be written: " + above.string() + " is not a folder");
+  if (::access(above.c_str(), W_OK) != 0)
+    throw FileError(path, "cannot be written: " + above.string() + " is not writable");
+}
+
 bool IsRegularFile(const std::filesystem::path& path) {
   std::error_code ec;
   return std::filesystem::is_regular_file(path, ec);

@@ -93,6 +93,8 @@ PoseGraph ReadG2o(const std::filesystem::path& path) {
   int number = 0;
   while (std::getline(file, line)) {
     ++number;
+    if (line.find('\0') != std::string::npos)
+      throw FileError(path, "line " + std::to_string(number) + ": a NUL byte: not a text file");
     const LineParser in(path, number, line);
     if (in.empty()) continue;
     if (in.tag() == "VERTEX_SE3:QUAT") {

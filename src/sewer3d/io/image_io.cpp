@@ -11,6 +11,7 @@
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/input_file.hpp"
+#include "sewer3d/io/png_check.hpp"
 
 namespace sewer3d {
 void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
@@ -39,13 +40,14 @@ cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags, std::uint
   }
   static constexpr std::uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   const bool png = bytes.size() >= 8 && std::equal(kPngSignature, kPngSignature + 8, bytes.begin());
+  PngCheck check;
   if (png) {
-    if (const std::string problem = PngStructureProblem(bytes); !problem.empty())
-      throw FileError(path, "cannot decode image: " + problem);
+    check = CheckPng(bytes);
+    if (!check.problem.empty()) throw FileError(path, "cannot decode image: " + check.problem);
   }
   cv::Mat image;
   try {
-    image = cv::imdecode(bytes, imread_flags);
+    image = cv::imdecode(check.essential.empty() ? bytes : check.essential, imread_flags);
   } catch (const cv::Exception& e) {
     throw FileError(path, std::string("cannot decode image: ") + e.err);
   }

@@ -1,7 +1,6 @@
 #include "sewer3d/io/input_file.hpp"
 
 #include <fmt/format.h>
-#include <zlib.h>
 
 #include <fstream>
 #include <iterator>
@@ -69,6 +68,8 @@ std::optional<ImageSize> JpegSize(const std::vector<std::uint8_t>& b) {
 std::uintmax_t CheckInputFile(const std::filesystem::path& path, std::uintmax_t max_bytes) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    throw FileError(path, "cannot be read: " + ec.message());  // a link loop, no permission
   if (ec || !std::filesystem::exists(status)) throw FileError(path, "no such file");
   if (std::filesystem::is_directory(status)) throw FileError(path, "is a folder, not a file");
   if (!std::filesystem::is_regular_file(status))
@@ -98,26 +99,6 @@ std::optional<ImageSize> ImageHeaderSize(const std::vector<std::uint8_t>& b) {
   if (tiff) return TiffSize(b);
   if (b.size() >= 4 && b[0] == 0xFF && b[1] == 0xD8) return JpegSize(b);
   return std::nullopt;
-}
-
-std::string PngStructureProblem(const std::vector<std::uint8_t>& b) {
-  size_t at = 8;
-  bool first = true;
-  while (at + 12 <= b.size()) {
-    const std::uint64_t length = BigEndian(b, at, 4);
-    const std::string type(b.begin() + static_cast<std::ptrdiff_t>(at) + 4,
-                           b.begin() + static_cast<std::ptrdiff_t>(at) + 8);
-    if (length > b.size() - at - 12)
-      return "truncated PNG (the " + type + " chunk runs past the end)";
-    if (first && type != "IHDR") return "not a PNG (no IHDR chunk first)";
-    const auto crc = crc32(0, b.data() + at + 4, static_cast<uInt>(4 + length));
-    if (crc != BigEndian(b, at + 8 + length, 4))
-      return "corrupt PNG (CRC error in the " + type + " chunk)";
-    if (type == "IEND") return "";
-    at += 12 + length;
-    first = false;
-  }
-  return "truncated PNG (no IEND chunk)";
 }
 
 }  // namespace sewer3d

@@ -33,9 +33,4 @@ struct ImageSize {
 /// or a header too short to tell).
 std::optional<ImageSize> ImageHeaderSize(const std::vector<std::uint8_t>& bytes);
 
-/// For a PNG: what is wrong with its chunk structure ("" when nothing): a chunk running past
-/// the end, a CRC mismatch, no IHDR first or no IEND. Checked before decoding, so that libpng
-/// never meets (and prints about) a broken file.
-std::string PngStructureProblem(const std::vector<std::uint8_t>& bytes);
-
 }  // namespace sewer3d

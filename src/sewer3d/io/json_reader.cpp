@@ -145,9 +145,13 @@ double JsonReader::Positive(const json& j, const char* key, const std::string& p
 int JsonReader::PositiveSize(const json& j, const char* key, const std::string& prefix) const {
   const json& value = Member(j, key, prefix);
   if (!value.is_number_integer()) Fail(prefix + key, "must be an integer, got " + value.dump());
-  const auto x = value.get<std::int64_t>();
-  if (x <= 0 || x > 1'000'000)
-    Fail(prefix + key, "must be a positive size, got " + std::to_string(x));
+  constexpr std::int64_t kMax = 1'000'000;
+  // A huge unsigned value must not wrap into the range.
+  const std::int64_t x = value.is_number_unsigned() && value.get<std::uint64_t>() > kMax
+                             ? -1
+                             : value.get<std::int64_t>();
+  if (x <= 0 || x > kMax)
+    Fail(prefix + key, "must be a positive size up to 1000000, got " + value.dump());
   return static_cast<int>(x);
 }
 

@@ -1,6 +1,7 @@
 #include "sewer3d/io/ply_io.hpp"
 
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -131,6 +132,20 @@ void ThrowCount(const std::filesystem::path& path, std::uint64_t read, std::uint
       path, "truncated: " + std::to_string(read) + " of " + std::to_string(declared) + " vertices");
 }
 
+// One ASCII value of vertex n; a token that is no number is named, the end of the file is a
+// truncation (the stream is left failed).
+double ReadAsciiValue(std::istream& file, const std::filesystem::path& path, std::uint64_t n) {
+  std::string token;
+  if (!(file >> token)) return 0.0;
+  char* end = nullptr;
+  const double v = std::strtod(token.c_str(), &end);
+  if (end != token.c_str() + token.size()) {
+    throw FileError(
+        path, "vertex " + std::to_string(n) + ": '" + token.substr(0, 20) + "' is not a number");
+  }
+  return v;
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
@@ -165,7 +180,7 @@ std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
   std::vector<char> record(stride);
   for (std::uint64_t n = 0; n < vertex.count; ++n) {
     if (ascii) {
-      for (double& v : values) file >> v;
+      for (double& v : values) v = ReadAsciiValue(file, path, n);
     } else if (file.read(record.data(), static_cast<std::streamsize>(stride))) {
       size_t at = 0;
       for (size_t i = 0; i < values.size(); ++i) {
@@ -176,6 +191,8 @@ std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
     }
     if (!file) ThrowCount(path, n, vertex.count);
     points[n] = {values[xyz[0]], values[xyz[1]], values[xyz[2]]};
+    if (!points[n].allFinite())
+      throw FileError(path, "vertex " + std::to_string(n) + ": a coordinate is not finite");
   }
   // With only vertices declared, anything after them means the count is wrong.
   if (header.elements.size() == 1) {

@@ -20,6 +20,9 @@ using nlohmann::json;
 
 constexpr const char* kIndexHeader = "module,counter,image,time_s,exposure_ms,file";
 constexpr const char* kOdometryHeader = "time_s,distance_mm";
+// Plausible bounds for a cable counter: beyond them a value is a corrupt field, not a run.
+constexpr double kMaxOdometryMm = 1e7;  // 10 km of cable
+constexpr double kMaxTimeS = 1e7;       // about 115 days
 
 // A file name from the index must stay inside the run folder.
 bool InsideRun(const std::string& file) {
@@ -29,6 +32,22 @@ bool InsideRun(const std::string& file) {
     if (part == "..") return false;
   }
   return true;
+}
+
+// run.json's counts, where it gives them, must match the rig and the index of a complete run.
+void CheckRunCounts(const fs::path& folder, const CaptureRun& run) {
+  const fs::path path = folder / "run.json";
+  const RunCounts counts = ReadRunCounts(path);
+  const auto modules = static_cast<int>(run.rig.modules.size());
+  if (counts.modules >= 0 && counts.modules != modules) {
+    throw FileError(
+        path, fmt::format("modules: says {}, rig.json describes {}", counts.modules, modules));
+  }
+  const auto images = static_cast<int>(run.images.size());
+  if (run.info.complete && counts.images >= 0 && counts.images != images) {
+    throw FileError(
+        path, fmt::format("images: says {}, acquisitions.csv lists {}", counts.images, images));
+  }
 }
 
 }  // namespace
@@ -123,10 +142,23 @@ RunInfo ReadRunInfo(const fs::path& path) {
     info.seed = seed->get<std::uint64_t>();
   }
   info.acquisition_period_s = in.Number(j, "acquisition_period_s", "", 0.0);
+  if (!(info.acquisition_period_s >= 0.0 && info.acquisition_period_s <= kMaxTimeS))
+    in.Fail("acquisition_period_s",
+            fmt::format("must be 0..{:g} s, got {}", kMaxTimeS, info.acquisition_period_s));
   info.color_filter = in.Text(j, "color_filter", "", "none");
   if (info.color_filter != "none" && info.color_filter != "RGGB")
     in.Fail("color_filter", "must be \"none\" or \"RGGB\", got '" + info.color_filter + "'");
   return info;
+}
+
+RunCounts ReadRunCounts(const fs::path& path) {
+  const JsonReader in(path);
+  const json j = in.ParseObject(ReadTextFile(path));
+  RunCounts counts;
+  counts.modules = in.Integer(j, "modules", "", -1);
+  counts.acquisitions = in.Integer(j, "acquisitions", "", -1);
+  counts.images = in.Integer(j, "images", "", -1);
+  return counts;
 }
 
 void WriteIndex(const fs::path& path, const std::vector<RunImage>& images) {
@@ -151,6 +183,8 @@ std::vector<RunImage> ReadIndex(const fs::path& path) {
     if (e.module < 0) fail(fmt::format("module {} is negative", e.module));
     if (e.counter < 0) fail(fmt::format("counter {} is negative", e.counter));
     if (e.exposure_ms < 0.0) fail(fmt::format("exposure_ms {} is negative", e.exposure_ms));
+    if (std::abs(e.time_s) > kMaxTimeS)
+      fail(fmt::format("time_s {} is beyond ±{:g} s", e.time_s, kMaxTimeS));
     if (!InsideRun(e.file)) fail("file '" + e.file + "' must be a path inside the run folder");
     if (!out.empty() && e.time_s < out.back().time_s) {
       fail(fmt::format("time_s {} is before the line above's {}: rows must be sorted by time",
@@ -172,6 +206,12 @@ std::vector<OdometryReading> ReadOdometry(const fs::path& path) {
   for (const CsvRow& row : ReadCsv(path, kOdometryHeader)) {
     const OdometryReading r{CsvNumber(path, row, 0, "time_s"),
                             CsvNumber(path, row, 1, "distance_mm"), row.line};
+    if (std::abs(r.time_s) > kMaxTimeS)
+      throw FileError(
+          path, fmt::format("line {}: time_s {} is beyond ±{:g} s", row.line, r.time_s, kMaxTimeS));
+    if (std::abs(r.distance_mm) > kMaxOdometryMm)
+      throw FileError(path, fmt::format("line {}: distance_mm {} is beyond ±{:g} mm", row.line,
+                                        r.distance_mm, kMaxOdometryMm));
     if (!out.empty() && r.time_s <= out.back().time_s) {
       throw FileError(path,
                       fmt::format("line {}: time_s {} does not increase", row.line, r.time_s));
@@ -213,6 +253,7 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
     }
     run.images.push_back(std::move(image));
   }
+  CheckRunCounts(folder, run);
   OdometryCheck odometry = CheckOdometry(ReadOdometry(folder / "odometry.csv"));
   if (odometry.kept.empty()) throw FileError(folder / "odometry.csv", "has no reading");
   run.odometry = std::move(odometry.kept);

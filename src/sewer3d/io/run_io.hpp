@@ -31,6 +31,8 @@ struct RunCounts {
 };
 void WriteRunInfo(const std::filesystem::path& path, const RunInfo& info, const RunCounts& counts);
 RunInfo ReadRunInfo(const std::filesystem::path& path);
+/// run.json's counts; -1 for a count it does not give.
+RunCounts ReadRunCounts(const std::filesystem::path& path);
 
 /// acquisitions.csv: every image of the run, sorted by time.
 void WriteIndex(const std::filesystem::path& path, const std::vector<RunImage>& images);

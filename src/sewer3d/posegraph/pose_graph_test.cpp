@@ -108,6 +108,28 @@ TEST(Chordal, RefusesDisconnectedGraph) {
   EXPECT_LT((graph.node(3).translation - before.translation).norm(), 1e-12);
 }
 
+TEST(Optimise, ANodeNoEdgeReachesMakesTheResultUnusable) {
+  std::mt19937 rng(5);
+  std::vector<Rigid3d> truth;
+  for (int i = 0; i < 10; ++i) truth.push_back(RandomPose(rng, 100.0));
+  PoseGraph graph = RingGraph(truth, rng, 0.001, 0.2);
+  PoseGraphOptions options;
+  options.init = PoseGraphInit::kGiven;
+  EXPECT_TRUE(OptimisePoseGraph(graph, options).usable);
+  graph.SetNode(99, RandomPose(rng, 10.0));  // no edge reaches it
+  const PoseGraphReport report = OptimisePoseGraph(graph, options);
+  EXPECT_FALSE(report.usable);
+  EXPECT_EQ(report.unanchored_nodes, 1);
+  EXPECT_NE(report.termination.find("not determined"), std::string::npos);
+  graph.fixed_nodes() = {0, 99};  // fixed, its pose is given: usable again
+  EXPECT_TRUE(OptimisePoseGraph(graph, options).usable);
+  PoseGraph single;
+  single.SetNode(0, truth[0]);
+  const PoseGraphReport one = OptimisePoseGraph(single, options);
+  EXPECT_TRUE(one.usable);
+  EXPECT_EQ(one.iterations, 0);
+}
+
 TEST(Optimise, HuberLossResistsAWrongRegistration) {
   std::mt19937 rng(6);
   std::vector<Rigid3d> truth;

@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <chrono>
 #include <unordered_map>
 
@@ -28,6 +29,25 @@ struct Indexing {
   std::vector<int> free_index;  // per node index: position among free nodes, or -1 if anchored
   int free_count = 0;
 };
+
+// Nodes without a chain of edges to an anchor (a fixed node, or the first when none is fixed):
+// nothing determines their poses.
+int CountUnanchoredNodes(const PoseGraph& graph, const Indexing& ix) {
+  std::vector<int> parent(ix.id_of_index.size());
+  for (size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  const auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const PoseEdge& e : graph.edges())
+    parent[root(ix.index_of_id.at(e.from))] = root(ix.index_of_id.at(e.to));
+  std::vector<bool> anchored(parent.size(), false);
+  for (size_t i = 0; i < parent.size(); ++i)
+    if (ix.free_index[i] < 0) anchored[root(static_cast<int>(i))] = true;
+  int count = 0;
+  for (size_t i = 0; i < parent.size(); ++i) count += !anchored[root(static_cast<int>(i))];
+  return count;
+}
 
 Indexing MakeIndexing(const PoseGraph& graph) {
   Indexing ix;
@@ -198,7 +218,9 @@ LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
   if (finite) {  // a diverged solve leaves the initial poses in place
     for (size_t i = 0; i < count; ++i) graph.mutable_node(ix.id_of_index[i]) = Rigid3d(q[i], p[i]);
   }
-  result.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
+  // Ceres reports -1 steps when it did not iterate.
+  result.iterations =
+      std::max(0, summary.num_successful_steps) + std::max(0, summary.num_unsuccessful_steps);
   result.termination = problem.NumResidualBlocks() == 0
                            ? "no edges"
                            : ceres::TerminationTypeToString(summary.termination_type) +
@@ -270,6 +292,14 @@ PoseGraphReport OptimisePoseGraph(PoseGraph& graph, const PoseGraphOptions& opti
   report.iterations = lm.iterations;
   report.termination = lm.termination;
   report.usable = lm.usable;
+  report.unanchored_nodes = CountUnanchoredNodes(graph, MakeIndexing(graph));
+  if (report.unanchored_nodes > 0) {
+    report.usable = false;
+    const bool one = report.unanchored_nodes == 1;
+    report.termination += "; " + std::to_string(report.unanchored_nodes) +
+                          (one ? " node has" : " nodes have") +
+                          " no chain of edges to a fixed node: not determined";
+  }
   report.final_cost = GraphCost(graph);
   if (options.certify && report.usable) Certify(graph, options, report);
   return report;

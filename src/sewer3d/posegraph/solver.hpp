@@ -43,6 +43,9 @@ struct PoseGraphReport {
   std::string termination;  ///< Ceres' termination type and message
   bool usable = false;      ///< converged (or hit the budget while decreasing) with finite poses
   int nodes = 0, edges = 0;
+  /// Nodes with no chain of edges to a fixed node (or to the first when none is fixed): their
+  /// poses are not determined, and the result is not usable.
+  int unanchored_nodes = 0;
 
   /// With PoseGraphOptions::certify:
   bool certificate_applicable = false;

@@ -1,6 +1,7 @@
 #include "sewer3d/run/rig.hpp"
 
 #include <cmath>
+#include <set>
 #include <string>
 
 #include "sewer3d/core/check.hpp"
@@ -12,9 +13,13 @@ void Rig::Check() const {
   SEWER3D_VALIDATE(!modules.empty(), "modules", "must list at least one module");
   ValidatePositive("carrier.diameter_mm", carrier_diameter_mm);
   ValidatePositive("carrier.length_mm", carrier_length_mm);
+  std::set<std::string> names;
   for (size_t i = 0; i < modules.size(); ++i) {
     const RigModule& m = modules[i];
     const std::string field = "modules[" + std::to_string(i) + "].";
+    SEWER3D_VALIDATE(names.insert(m.name).second, field + "name",
+                     "module name '" << m.name << "' is used twice");
+    ValidateClockHours(field + "clock_h", m.clock_h);
     CheckWithin(field + "module.", [&] { m.module.Check(); });
     for (const Eigen::Vector3d& c :
          {m.carrier_from_camera.translation, ProjectorCentreInCarrier(m)}) {

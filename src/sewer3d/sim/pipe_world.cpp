@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <set>
 #include <string>
 
 #include "sewer3d/core/check.hpp"
@@ -85,6 +86,7 @@ void PipeWorld::Check() const {
     SEWER3D_VALIDATE(std::abs(j.deflection_deg) <= 10.0, field + "deflection_deg",
                      "must be within ±10, got " << j.deflection_deg);
   }
+  CheckUniqueIds();
   for (size_t i = 0; i < features.size(); ++i) {
     const PipeFeature& f = features[i];
     const std::string field = "features[" + std::to_string(i) + "].";
@@ -98,6 +100,8 @@ void PipeWorld::Check() const {
                             "go in \"joints\")");
     CheckWithin(field, [&] { f.Check(); });
     ValidateClockHours(field + "clock_h", f.clock_h);
+    SEWER3D_VALIDATE(f.station_mm >= 0.0 && f.station_mm <= LengthMm(), field + "station_mm",
+                     "must be on the pipe, 0.." << LengthMm() << ", got " << f.station_mm);
     for (const PipeSection& s : sections) {
       SEWER3D_VALIDATE(f.intrusion_mm < 0.4 * s.diameter_mm, field + "intrusion_mm",
                        "must be less than 40 % of every section's diameter (Ø"
@@ -108,6 +112,21 @@ void PipeWorld::Check() const {
                            << s.diameter_mm << ": " << 0.5 * s.diameter_mm << "), got "
                            << f.height_mm);
     }
+  }
+}
+
+void PipeWorld::CheckUniqueIds() const {
+  // Truth files and the inspection's evaluation name joints and features by id.
+  std::set<std::string> ids;
+  for (size_t i = 0; i < joints.size(); ++i) {
+    SEWER3D_VALIDATE(ids.insert(joints[i].id).second, "joints[" + std::to_string(i) + "].id",
+                     "'" << joints[i].id << "' is used twice");
+  }
+  for (size_t i = 0; i < features.size(); ++i) {
+    SEWER3D_VALIDATE(ids.insert(features[i].id).second, "features[" + std::to_string(i) + "].id",
+                     "'" << features[i].id
+                         << "' is used twice (ids of joints and features "
+                            "must differ)");
   }
 }
 

@@ -55,6 +55,8 @@ struct PipeWorld {
 
   /// Throws InvalidValue naming the field as the scenario file's "pipe" does ("joints").
   void Check() const;
+  /// Every joint and feature id differs (truth files name them by id).
+  void CheckUniqueIds() const;
   double LengthMm() const;
 };
 

@@ -1,0 +1,168 @@
+// `sewer3d calibrate module`: camera, projector and their extrinsics from checkerboard
+// captures (docs/calibration.md).
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <opencv2/imgcodecs.hpp>
+#include <vector>
+
+#include "sewer3d/calib/module_from_captures.hpp"
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/cli/calibrate_commands.hpp"
+#include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/module_io.hpp"
+#include "sewer3d/pattern/constraints.hpp"
+#include "sewer3d/pattern/default_pattern.hpp"
+
+namespace sewer3d::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ModuleArgs {
+  std::string captures, board = "9x6", out, nominal;
+  double square_mm = 10.0;
+};
+
+// The pose folders below `captures` that hold texture.png and pattern.png, sorted.
+std::vector<fs::path> PoseFolders(const fs::path& captures) {
+  std::vector<fs::path> poses;
+  std::error_code ec;
+  for (fs::directory_iterator it(captures, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (fs::is_directory(p, ec) && IsRegularFile(p / "texture.png") &&
+        IsRegularFile(p / "pattern.png"))
+      poses.push_back(p);
+  }
+  if (ec) throw FileError(captures, "cannot list the folder: " + ec.message());
+  std::sort(poses.begin(), poses.end());
+  return poses;
+}
+
+int RunModule(const ModuleArgs& a) {
+  const auto board_size = ParseSize(a.board);
+  CheckOutputFile(a.out);  // before minutes of work
+  const std::vector<fs::path> poses = PoseFolders(a.captures);
+  if (poses.size() < 3) {
+    throw FileError(
+        a.captures,
+        fmt::format("{} pose folders with texture.png and pattern.png; calibration needs at "
+                    "least 3 (layout: docs/calibration.md)",
+                    poses.size()));
+  }
+  // The nominal (design) module: pattern, projector size, and a geometry close enough to
+  // predict the lattice and pick the pattern tile.
+  ModuleDescription nominal;
+  BinaryArray pattern;
+  const cv::Mat first = ReadImage(poses[0] / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
+  if (!a.nominal.empty()) {
+    LoadedModule loaded = LoadModule(a.nominal);
+    nominal = loaded.module;
+    pattern = loaded.pattern;
+  } else {
+    DefaultModuleOptions options;
+    options.camera_width = first.cols;
+    options.camera_height = first.rows;
+    nominal = MakeDefaultModule(options);
+    pattern = DefaultPatternArray();
+  }
+  if (first.cols != nominal.camera.width || first.rows != nominal.camera.height) {
+    throw FileError(poses[0] / "texture.png",
+                    fmt::format("image is {}x{}, the nominal module's camera {}x{}", first.cols,
+                                first.rows, nominal.camera.width, nominal.camera.height));
+  }
+  BoardLayout board_layout;
+  board_layout.cols = board_size->first;
+  board_layout.rows = board_size->second;
+  board_layout.square_mm = a.square_mm;
+  ModuleCalibrator calibrator(nominal, pattern, InferConstraints(pattern), board_layout);
+  std::vector<std::string> used;
+  for (const fs::path& pose : poses) {
+    const cv::Mat texture = ReadImage(pose / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
+    const cv::Mat pattern_image = ReadGreyImage(pose / "pattern.png");
+    if (texture.size() != first.size() || pattern_image.size() != first.size()) {
+      throw FileError(pose, "images differ in size from the first pose's");
+    }
+    const CaptureOutcome outcome = calibrator.AddCapture(texture, pattern_image);
+    if (outcome.status == CaptureOutcome::Status::kBoardNotFound) {
+      fmt::print("{}: {} board not found, skipped\n", pose.string(), a.board);
+      continue;
+    }
+    if (outcome.status == CaptureOutcome::Status::kCornersNotCarried) {
+      fmt::print("{}: {} of {} corners without enough decoded spots around them, skipped\n",
+                 pose.string(), outcome.corners_missing, outcome.corners);
+      continue;
+    }
+    used.push_back(pose.filename().string());
+    fmt::print(stderr, "\rcalibrate module: {} of {} poses read ", used.size(), poses.size());
+  }
+  if (!used.empty()) fmt::print(stderr, "\n");  // ends the progress line
+  if (used.size() < 3) {
+    fmt::print(stderr,
+               "sewer3d: error: {} of {} poses usable; module calibration needs at least 3\n",
+               used.size(), poses.size());
+    return 1;
+  }
+  const ModuleFromCapturesResult calibrated = calibrator.Calibrate();
+  const ModuleCalibrationResult& r = calibrated.second_pass;
+  ModuleDescription module = calibrated.module;
+  module.pattern.matrix_path = "pattern.png";
+  module.source_json.clear();
+  SaveModule(a.out, module);
+  WritePatternMatrix(fs::path(a.out).parent_path() / "pattern.png", pattern);
+  fmt::print(
+      "calibrated module from {} of {} poses: camera RMS {:.4f} px, projector RMS {:.4f} px{}\n",
+      used.size(), poses.size(), r.camera_rms_px, r.projector_rms_px,
+      r.converged ? "" : " (not converged)");
+  fmt::print(
+      "camera     fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  "
+      "k ({:.5f}, {:.5f}, {:.5f})\n",
+      r.camera.fx, r.sigma[0], r.camera.fy, r.sigma[1], r.camera.cx, r.sigma[2], r.camera.cy,
+      r.sigma[3], r.camera.k[0], r.camera.k[1], r.camera.k[2]);
+  fmt::print(
+      "projector  fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  "
+      "k ({:.5f}, {:.5f}, {:.5f})\n",
+      r.projector.fx, r.sigma[4], r.projector.fy, r.sigma[5], r.projector.cx, r.sigma[6],
+      r.projector.cy, r.sigma[7], r.projector.k[0], r.projector.k[1], r.projector.k[2]);
+  const Eigen::Vector3d c = r.projector_from_camera.Inverse().translation;
+  fmt::print(
+      "extrinsics baseline {:.3f} ± {:.3f} mm, projector centre ({:.3f}, {:.3f}, {:.3f}) mm, "
+      "rotation ± {:.4f} deg\n",
+      c.norm(), r.sigma[8], c.x(), c.y(), c.z(), r.sigma[9]);
+  for (size_t v = 0; v < used.size(); ++v) {
+    fmt::print("  {}  camera {:.4f} px  projector {:.4f} px\n", used[v], r.view_camera_rms_px[v],
+               r.view_projector_rms_px[v]);
+  }
+  fmt::print("wrote {} and pattern.png beside it\n", a.out);
+  return 0;
+}
+
+}  // namespace
+
+Command AddCalibrateModuleCommand(CLI::App& calibrate) {
+  auto args = std::make_shared<ModuleArgs>();
+  CLI::App* sub = calibrate.add_subcommand(
+      "module", "Camera, projector and their extrinsics from checkerboard captures");
+  sub->add_option("--captures", args->captures,
+                  "Folder of pose folders (pose_NN/texture.png, pattern.png)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  AddBoardOption(*sub, args->board);
+  sub->add_option("--square-mm", args->square_mm, "Square size")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--out", args->out, "Calibrated module.json (pattern.png is written beside it)")
+      ->required();
+  sub->add_option(
+         "--nominal", args->nominal,
+         "Design module (pattern, projector size, rough geometry); default: the default module")
+      ->check(CLI::ExistingFile);
+  return {sub, [args] { return RunModule(*args); }};
+}
+
+}  // namespace sewer3d::cli
