@@ -8,6 +8,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev libspectra-dev zlib1g-dev
   clang-format clang-tidy python3
+  clang libclang-rt-14-dev
   chromium
 )
 # The report's 3D viewer fetches three.js with npm at configure time; its browser test runs

@@ -118,8 +118,20 @@ broken_run() {
 broken_run clock rig.json 'modules.0.clock_h=13'
 broken_run names rig.json 'modules.1.name="m0"'
 broken_run period run.json 'acquisition_period_s=-0.5'
-broken_run count run.json 'images=7'
+broken_run count run.json 'images=36' 'acquisitions=2'
 broken_run odometry odometry.csv '3s/,.*/,1e308/'
+broken_run acq_neg run.json 'acquisitions=-2'
+broken_run counter_huge acquisitions.csv '2s/^0,0,/0,1000000000000,/'
+broken_run crlf acquisitions.csv 's/$/\r/'
+# Scene files: a frame's scene.json with its render options or features broken.
+"$S" simulate frame --module m/module.json --scene pipe-wall --supersampling 1 --out fpw >/dev/null
+json_with frame8/scene.json scene_bits16.json 'render.bits=16'
+json_with fpw/scene.json scene_pit_deep.json 'scene.features.2.depth_mm=1e6'
+printf '{"type": "cylinder", "diameter_mm": 1e400}' >scene_overflow.json
+scenario_with connection_wide.json 'pipe.features.0.diameter_mm=1000'
+printf 'ply\nformat ascii 1.0\nelement vertex -5\nproperty float x\nproperty float y\nproperty float z\nend_header\n' >neg_count.ply
+printf '\xef\xbb\xbfVERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\n' >bom.g2o
+mkfifo fifo_out.g2o
 printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\n' >one.g2o
 "$S" simulate calibration --module m/module.json --poses 1 --out calib --supersampling 1 \
   --texture-supersampling 1 >/dev/null 2>&1

@@ -12,6 +12,17 @@ only=${1:-}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 export S T
+# An address-space limit stops a memory blow-up; AddressSanitizer reserves terabytes of address
+# space for its shadow, so an instrumented binary (ASAN_OPTIONS set) gets an RSS limit instead.
+# Instrumented code runs several times slower: SLOW scales the time limits (cases use it too).
+vlimit=6000000
+SLOW=1
+if [ -n "${ASAN_OPTIONS:-}" ]; then
+  vlimit=unlimited
+  SLOW=5
+  export ASAN_OPTIONS="$ASAN_OPTIONS:hard_rss_limit_mb=6000"
+fi
+export SLOW
 
 bash "$here/fixtures.sh" "$T" || { echo "FAIL: fixtures"; exit 1; }
 
@@ -25,7 +36,7 @@ while IFS='|' read -r name want needle cmd; do
   needle=${needle#"${needle%%[![:space:]]*}"}
   needle=${needle%"${needle##*[![:space:]]}"}
   cd "$T" || exit 1
-  (ulimit -v 6000000; timeout -s KILL 60 bash -c "$cmd" </dev/null >"$T/out" 2>"$T/err")
+  (ulimit -v "$vlimit"; timeout -s KILL $((60 * SLOW)) bash -c "$cmd" </dev/null >"$T/out" 2>"$T/err")
   rc=$?
   why=""
   if [ "$rc" -eq 137 ]; then why="killed (hang or memory)";

@@ -52,6 +52,10 @@ void CameraIntrinsics::Check() const {
   SEWER3D_VALIDATE(width <= kMaxImageSide && height <= kMaxImageSide, "width",
                    "an image of " << width << " x " << height << " px is larger than any camera ("
                                   << kMaxImageSide << " px a side at most)");
+  constexpr std::int64_t kMaxPixels = std::int64_t{1} << 26;  // io's kMaxCameraPixels
+  SEWER3D_VALIDATE(std::int64_t{width} * height <= kMaxPixels, "width",
+                   width << "x" << height << " px is more than a camera has (" << (kMaxPixels >> 20)
+                         << " M pixels at most)");
   // A field of view between 1° and 170°: outside it the focal length is a typo or a unit slip.
   const auto fov_deg = [](double side, double f) {
     return 2.0 * std::atan(side / (2.0 * f)) * 180 / M_PI;

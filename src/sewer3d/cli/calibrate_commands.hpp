@@ -12,6 +12,9 @@ namespace sewer3d::cli {
 /// The --board option of the calibrate subcommands: COLSxROWS, at least 3x3 inner corners.
 CLI::Option* AddBoardOption(CLI::App& sub, std::string& board);
 
+/// The --square-mm option (board square size): 0.1..1000 mm (a board OpenCV can use).
+CLI::Option* AddSquareOption(CLI::App& sub, double& square_mm);
+
 /// `sewer3d calibrate module` (docs/calibration.md), registered under `calibrate`.
 Command AddCalibrateModuleCommand(CLI::App& calibrate);
 

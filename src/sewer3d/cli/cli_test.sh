@@ -246,7 +246,7 @@ expect_error "--resolution-mm" "$bin" process "$tmp/rg/run" --out "$tmp/rg/ws5" 
 [ "$rc" -eq 2 ] || fail "process --resolution-mm 0 exited $rc, not 2"
 expect_error "--resolution-mm" "$bin" process "$tmp/rg/run" --out "$tmp/rg/ws5" --resolution-mm abc
 [ "$rc" -eq 2 ] || fail "process --resolution-mm abc exited $rc, not 2"
-expect_error "--start-station-mm: must be finite" \
+expect_error "--start-station-mm: must be a number, got NaN" \
   "$bin" process "$tmp/rg/run" --out "$tmp/rg/ws5" --start-station-mm nan
 [ "$rc" -eq 2 ] || fail "process --start-station-mm nan exited $rc, not 2"
 [ -e "$tmp/rg/ws5" ] && fail "a refused process wrote its workspace"

@@ -124,6 +124,12 @@ CLI::Option* AddBoardOption(CLI::App& sub, std::string& board) {
           "COLSxROWS"));
 }
 
+CLI::Option* AddSquareOption(CLI::App& sub, double& square_mm) {
+  return sub.add_option("--square-mm", square_mm, "Square size, mm")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 1000.0));
+}
+
 Command AddCalibrateCommand(CLI::App& app) {
   auto args = std::make_shared<CameraArgs>();
   CLI::App* sub =
@@ -135,9 +141,7 @@ Command AddCalibrateCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   AddBoardOption(*camera, args->board);
-  camera->add_option("--square-mm", args->square_mm, "Square size")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  AddSquareOption(*camera, args->square_mm);
   camera->add_option("--out", args->out, "Result JSON (camera.json)")->required();
   camera->add_flag("--no-pictures", args->no_pictures,
                    "Do not write the per-image corner pictures");

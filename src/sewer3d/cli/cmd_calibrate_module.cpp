@@ -12,6 +12,7 @@
 #include "sewer3d/calib/module_from_captures.hpp"
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/calibrate_commands.hpp"
+#include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
@@ -27,6 +28,7 @@ namespace fs = std::filesystem;
 struct ModuleArgs {
   std::string captures, board = "9x6", out, nominal;
   double square_mm = 10.0;
+  bool quiet = false;
 };
 
 // The pose folders below `captures` that hold texture.png and pattern.png, sorted.
@@ -80,8 +82,16 @@ int RunModule(const ModuleArgs& a) {
   board_layout.cols = board_size->first;
   board_layout.rows = board_size->second;
   board_layout.square_mm = a.square_mm;
-  ModuleCalibrator calibrator(nominal, pattern, InferConstraints(pattern), board_layout);
+  // The nominal module's pattern must be one the decoder can use: its file is named if not.
+  PatternConstraints constraints;
+  const auto infer = [&] { constraints = InferConstraints(pattern); };
+  if (a.nominal.empty())
+    infer();
+  else
+    ValidateFileContents(a.nominal, infer);
+  ModuleCalibrator calibrator(nominal, pattern, constraints, board_layout);
   std::vector<std::string> used;
+  ProgressBar bar(a.quiet);
   for (const fs::path& pose : poses) {
     const cv::Mat texture = ReadImage(pose / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
     const cv::Mat pattern_image = ReadGreyImage(pose / "pattern.png");
@@ -99,16 +109,26 @@ int RunModule(const ModuleArgs& a) {
       continue;
     }
     used.push_back(pose.filename().string());
-    fmt::print(stderr, "\rcalibrate module: {} of {} poses read ", used.size(), poses.size());
+    bar.Update("calibrate module", static_cast<int>(used.size()), static_cast<int>(poses.size()),
+               "poses");
   }
-  if (!used.empty()) fmt::print(stderr, "\n");  // ends the progress line
   if (used.size() < 3) {
     fmt::print(stderr,
                "sewer3d: error: {} of {} poses usable; module calibration needs at least 3\n",
                used.size(), poses.size());
     return 1;
   }
-  const ModuleFromCapturesResult calibrated = calibrator.Calibrate();
+  ModuleFromCapturesResult calibrated;
+  try {
+    calibrated = calibrator.Calibrate();
+  } catch (const std::invalid_argument& e) {
+    // The estimate left the valid range: the captures do not fix the module.
+    fmt::print(stderr,
+               "sewer3d: error: calibration failed: the estimate is not a valid module ({}); "
+               "check that each pose's texture and pattern images belong together\n",
+               e.what());
+    return 1;
+  }
   const ModuleCalibrationResult& r = calibrated.second_pass;
   ModuleDescription module = calibrated.module;
   module.pattern.matrix_path = "pattern.png";
@@ -153,15 +173,14 @@ Command AddCalibrateModuleCommand(CLI::App& calibrate) {
       ->required()
       ->check(CLI::ExistingDirectory);
   AddBoardOption(*sub, args->board);
-  sub->add_option("--square-mm", args->square_mm, "Square size")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  AddSquareOption(*sub, args->square_mm);
   sub->add_option("--out", args->out, "Calibrated module.json (pattern.png is written beside it)")
       ->required();
   sub->add_option(
          "--nominal", args->nominal,
          "Design module (pattern, projector size, rough geometry); default: the default module")
       ->check(CLI::ExistingFile);
+  sub->add_flag("--quiet", args->quiet, "No progress bar");
   return {sub, [args] { return RunModule(*args); }};
 }
 

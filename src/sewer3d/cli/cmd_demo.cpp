@@ -3,8 +3,10 @@
 
 #include <fmt/core.h>
 #include <sys/resource.h>
+#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +22,7 @@
 #include "sewer3d/pipeline/report_stage.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/simeval/rgbd_evaluation.hpp"
+#include "sewer3d/simio/simulate_run.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -55,13 +58,16 @@ int SimulateUnlessDone(const fs::path& run, const DemoArgs& a, bool& simulated) 
                run.string(), kPreset);
     return 0;
   }
-  // Only a run folder (this command's, cut short or of another preset) is removed.
-  if (IsRegularFile(run / "run.json")) RemoveFolder(run);
+  // Only a simulated run (this command's, cut short or of another preset) is removed; a real
+  // capture is refused by the simulation.
+  if (IsSimulatedRun(run)) RemoveFolder(run);
   RunArgs args;
   args.preset = kPreset;
   args.out = run.string();
   args.quiet = a.quiet;
-  tbb::task_arena arena(a.threads);
+  const auto allowed =
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  tbb::task_arena arena(static_cast<int>(std::min<std::size_t>(a.threads, allowed)));
   simulated = true;
   return arena.execute([&] { return RunRun(args); });
 }

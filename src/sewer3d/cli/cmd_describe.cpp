@@ -30,8 +30,8 @@ void PrintRigOverlap(const ModuleDescription& module) {
              "3-D deg (mm)");
   const int step = std::max(1, module.camera.width / 320);
   for (const double dn : {200.0, 300.0, 400.0}) {
-    for (const Eigen::Vector2d offset : {Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 25),
-                                         Eigen::Vector2d(25, 0), Eigen::Vector2d(17.7, 17.7)}) {
+    for (const Eigen::Vector2d& offset : {Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 25),
+                                          Eigen::Vector2d(25, 0), Eigen::Vector2d(17.7, 17.7)}) {
       std::string cells;
       for (const bool lit : {false, true}) {
         const auto o = NeighbourOverlaps(rig, dn, offset, lit, step);

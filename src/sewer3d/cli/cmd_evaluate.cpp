@@ -83,6 +83,11 @@ Command AddEvaluateCommand(CLI::App& app) {
             // Every input read before any work: a bad --truth fails at once.
             std::optional<Scene> truth;
             if (!args->truth.empty()) truth = ReadScene(args->truth);
+            if (truth && args->surface == "cylinder" && truth->type == Scene::Type::kPlane) {
+              throw FileError(args->truth,
+                              "the true scene is a plane; evaluate cylinder needs a cylinder or "
+                              "pipe-wall scene");
+            }
             const auto all = ReadPlyPoints(args->cloud);
             const auto points = InnerPoints(all, args->inner_fraction);
             if (points.size() < 10)

@@ -74,6 +74,9 @@ Command AddInspectCommand(CLI::App& app) {
             } catch (const WorkspaceConflict& e) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());
               return 2;
+            } catch (const InvalidValue& e) {  // the stage's check of an option, as a flag
+              if (e.field() != "nominal_diameter_mm") throw;
+              throw InvalidValue("--nominal-diameter-mm", e.problem());
             }
             const StageOutcome outcome = InspectOutcome(r, args->out);
             fmt::print("{}\nwrote {}\n", outcome.summary, outcome.output.string());

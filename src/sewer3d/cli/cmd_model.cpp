@@ -20,10 +20,11 @@ namespace sewer3d::cli {
 void AddModelStageOptions(CLI::App& sub, ModelStageOptions& o) {
   sub.add_option("--resolution-mm", o.resolution_mm, "Map cell size along and around the pipe")
       ->capture_default_str()
-      ->check(CLI::Range(0.01, 50.0));
+      ->check(CLI::Range(0.05, 50.0));
   sub.add_option("--start-station-mm", o.start_station_mm,
                  "Station of the run's first carrier position (where the run began)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(-1e7, 1e7));
   sub.add_option("--nominal-diameter-mm", o.nominal_diameter_mm,
                  "Model diameter (the round pipe the displacement is measured from); 0: the "
                  "fitted diameter rounded to 5 mm")
@@ -32,7 +33,7 @@ void AddModelStageOptions(CLI::App& sub, ModelStageOptions& o) {
   sub.add_flag("--straight", o.straight, "One straight cylinder instead of a bending centreline");
   sub.add_option("--tile-length-mm", o.tile_length_mm, "Tile along the pipe (bounds memory)")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 10000.0));
+      ->check(CLI::Range(20.0, 10000.0));
   sub.add_option("--pixel-step", o.pixel_step, "Every n-th depth-map pixel into the maps")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
@@ -83,6 +84,9 @@ Command AddModelCommand(CLI::App& app) {
             } catch (const WorkspaceConflict& e) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());
               return 2;
+            } catch (const InvalidValue& e) {  // the stage's check of an option, as a flag
+              if (e.field() != "nominal_diameter_mm") throw;
+              throw InvalidValue("--nominal-diameter-mm", e.problem());
             }
             const StageOutcome outcome = ModelOutcome(r, args->out);
             fmt::print("{}\n", outcome.summary);

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <string_view>
 
@@ -10,6 +11,7 @@
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/summary.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/pattern_io.hpp"
@@ -50,7 +52,9 @@ Command AddModuleCommand(CLI::App& app) {
   sub->add_option("--camera-size", args->camera_size, "Camera image size WxH (FOV is kept)")
       ->capture_default_str()
       ->check(CLI::Validator(
-          [](std::string& s) { return ParseSize(s) ? std::string() : "expected WxH, got " + s; },
+          [](std::string& s) {
+            return ParseSize(s) ? std::string() : "expected WxH, each side 1..32768, got " + s;
+          },
           "WxH"));
   sub->add_option("--hfov-deg", args->options.horizontal_fov_deg, "Horizontal field of view")
       ->capture_default_str()
@@ -72,6 +76,18 @@ Command AddModuleCommand(CLI::App& app) {
             const ModuleDescription module = MakeDefaultModule(args->options);
             const std::filesystem::path dir = args->out;
             const BinaryArray pattern = DefaultPatternArray();
+            // A module the decoder cannot use is refused before anything is written.
+            const DisparityRange range =
+                ComputeDisparityRange(module, kWorkingDistanceMinMm, kWorkingDistanceMaxMm);
+            if (pattern.cols <= range.max_cols) {
+              throw InvalidValue(
+                  "--hfov-deg, --stereo-angle-deg",
+                  fmt::format("this geometry's disparity over {:g}-{:g} mm spans {:.0f} pattern "
+                              "columns, more than the pattern's {}: choose a smaller stereo "
+                              "angle or field of view",
+                              kWorkingDistanceMinMm, kWorkingDistanceMaxMm,
+                              std::ceil(range.max_cols), pattern.cols));
+            }
             WritePatternMatrix(dir / module.pattern.matrix_path, pattern);
             const SubmapSearchOptions search = DefaultPatternSearchOptions();
             WritePatternSidecar(PatternSidecarPath(dir / module.pattern.matrix_path),

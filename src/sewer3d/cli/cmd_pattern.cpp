@@ -30,9 +30,11 @@ Command AddPatternCommand(CLI::App& app) {
       ->check(CLI::Validator(
           [](std::string& name) {
             // The matrix must survive exactly: a lossy format would change spots.
-            return std::filesystem::path(name).extension() == ".png"
+            const std::filesystem::path path(name);
+            return path.extension() == ".png" && path.stem() != ""
                        ? std::string()
-                       : "the matrix is written losslessly as PNG: end the name in .png, got " +
+                       : "the matrix is written losslessly as PNG: a file name ending in .png "
+                         "(pattern.png), got " +
                              name;
           },
           "PNG"));

@@ -105,6 +105,14 @@ Command AddPoseGraphCommand(CLI::App& app) {
                          args->in, r.termination, args->out);
               return 1;
             }
+            if (r.unanchored_nodes > 0) {  // their poses are whatever the file said
+              std::fflush(stdout);
+              fmt::print(stderr,
+                         "sewer3d: error: {}: {} of {} nodes have no chain of edges to a fixed "
+                         "node, so their poses are not determined; {} not written\n",
+                         args->in, r.unanchored_nodes, r.nodes, args->out);
+              return 1;
+            }
             WriteG2o(args->out, graph);
             fmt::print("wrote {}\n", args->out);
             return 0;

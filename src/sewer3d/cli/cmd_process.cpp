@@ -99,11 +99,12 @@ Command AddProcessCommand(CLI::App& app) {
   sub->add_option("--start-station-mm", args->start_station_mm,
                   "Station of the carrier centre at the run's first image (mm along the pipe); "
                   "recorded for the model stage")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(-1e7, 1e7));
   sub->add_option("--resolution-mm", args->resolution_mm,
                   "Cell size of the model maps (mm); recorded for the model stage")
       ->capture_default_str()
-      ->check(CLI::Range(0.01, 50.0));
+      ->check(CLI::Range(0.05, 50.0));
   sub->add_option("--threads", args->threads, "Workers of every stage")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));

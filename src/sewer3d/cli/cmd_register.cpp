@@ -12,6 +12,7 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
@@ -46,6 +47,9 @@ Command AddRegisterCommand(CLI::App& app) {
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
   return {sub, [args] {
+            if (args->edges.size() > 1 &&
+                std::find(args->edges.begin(), args->edges.end(), "none") != args->edges.end())
+              throw InvalidValue("--edges", "none cannot be combined with other edge types");
             const CaptureRun run = LoadRun(args->run);
             RegisterStageOptions options;
             options.threads = args->threads;

@@ -132,6 +132,7 @@ Command AddSimulateCommand(CLI::App& app) {
         if (!frame->parsed()) return RunRun(*run_args);
         const LoadedModule loaded = LoadModule(args->module);
         Scene scene;
+        RenderOptions options = args->render;
         if (args->scene == "plane" || args->scene == "cylinder" || args->scene == "pipe-wall") {
           scene.type = args->scene == "plane"      ? Scene::Type::kPlane
                        : args->scene == "cylinder" ? Scene::Type::kCylinder
@@ -155,8 +156,15 @@ Command AddSimulateCommand(CLI::App& app) {
                                    args->scene);
           }
           scene = ReadScene(file);
+          // The file's render options, with the render flags given on the command line over them.
+          if (ReadSceneRenderOptions(file, options)) {
+            if (frame->count("--seed")) options.seed = args->render.seed;
+            if (frame->count("--supersampling")) options.supersampling = args->render.supersampling;
+            if (frame->count("--bits")) options.sensor.bits = args->render.sensor.bits;
+            if (frame->count("--speed-mm-s")) options.speed_mm_s = args->render.speed_mm_s;
+            if (frame->count("--exposure-ms")) options.exposure_ms = args->render.exposure_ms;
+          }
         }
-        RenderOptions options = args->render;
         if (args->ideal) {
           const RenderOptions ideal = RenderOptions::Ideal();
           options.camera_f_number = ideal.camera_f_number;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "sewer3d/cli/calibrate_commands.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/io/image_io.hpp"
@@ -28,10 +29,8 @@ void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& a) {
       ->check(CLI::Range(1, 200));
   sub->add_option("--out", a.out, "Capture folder")->required();
   sub->add_option("--seed", a.seed, "Poses and noise seed")->capture_default_str()->check(Digits());
-  sub->add_option("--board", a.board, "Inner corners COLSxROWS")->capture_default_str();
-  sub->add_option("--square-mm", a.square_mm, "Square size")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  AddBoardOption(*sub, a.board);
+  AddSquareOption(*sub, a.square_mm);
   sub->add_option("--supersampling", a.supersampling,
                   "S x S samples per pixel of the pattern images")
       ->capture_default_str()
@@ -44,11 +43,7 @@ void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& a) {
 }
 
 int RunCalibration(const CalibrationArgs& a) {
-  const auto size = ParseSize(a.board);
-  if (!size || size->first < 2 || size->second < 2) {
-    fmt::print(stderr, "sewer3d: error: --board: expected COLSxROWS, got {}\n", a.board);
-    return 2;
-  }
+  const auto size = ParseSize(a.board);  // checked by AddBoardOption
   const LoadedModule loaded = LoadModule(a.module);
   Checkerboard board;
   board.cols = size->first;

@@ -4,6 +4,7 @@
 /// returns the function to run when that subcommand was chosen (exit code as result).
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <functional>
 #include <optional>
 #include <string>
@@ -44,7 +45,13 @@ inline CLI::Validator Digits() {
       [](std::string& text) {
         const bool digits =
             !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-        return digits ? std::string() : "expected a whole number >= 0, got " + text;
+        if (!digits) return "expected a whole number >= 0, got " + text;
+        const std::string max = "18446744073709551615";  // 2^64 - 1
+        const std::string trimmed =
+            text.substr(std::min(text.find_first_not_of('0'), text.size() - 1));
+        const bool fits =
+            trimmed.size() < max.size() || (trimmed.size() == max.size() && trimmed <= max);
+        return fits ? std::string() : "expected a whole number up to " + max + ", got " + text;
       },
       "UINT");
 }

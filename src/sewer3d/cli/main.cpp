@@ -2,9 +2,13 @@
 // Errors end here: one line on stderr and the exit status of cli/exit_code.hpp (README's table).
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "sewer3d/cli/command.hpp"
@@ -17,6 +21,30 @@ int ReportError(const std::exception_ptr& error) {
   const sewer3d::cli::ErrorExit exit = sewer3d::cli::ExitForError(error);
   std::cerr << "sewer3d: error: " << exit.message << "\n";
   return exit.code;
+}
+
+// Whether `value` reads as a floating-point NaN ("nan", "-NaN", "nan(1)"): ranges never refuse
+// it (every comparison with NaN is false).
+bool IsNan(const std::string& value) {
+  char* end = nullptr;
+  const double x = std::strtod(value.c_str(), &end);
+  return !value.empty() && end == value.c_str() + value.size() && std::isnan(x);
+}
+
+// The first option or argument of the chosen subcommands given as an empty string ("" names
+// no file and no value) or as NaN, with what is wrong; nullptr when none.
+std::pair<const CLI::Option*, const char*> BadValue(const CLI::App& app) {
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->count() == 0) continue;
+    for (const std::string& value : option->results()) {
+      if (value.empty()) return {option, "must not be empty"};
+      if (IsNan(value)) return {option, "must be a number, got NaN"};
+    }
+  }
+  for (const CLI::App* sub : app.get_subcommands()) {
+    if (const auto bad = BadValue(*sub); bad.first != nullptr) return bad;
+  }
+  return {nullptr, nullptr};
 }
 
 }  // namespace
@@ -59,6 +87,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     return ReportError(std::current_exception());
+  }
+  if (const auto [option, problem] = BadValue(app); option != nullptr) {
+    std::cerr << "sewer3d: error: invalid value: " << option->get_name() << ": " << problem << "\n";
+    return sewer3d::cli::kExitUsage;
   }
   try {
     for (const auto& c : commands) {

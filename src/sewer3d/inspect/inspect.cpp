@@ -137,6 +137,10 @@ Inspection Inspect(const CoarseMap& map, const Centreline& centreline,
   options.Check();
   const double radius = centreline.radius_mm;
   const double dn = options.nominal_diameter_mm > 0.0 ? options.nominal_diameter_mm : 2.0 * radius;
+  // Percentages of a DN far from the model's diameter would be meaningless.
+  SEWER3D_VALIDATE(
+      std::abs(dn - 2.0 * radius) <= 0.25 * 2.0 * radius, "nominal_diameter_mm",
+      "must be within 25 % of the model's diameter (" << 2.0 * radius << " mm), got " << dn);
   Inspection out;
   InspectionReport& rep = out.report;
   rep.coarse_rows = map.displacement_mm.rows;

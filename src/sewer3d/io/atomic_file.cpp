@@ -27,6 +27,13 @@ std::filesystem::path TemporaryPathFor(const std::filesystem::path& path) {
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path&)>& write) {
   std::error_code ec;
+  if (path.empty()) throw FileError(path, "an empty file name");
+  // Renaming over a FIFO or a device (/dev/null as root) would replace it with a plain file.
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status)) throw FileError(path, "is a folder, not a file");
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw FileError(path, "not a regular file (a FIFO, socket or device); not replaced");
+  ec.clear();
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
   if (ec) throw FileError(path.parent_path(), "cannot create folder: " + ec.message());
   const std::filesystem::path temporary = TemporaryPathFor(path);

@@ -12,13 +12,22 @@
 namespace sewer3d {
 
 std::vector<CsvRow> ReadCsv(const std::filesystem::path& path, const std::string& header) {
-  std::istringstream in(ReadTextFile(path));
+  std::string text = ReadTextFile(path);
+  // Spreadsheet exports: a UTF-8 byte-order mark first, CRLF line ends; both are read as plain.
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+  std::istringstream in(text);
   std::string line;
-  if (!std::getline(in, line) || line != header)
-    throw FileError(path, "line 1: header must be '" + header + "'");
+  const auto next = [&] {
+    if (!std::getline(in, line)) return false;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  };
+  if (!next() || line != header)
+    throw FileError(path,
+                    "line 1: header must be '" + header + "', got '" + line.substr(0, 80) + "'");
   const size_t columns = std::count(header.begin(), header.end(), ',') + 1;
   std::vector<CsvRow> rows;
-  for (int number = 2; std::getline(in, line); ++number) {
+  for (int number = 2; next(); ++number) {
     if (line.empty()) continue;
     CsvRow row;
     row.line = number;
@@ -49,9 +58,13 @@ double CsvNumber(const std::filesystem::path& path, const CsvRow& row, size_t co
 int CsvInteger(const std::filesystem::path& path, const CsvRow& row, size_t column,
                const char* name) {
   const double x = CsvNumber(path, row, column, name);
-  if (x != std::floor(x) || std::abs(x) > 1e9) {
+  if (x != std::floor(x)) {
     throw FileError(path, fmt::format("line {}: {} '{}' is not an integer", row.line, name,
                                       row.fields[column]));
+  }
+  if (std::abs(x) > 1e9) {
+    throw FileError(path, fmt::format("line {}: {} '{}' is out of range (at most 1e9)", row.line,
+                                      name, row.fields[column]));
   }
   return static_cast<int>(x);
 }

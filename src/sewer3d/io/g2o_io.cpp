@@ -93,6 +93,7 @@ PoseGraph ReadG2o(const std::filesystem::path& path) {
   int number = 0;
   while (std::getline(file, line)) {
     ++number;
+    if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 BOM
     if (line.find('\0') != std::string::npos)
       throw FileError(path, "line " + std::to_string(number) + ": a NUL byte: not a text file");
     const LineParser in(path, number, line);

@@ -31,7 +31,12 @@ cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags, std::uint
   if (bytes.empty()) throw FileError(path, "empty file, not an image");
   // Only PNG, TIFF and JPEG reach OpenCV: its other decoders (GDCM among them) may abort.
   const auto header = ImageHeaderSize(bytes);
-  if (!header) throw FileError(path, "not a PNG, TIFF or JPEG image");
+  if (!header) {
+    const std::string format = ImageFormat(bytes);
+    throw FileError(
+        path, format.empty() ? "not a PNG, TIFF or JPEG image"
+                             : "cannot decode image: a truncated or corrupt " + format + " header");
+  }
   if (const auto& size = header) {
     if (size->width == 0 || size->height == 0 || size->width * size->height > max_pixels) {
       throw FileError(path, fmt::format("the header declares {} x {} pixels; at most {} are read",

@@ -92,12 +92,20 @@ std::vector<std::uint8_t> ReadFileBytes(const std::filesystem::path& path,
   return bytes;
 }
 
-std::optional<ImageSize> ImageHeaderSize(const std::vector<std::uint8_t>& b) {
-  if (b.size() >= 8 && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G') return PngSize(b);
+std::string ImageFormat(const std::vector<std::uint8_t>& b) {
+  if (b.size() >= 8 && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G') return "PNG";
   const bool tiff = b.size() >= 8 && ((b[0] == 'I' && b[1] == 'I' && b[2] == 42 && b[3] == 0) ||
                                       (b[0] == 'M' && b[1] == 'M' && b[2] == 0 && b[3] == 42));
-  if (tiff) return TiffSize(b);
-  if (b.size() >= 4 && b[0] == 0xFF && b[1] == 0xD8) return JpegSize(b);
+  if (tiff) return "TIFF";
+  if (b.size() >= 4 && b[0] == 0xFF && b[1] == 0xD8) return "JPEG";
+  return "";
+}
+
+std::optional<ImageSize> ImageHeaderSize(const std::vector<std::uint8_t>& b) {
+  const std::string format = ImageFormat(b);
+  if (format == "PNG") return PngSize(b);
+  if (format == "TIFF") return TiffSize(b);
+  if (format == "JPEG") return JpegSize(b);
   return std::nullopt;
 }
 

@@ -29,6 +29,9 @@ struct ImageSize {
   std::uint64_t width = 0, height = 0;
 };
 
+/// "PNG", "TIFF" or "JPEG" by the file's signature, or "".
+std::string ImageFormat(const std::vector<std::uint8_t>& bytes);
+
 /// Width and height as a PNG, TIFF or JPEG header declares them (nullopt for other formats
 /// or a header too short to tell).
 std::optional<ImageSize> ImageHeaderSize(const std::vector<std::uint8_t>& bytes);

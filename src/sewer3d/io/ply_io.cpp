@@ -82,8 +82,14 @@ PlyHeader ReadPlyHeader(std::istream& file, const std::filesystem::path& path) {
       in >> header.format;
     } else if (word == "element") {
       PlyElement element;
-      if (!(in >> element.name >> element.count))
+      std::string count;
+      if (!(in >> element.name >> count))
         throw FileError(path, "PLY element line without a name and count: " + line);
+      // Digits only: stream extraction would wrap "-5" to 2^64 - 5.
+      if (count.find_first_not_of("0123456789") != std::string::npos || count.size() > 19)
+        throw FileError(path, "element " + element.name + ": count '" + count +
+                                  "' is not a whole number below 10^19");
+      element.count = std::strtoull(count.c_str(), nullptr, 10);
       header.elements.push_back(element);
     } else if (word == "property") {
       if (header.elements.empty()) throw FileError(path, "PLY property before any element");

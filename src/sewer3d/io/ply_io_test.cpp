@@ -4,6 +4,7 @@
 
 #include "sewer3d/io/ply_io.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -204,10 +205,10 @@ TEST_F(PlyIoTest, ReadsEveryScalarTypeInBothByteOrders) {
         }
       }
       const fs::path file = dir_ / (type + (big ? "_big.ply" : "_little.ply"));
-      WriteTextFile(file, "ply\nformat " +
-                              std::string(big ? "binary_big_endian" : "binary_little_endian") +
-                              " 1.0\nelement vertex 2\nproperty " + type + " x\nproperty " + type +
-                              " y\nproperty " + type + " z\nend_header\n" + body);
+      WriteTextFile(file, fmt::format("ply\nformat {} 1.0\nelement vertex 2\nproperty {} "
+                                      "x\nproperty {} y\nproperty {} z\nend_header\n{}",
+                                      big ? "binary_big_endian" : "binary_little_endian", type,
+                                      type, type, body));
       SCOPED_TRACE(file.filename().string());
       ExpectSamePoints(ReadPlyPoints(file), expected);
     }

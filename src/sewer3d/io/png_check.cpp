@@ -154,8 +154,8 @@ std::string CheckImageData(const std::vector<Chunk>& chunks, const Header& h) {
         } else if (at_in_row == 0 && out[i] > 4) {
           problem = "corrupt PNG (row filter type " + std::to_string(out[i]) + ")";
         } else {
-          const std::uint64_t take = std::min<std::uint64_t>(produced - i,
-                                                             runs[run].bytes - at_in_row);
+          const std::uint64_t take =
+              std::min<std::uint64_t>(produced - i, runs[run].bytes - at_in_row);
           i += take;
           at_in_row += take;
           if (at_in_row == runs[run].bytes) {
@@ -185,9 +185,9 @@ std::string CheckChunkOrder(const std::vector<Chunk>& chunks) {
       if (!((ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z')))
         return "corrupt PNG (a chunk type is not 4 letters)";
     }
-    const bool known = c.type == "IHDR" || c.type == "PLTE" || c.type == "IDAT" ||
-                       c.type == "IEND";
-    if (Critical(c.type) && !known) return "unsupported PNG (unknown critical chunk " + c.type + ")";
+    const bool known = c.type == "IHDR" || c.type == "PLTE" || c.type == "IDAT" || c.type == "IEND";
+    if (Critical(c.type) && !known)
+      return "unsupported PNG (unknown critical chunk " + c.type + ")";
     if (c.type == "IHDR" && &c != &chunks.front()) return "corrupt PNG (two IHDR chunks)";
     if (c.type == "IDAT") {
       if (idat_done) return "corrupt PNG (IDAT chunks not in one run)";

@@ -157,10 +157,8 @@ TEST(PngCheck, InterlacedSizesFollowAdam7) {
     }
   }
   const Bytes palette = {0, 0, 0, 80, 80, 80, 160, 160, 160, 240, 240, 240};
-  Chunks c{{{"IHDR", Ihdr(w, h, 2, 3, 1)},
-            {"PLTE", palette},
-            {"IDAT", Deflate(raw)},
-            {"IEND", {}}}};
+  Chunks c{
+      {{"IHDR", Ihdr(w, h, 2, 3, 1)}, {"PLTE", palette}, {"IDAT", Deflate(raw)}, {"IEND", {}}}};
   EXPECT_EQ(Problem(c), "");
   const Bytes file = c.File();
   EXPECT_FALSE(cv::imdecode(file, cv::IMREAD_GRAYSCALE).empty());

@@ -141,10 +141,12 @@ RunInfo ReadRunInfo(const fs::path& path) {
     if (!seed->is_number_unsigned()) in.Fail("seed", "must be a non-negative integer");
     info.seed = seed->get<std::uint64_t>();
   }
+  // The time between two acquisitions of a module; 0 (or absent): not known. Nothing downstream
+  // relies on it (times come from acquisitions.csv).
   info.acquisition_period_s = in.Number(j, "acquisition_period_s", "", 0.0);
   if (!(info.acquisition_period_s >= 0.0 && info.acquisition_period_s <= kMaxTimeS))
-    in.Fail("acquisition_period_s",
-            fmt::format("must be 0..{:g} s, got {}", kMaxTimeS, info.acquisition_period_s));
+    in.Fail("acquisition_period_s", fmt::format("must be 0 (not known) to {:g} s, got {}",
+                                                kMaxTimeS, info.acquisition_period_s));
   info.color_filter = in.Text(j, "color_filter", "", "none");
   if (info.color_filter != "none" && info.color_filter != "RGGB")
     in.Fail("color_filter", "must be \"none\" or \"RGGB\", got '" + info.color_filter + "'");
@@ -155,9 +157,18 @@ RunCounts ReadRunCounts(const fs::path& path) {
   const JsonReader in(path);
   const json j = in.ParseObject(ReadTextFile(path));
   RunCounts counts;
-  counts.modules = in.Integer(j, "modules", "", -1);
-  counts.acquisitions = in.Integer(j, "acquisitions", "", -1);
-  counts.images = in.Integer(j, "images", "", -1);
+  for (auto [key, count] :
+       {std::pair{"modules", &counts.modules}, std::pair{"acquisitions", &counts.acquisitions},
+        std::pair{"images", &counts.images}}) {
+    *count = in.Integer(j, key, "", -1);
+    if (j.contains(key) && *count < 0) in.Fail(key, fmt::format("a count, got {}", *count));
+  }
+  const std::int64_t planned = std::int64_t{3} * counts.modules * counts.acquisitions;
+  if (counts.modules >= 0 && counts.acquisitions >= 0 && counts.images >= 0 &&
+      counts.images != planned) {
+    in.Fail("images",
+            fmt::format("must be 3 x modules x acquisitions ({}), got {}", planned, counts.images));
+  }
   return counts;
 }
 

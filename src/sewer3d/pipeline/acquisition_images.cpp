@@ -32,8 +32,13 @@ std::filesystem::path ExistingImageFile(const CaptureRun& run, const Acquisition
   std::filesystem::path file = AcquisitionImageFile(run, a, kind);
   if (a.Image(kind) < 0)
     throw FileError(file, std::string("no ") + ImageKindName(kind) + " image in acquisitions.csv");
-  if (run.images[a.Image(kind)].missing)
-    throw FileError(file, "listed in acquisitions.csv but missing");
+  if (run.images[a.Image(kind)].missing) {
+    std::error_code ec;
+    throw FileError(file, std::filesystem::exists(file, ec)
+                              ? "listed in acquisitions.csv but not a regular file (a folder, "
+                                "FIFO or device)"
+                              : "listed in acquisitions.csv but missing");
+  }
   return file;
 }
 
@@ -97,8 +102,16 @@ cv::Mat ReadPatternImage(const CaptureRun& run, const Acquisition& a) {
 cv::Mat3b ReadTextureImage(const CaptureRun& run, const Acquisition& a, ImageKind kind) {
   const std::filesystem::path file = ExistingImageFile(run, a, kind);
   if (run.info.color_filter == "none") {
-    cv::Mat image = ReadImage(file, cv::IMREAD_COLOR, kMaxCameraPixels);
+    cv::Mat image = ReadImage(file, cv::IMREAD_UNCHANGED, kMaxCameraPixels);
+    if (image.channels() == 1) {
+      throw FileError(file,
+                      "a one-channel image, but run.json's color_filter is \"none\" "
+                      "(colour images); a raw Bayer mosaic needs \"RGGB\"");
+    }
     CheckSize(file, image, CameraOf(run, a), a.module);
+    if (image.channels() == 4) cv::cvtColor(image, image, cv::COLOR_BGRA2BGR);
+    if (image.depth() == CV_16U) image.convertTo(image, CV_8U, 1.0 / 257.0);
+    if (image.type() != CV_8UC3) throw FileError(file, "expected an 8- or 16-bit colour image");
     return image;
   }
   cv::Mat raw = ReadImage(file, cv::IMREAD_UNCHANGED, kMaxCameraPixels);

@@ -191,6 +191,13 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
     return report;
   }
   report.nominal_diameter_mm = NominalDiameter(options, fit.report.radius_mm);
+  // The displacement is measured from the nominal wall; a nominal far from the measured pipe
+  // is a wrong option, not a model (a real pipe is within a few % of its DN).
+  const double fitted_mm = 2.0 * fit.report.radius_mm;
+  SEWER3D_VALIDATE(std::abs(report.nominal_diameter_mm - fitted_mm) <= 0.25 * fitted_mm,
+                   "nominal_diameter_mm",
+                   "must be within 25 % of the measured diameter (" << fitted_mm << " mm), got "
+                                                                    << report.nominal_diameter_mm);
   fit.centreline.radius_mm = 0.5 * report.nominal_diameter_mm;
 
   PipeModelInfo info;

@@ -5,9 +5,11 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <functional>
 #include <mutex>
@@ -34,7 +36,10 @@ void ForEachItem(std::size_t count, int threads, MakeState make_state, Work work
     return;
   }
   tbb::enumerable_thread_specific<State> per_worker(make_state);
-  tbb::task_arena arena(threads);
+  // More threads than TBB allows (the machine's cores) would only make TBB print a warning.
+  const auto allowed =
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  tbb::task_arena arena(static_cast<int>(std::min<std::size_t>(threads, allowed)));
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {

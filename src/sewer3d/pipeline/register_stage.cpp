@@ -86,6 +86,18 @@ std::vector<std::string> OdometryWarnings(const CaptureRun& run,
         r.before_mm, r.lowest_mm, f.options.reversal_tolerance_mm, r.readings,
         r.readings == 1 ? "" : "s"));
   }
+  if (!run.odometry.empty()) {
+    const double first = run.odometry.front().time_s, last = run.odometry.back().time_s;
+    const auto outside = std::count_if(nodes.begin(), nodes.end(), [&](const AcquisitionNode& n) {
+      return n.time_s < first || n.time_s > last;
+    });
+    if (outside > 0) {
+      lines.push_back(fmt::format(
+          "{}: the readings cover {:.3f}-{:.3f} s, but {} of {} acquisitions lie outside that "
+          "span: they got the nearest reading's distance, so the odometry does not place them",
+          file, first, last, outside, nodes.size()));
+    }
+  }
   for (const OdometryGap& g : f.gaps) {
     std::string inside;
     double sigma = 0.0;

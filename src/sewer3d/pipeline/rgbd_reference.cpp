@@ -64,6 +64,7 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
   const CameraModel camera(run.rig.modules.at(module).module.camera);
   ReferenceLightEstimator estimator(camera, options.reference);
   const int n = std::min<int>(options.reference_frames, static_cast<int>(usable.size()));
+  std::string unreadable;  // the first image that could not be read
   for (int k = 0; k < n; ++k) {
     const Acquisition& a = *usable[(2 * k + 1) * usable.size() / (2 * n)];
     try {
@@ -71,8 +72,9 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
       const RgbdGeometry geometry =
           ReadRgbdGeometry(RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter));
       estimator.Add(linear, geometry.depth_mm);
-    } catch (const FileError&) {
+    } catch (const FileError& e) {
       // Passed over here; the colour pass fails the acquisition with the file and reason.
+      if (unreadable.empty()) unreadable = e.what();
     }
   }
   const ReferenceLightResult estimate = estimator.Estimate();
@@ -80,8 +82,12 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
   result.reference = estimate.reference;
   if (!result.reference) {
     result.file = file.string();
-    result.reason = "no reference light: none of the module's " + std::to_string(usable.size()) +
-                    " acquisitions with depth gave enough samples";
+    result.reason =
+        !unreadable.empty()
+            ? "no reference light: a texture image could not be read (" + unreadable + ")"
+            : "no reference light: none of the module's " + std::to_string(usable.size()) +
+                  " acquisitions with depth gave enough samples of the wall (too "
+                  "few decoded points; see the geometry reports)";
     return result;
   }
   WriteFileAtomically(ReferenceFile(rgbd_folder, module, ".png"),

@@ -285,6 +285,11 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
         const int m = acquisitions[i].module;
         s.colour = RgbdColourPass(run, acquisitions[i], folder, correctors[m].get(),
                                   report.module_gains.gains_bgr[m], options.colour);
+        // Without a reference light, the reason it could not be made is the one to read.
+        const RgbdReferenceResult& ref = report.references[m];
+        if (correctors[m] == nullptr && s.colour.status == Status::kFailed && !ref.reason.empty())
+          FailAcquisition(s.colour, ref.file.empty() ? s.colour.file : ref.file,
+                          "module m" + std::to_string(m) + ": " + ref.reason);
       },
       progress_of("colour"));
 

@@ -26,6 +26,7 @@ StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::p
                                     listed - kListed, o.output.string()));
   if (report.failed > 0 && report.done + report.skipped == 0) {
     const RgbdAcquisitionResult* first = report.FirstFailure();
+    o.details.clear();  // the error names the first failure and the report that lists them all
     o.ok = false;
     o.error =
         fmt::format("no acquisition could be processed: all {} failed (first: {}: {}; see {})",

@@ -293,13 +293,6 @@ PoseGraphReport OptimisePoseGraph(PoseGraph& graph, const PoseGraphOptions& opti
   report.termination = lm.termination;
   report.usable = lm.usable;
   report.unanchored_nodes = CountUnanchoredNodes(graph, MakeIndexing(graph));
-  if (report.unanchored_nodes > 0) {
-    report.usable = false;
-    const bool one = report.unanchored_nodes == 1;
-    report.termination += "; " + std::to_string(report.unanchored_nodes) +
-                          (one ? " node has" : " nodes have") +
-                          " no chain of edges to a fixed node: not determined";
-  }
   report.final_cost = GraphCost(graph);
   if (options.certify && report.usable) Certify(graph, options, report);
   return report;

@@ -43,8 +43,9 @@ struct PoseGraphReport {
   std::string termination;  ///< Ceres' termination type and message
   bool usable = false;      ///< converged (or hit the budget while decreasing) with finite poses
   int nodes = 0, edges = 0;
-  /// Nodes with no chain of edges to a fixed node (or to the first when none is fixed): their
-  /// poses are not determined, and the result is not usable.
+  /// Nodes with no chain of edges to a fixed node (or to the first when none is fixed): nothing
+  /// determines their poses, which stay as given. A caller decides whether that is acceptable
+  /// (the registration keeps odometry poses so; `sewer3d posegraph` refuses).
   int unanchored_nodes = 0;
 
   /// With PoseGraphOptions::certify:

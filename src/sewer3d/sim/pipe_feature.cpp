@@ -68,6 +68,19 @@ void PipeFeature::Check() const {
   }
 }
 
+void PipeFeature::CheckInPipe(double d) const {
+  Check();
+  const auto below = [&](const char* field, double value, double limit, const char* what) {
+    SEWER3D_VALIDATE(value < limit, field,
+                     "must be less than " << what << " of the pipe's diameter (Ø" << d << ": "
+                                          << limit << "), got " << value);
+  };
+  below("depth_mm", depth_mm, 0.2 * d, "a fifth");
+  if (type != Type::kConnection) below("height_mm", height_mm, 0.5 * d, "half");
+  if (type == Type::kBump || type == Type::kPit) below("radius_mm", radius_mm, d, "the whole");
+  if (type == Type::kConnection) below("diameter_mm", diameter_mm, d, "the whole");
+}
+
 double PipeFeatureReachMm(const PipeFeature& f) {
   switch (f.type) {
     case PipeFeature::Type::kConnection:

@@ -53,6 +53,11 @@ struct PipeFeature {
   /// Validates the dimensions this kind needs; throws InvalidValue naming the field
   /// ("length_mm", …) relative to the feature.
   void Check() const;
+  /// Check() and the dimensions against a pipe of this inner diameter: depths under a fifth of
+  /// it, heights under half, bump and pit radii and connection diameters under the diameter.
+  void CheckInPipe(double pipe_diameter_mm) const;
+  /// At most this many features in one scene or pipe (each sample of the wall visits them).
+  static constexpr std::size_t kMaxCount = 5000;
 };
 
 /// The feature kind's name in scene and scenario files: "connection", "spalling", "crack",

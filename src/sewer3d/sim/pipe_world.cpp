@@ -87,6 +87,8 @@ void PipeWorld::Check() const {
                      "must be within ±10, got " << j.deflection_deg);
   }
   CheckUniqueIds();
+  SEWER3D_VALIDATE(features.size() <= PipeFeature::kMaxCount, "features",
+                   "at most " << PipeFeature::kMaxCount << " features, got " << features.size());
   for (size_t i = 0; i < features.size(); ++i) {
     const PipeFeature& f = features[i];
     const std::string field = "features[" + std::to_string(i) + "].";
@@ -98,7 +100,9 @@ void PipeWorld::Check() const {
                          << PipeFeatureTypeName(f.type)
                          << " (bump, pit and joint belong to pipe-wall scenes; a pipe's joints "
                             "go in \"joints\")");
-    CheckWithin(field, [&] { f.Check(); });
+    double smallest = sections.front().diameter_mm;
+    for (const PipeSection& s : sections) smallest = std::min(smallest, s.diameter_mm);
+    CheckWithin(field, [&] { f.CheckInPipe(smallest); });
     ValidateClockHours(field + "clock_h", f.clock_h);
     SEWER3D_VALIDATE(f.station_mm >= 0.0 && f.station_mm <= LengthMm(), field + "station_mm",
                      "must be on the pipe, 0.." << LengthMm() << ", got " << f.station_mm);

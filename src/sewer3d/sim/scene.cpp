@@ -92,6 +92,8 @@ void Scene::Check() const {
                      "puts the camera outside the cylinder (decentring " << rho << " mm, radius "
                                                                          << f.radius << " mm)");
   }
+  SEWER3D_VALIDATE(features.size() <= PipeFeature::kMaxCount, "features",
+                   "at most " << PipeFeature::kMaxCount << " features, got " << features.size());
   for (size_t i = 0; i < features.size(); ++i) {
     using T = PipeFeature::Type;
     const PipeFeature& ft = features[i];
@@ -103,7 +105,12 @@ void Scene::Check() const {
         "must be joint, bump, pit or crack, got "
             << PipeFeatureTypeName(ft.type)
             << " (connections, spalling and deposits need a pipe world: simulate run)");
-    CheckWithin(field, [&] { ft.Check(); });
+    CheckWithin(field, [&] {
+      if (type == Type::kPlane)
+        ft.Check();
+      else
+        ft.CheckInPipe(diameter_mm);
+    });
   }
 }
 

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/io/file_error.hpp"
@@ -27,8 +28,14 @@ InspectionFilesEvaluation EvaluateInspection(const std::filesystem::path& run_fo
   const JsonReader reader(report);
   const nlohmann::json r = reader.ParseObject(ReadTextFile(report));
   InspectionEvaluationOptions options;
-  options.inspected_from_mm = reader.Number(r, "inspected_from_mm", "");
-  options.inspected_to_mm = reader.Number(r, "inspected_to_mm", "");
+  // null: no ring of the pipe was inspected (inspect writes NaN so), nothing is in range.
+  const auto station = [&](const char* key) {
+    const auto it = r.find(key);
+    return it != r.end() && it->is_null() ? std::numeric_limits<double>::quiet_NaN()
+                                          : reader.Number(r, key, "");
+  };
+  options.inspected_from_mm = station("inspected_from_mm");
+  options.inspected_to_mm = station("inspected_to_mm");
 
   InspectionFilesEvaluation e;
   e.observations = EvaluateObservations(ReadObservationsJson(files.observations_json), truth,

@@ -26,9 +26,12 @@ TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
   for (Eigen::Index i = 0; i < n; ++i) {
     const RegistrationPoseRow& pose = a.poses[static_cast<size_t>(i)];
     const auto it = a.truth.find(RegistrationVertexId(pose.module, pose.counter));
-    if (it == a.truth.end())
-      throw FileError(poses_file, "m" + std::to_string(pose.module) + " counter " +
-                                      std::to_string(pose.counter) + " has no truth");
+    if (it == a.truth.end()) {
+      throw FileError(run_folder / "truth" / "poses.csv",
+                      "no true pose of m" + std::to_string(pose.module) + " counter " +
+                          std::to_string(pose.counter) + ", which " + poses_file.string() +
+                          " lists: is the workspace from another run, or the truth cut short?");
+    }
     a.model_centres.col(i) = pose.world_from_camera.translation;
     a.true_centres.col(i) = it->second.translation;
   }

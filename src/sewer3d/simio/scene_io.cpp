@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/json_reader.hpp"
@@ -94,10 +95,22 @@ Scene ReadScene(const std::filesystem::path& path) {
     if (doc.is_object() && doc.contains("scene") && doc["scene"].is_object()) {
       return ParseScene(doc["scene"].dump(), path);
     }
-  } catch (const json::parse_error&) {
+  } catch (const json::exception&) {
     // ParseScene reports it.
   }
   return ParseScene(text, path);
+}
+
+bool ReadSceneRenderOptions(const std::filesystem::path& path, RenderOptions& options) {
+  const JsonReader in(path);
+  const json doc = in.ParseObject(ReadTextFile(path));
+  const auto render = doc.find("render");
+  if (render == doc.end()) return false;
+  if (!render->is_object()) in.Fail("render", "must be an object of render options");
+  ReadRenderOptions(in, *render, "render.", options);
+  options.seed = in.Seed(doc, "seed", "", options.seed);
+  ValidateFileContents(path, [&] { CheckWithin("render.", [&] { options.Check(); }); });
+  return true;
 }
 
 std::string SceneToJson(const Scene& s) {

@@ -15,6 +15,9 @@ Scene ParseScene(const std::string& json_text, const std::filesystem::path& path
 /// Reads a scene file, or the scene.json of a rendered frame (whose "scene" member it uses).
 Scene ReadScene(const std::filesystem::path& path);
 std::string SceneToJson(const Scene& scene);
+/// A scene file's "render" member (a rendered frame's scene.json has one) read over `options`;
+/// false (options unchanged) when the file has none. FileError naming the field when invalid.
+bool ReadSceneRenderOptions(const std::filesystem::path& path, RenderOptions& options);
 
 /// The pattern image as stored: 8-bit grey, or 16-bit holding the DN when bits > 8.
 void WritePatternImage(const std::filesystem::path& path, const RenderedFrame& frame, int bits);

@@ -39,7 +39,7 @@ void WriteRunJson(const fs::path& out, const Scenario& s, const CapturePlan& pla
                   double seconds) {
   RunInfo info;
   info.complete = complete;
-  info.created_by = "sewer3d simulate run";
+  info.created_by = kSimulatedRunCreator;
   info.scenario = s.name;
   info.seed = s.seed;
   info.acquisition_period_s = plan.period_s;
@@ -78,10 +78,25 @@ void PrepareRunFolder(const fs::path& out) {
   if (fs::is_empty(out, ec)) return;
   if (!fs::is_regular_file(out / "run.json", ec))
     throw FileError(out, "the folder is not empty and holds no run; choose a new or empty folder");
+  // Only a simulated run is replaced: a real capture's images cannot be made again.
+  if (!IsSimulatedRun(out)) {
+    throw FileError(out,
+                    "holds a capture run the simulator did not make (run.json created_by); "
+                    "choose a new or empty folder");
+  }
   for (const char* sub : {"images", "truth"}) RemoveFolder(out / sub);
 }
 
 }  // namespace
+
+bool IsSimulatedRun(const fs::path& folder) {
+  try {
+    return ReadRunInfo(folder / "run.json").created_by == kSimulatedRunCreator &&
+           fs::is_directory(folder / "truth");
+  } catch (const FileError&) {
+    return false;
+  }
+}
 
 RunSizeEstimate EstimateRunSize(const Scenario& scenario, const ModuleDescription& module) {
   const RunSetup setup(scenario, module);

@@ -38,6 +38,12 @@ struct RunSizeEstimate {
 
 /// Plans the run (as SimulateRun will) and estimates its size. InvalidValue in the scenario
 /// file's terms when the scenario is invalid.
+/// run.json's `created_by` of a simulated run.
+inline constexpr const char* kSimulatedRunCreator = "sewer3d simulate run";
+/// Whether `folder` holds a run the simulator made (run.json's created_by, a truth/ folder):
+/// only such a run may be replaced by a new simulation.
+bool IsSimulatedRun(const std::filesystem::path& folder);
+
 RunSizeEstimate EstimateRunSize(const Scenario& scenario, const ModuleDescription& module);
 
 /// Refuses (InvalidValue naming the scenario's size, the estimate and the limit) a run of more
@@ -48,8 +54,8 @@ inline constexpr int kMaxPlannedImages = 200'000;
 inline constexpr std::uint64_t kMaxOdometryRows = 20'000'000;
 
 /// Every module of the rig uses `module` and `pattern` (its matrix is written as pattern.png).
-/// A folder holding an earlier run has that run's images and truth removed first (no stale
-/// image survives); a non-empty folder that is not a run is refused (FileError).
+/// A folder holding an earlier simulated run has its images and truth removed first (no stale
+/// image survives); a non-empty folder that is not a simulated run is refused (FileError).
 SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& module,
                          const BinaryArray& pattern, const std::filesystem::path& out,
                          const RunProgress& progress);
