@@ -123,6 +123,8 @@ broken_run odometry odometry.csv '3s/,.*/,1e308/'
 broken_run acq_neg run.json 'acquisitions=-2'
 broken_run counter_huge acquisitions.csv '2s/^0,0,/0,1000000000000,/'
 broken_run crlf acquisitions.csv 's/$/\r/'
+broken_run rig_v2 rig.json 'version=2'
+scenario_with slip_beyond.json 'odometry={"slips": [{"station_mm": 1e6, "length_mm": 10, "fraction": 0.5}]}'
 # Scene files: a frame's scene.json with its render options or features broken.
 "$S" simulate frame --module m/module.json --scene pipe-wall --supersampling 1 --out fpw >/dev/null
 json_with frame8/scene.json scene_bits16.json 'render.bits=16'

@@ -60,10 +60,13 @@ Command AddDescribeCommand(CLI::App& app) {
       "Also place six such modules on the carrier and report their overlap for DN200-DN400");
   return {sub, [module_path, rig] {
             const LoadedModule loaded = LoadModule(*module_path);
-            fmt::print("{}: valid module file\n", *module_path);
+            fmt::print("{}: read\n", *module_path);
             const std::string problem = PrintModuleSummary(loaded.module, loaded.pattern);
             if (*rig) PrintRigOverlap(loaded.module);
-            if (problem.empty()) return 0;
+            if (problem.empty()) {
+              fmt::print("{}: a valid, usable module\n", *module_path);
+              return 0;
+            }
             std::fflush(stdout);
             fmt::print(stderr, "sewer3d: error: {}: {}\n", *module_path, problem);
             return 1;

@@ -12,6 +12,7 @@
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/model/fit.hpp"
@@ -61,22 +62,22 @@ Command AddEvaluateCommand(CLI::App& app) {
   return {sub, [args] {
             if (args->surface == "rgbd") {
               if (args->run.empty() || args->workspace.empty())
-                throw CLI::RequiredError("evaluate rgbd needs --run and --workspace");
+                throw InvalidValue("--run, --workspace", "evaluate rgbd needs both");
               return RunEvaluateRgbd(args->run, args->workspace, args->out, args->smoothing_px);
             }
             if (args->surface == "registration") {
               if (args->run.empty() || args->workspace.empty())
-                throw CLI::RequiredError("evaluate registration needs --run and --workspace");
+                throw InvalidValue("--run, --workspace", "evaluate registration needs both");
               return RunEvaluateRegistration(args->run, args->workspace, args->out);
             }
             if (args->surface == "model") {
               if (args->run.empty() || args->workspace.empty())
-                throw CLI::RequiredError("evaluate model needs --run and --workspace");
+                throw InvalidValue("--run, --workspace", "evaluate model needs both");
               return RunEvaluateModel(args->run, args->workspace, args->out, args->stride);
             }
             if (args->surface == "inspection") {
               if (args->run.empty() || args->workspace.empty())
-                throw CLI::RequiredError("evaluate inspection needs --run and --workspace");
+                throw InvalidValue("--run, --workspace", "evaluate inspection needs both");
               return RunEvaluateInspection(args->run, args->workspace, args->out);
             }
             if (args->cloud.empty()) throw CLI::RequiredError("--cloud");

@@ -59,10 +59,10 @@ Command AddPatternCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--max-moves", s.max_moves, "Give up after this many moves")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1.0, 1e15));
   sub->add_option("--max-seconds", s.max_seconds, "Give up after this many seconds (0: no limit)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1e7));
   sub->add_flag("--plain", args->plain,
                 "Windows only inside the array, not wrapping around its edges (not a torus)");
   sub->add_flag("--allow-adjacent", args->allow_adjacent, "Allow 8-adjacent spots");

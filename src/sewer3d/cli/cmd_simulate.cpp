@@ -58,6 +58,12 @@ void CheckSceneOptions(const Scene& scene) {
                                                             {"diameter_mm", "--diameter-mm"},
                                                             {"axis_point_mm", "--decentre-mm"},
                                                             {"axis", "--axis"}};
+    if (e.field().rfind("features[", 0) == 0) {  // the built-in pipe-wall features
+      throw InvalidValue("--diameter-mm",
+                         "the pipe-wall preset's joint, bump, pit and crack do not fit this "
+                         "diameter (" +
+                             e.field() + ": " + e.problem() + ")");
+    }
     const auto it = kOption.find(e.field());
     if (it == kOption.end()) throw;
     throw InvalidValue(it->second, e.problem());

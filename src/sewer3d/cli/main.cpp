@@ -14,6 +14,7 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/exit_code.hpp"
 #include "sewer3d/cli/library_logs.hpp"
+#include "sewer3d/pipeline/workspace.hpp"
 
 namespace {
 
@@ -64,10 +65,26 @@ int main(int argc, char** argv) {
       sewer3d::cli::AddProcessCommand(app),  sewer3d::cli::AddDemoCommand(app),
       sewer3d::cli::AddReportCommand(app),
   };
+  app.set_version_flag("--version", sewer3d::SoftwareVersion());
+  // An unknown first word is named (CLI11 would only say that a subcommand is required).
+  std::string names;
+  bool known = false;
+  for (const auto& c : commands) {
+    names += (names.empty() ? "" : ", ") + c.app->get_name();
+    known |= argc >= 2 && c.app->get_name() == argv[1];
+  }
+  if (argc >= 2 && argv[1][0] != '-' && !known) {
+    std::cerr << "sewer3d: error: unknown command '" << argv[1] << "'; the commands are " << names
+              << "\n";
+    return sewer3d::cli::kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
     std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForVersion& e) {
+    std::cout << e.what() << "\n";
     return 0;
   } catch (const CLI::CallForAllHelp&) {
     std::cout << app.help("", CLI::AppFormatMode::All);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <tuple>
@@ -73,6 +74,7 @@ LoadedRig ReadRig(const fs::path& path) {
   const JsonReader in(path);
   const json j = in.ParseObject(ReadTextFile(path));
   if (in.Text(j, "format", "", "") != "sewer3d-rig") in.Fail("format", "must be \"sewer3d-rig\"");
+  if (in.Integer(j, "version", "", 1) != 1) in.Fail("version", "must be 1");
   LoadedRig out;
   const json& carrier = in.Object(j, "carrier", "");
   out.rig.carrier_diameter_mm = in.Number(carrier, "diameter_mm", "carrier.", 150.0);
@@ -267,6 +269,16 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
   CheckRunCounts(folder, run);
   OdometryCheck odometry = CheckOdometry(ReadOdometry(folder / "odometry.csv"));
   if (odometry.kept.empty()) throw FileError(folder / "odometry.csv", "has no reading");
+  const double first = odometry.kept.front().time_s, last = odometry.kept.back().time_s;
+  const bool any_inside = std::any_of(run.images.begin(), run.images.end(), [&](const RunImage& i) {
+    return i.time_s >= first && i.time_s <= last;
+  });
+  if (!run.images.empty() && !any_inside) {
+    throw FileError(folder / "odometry.csv",
+                    fmt::format("the readings cover {:.3f}-{:.3f} s, but no image of "
+                                "acquisitions.csv lies in that time span",
+                                first, last));
+  }
   run.odometry = std::move(odometry.kept);
   run.odometry_findings = std::move(odometry.findings);
   return run;

@@ -131,7 +131,10 @@ void WriteModelMeshes(const std::filesystem::path& folder, const PipeModelInfo& 
   const MapGrid& grid = info.grid;
   SmallMaps small(grid, std::min({1.0, static_cast<double>(kMaxTextureSide) / grid.cols,
                                   static_cast<double>(kMaxTextureSide) / grid.rows}));
-  DisplacementDecimator lattice(grid, options.displaced);
+  // The mesh is never finer than the maps it samples (a finer lattice would find no cell).
+  DisplacedMeshOptions mesh = options.displaced;
+  mesh.step_mm = std::max(mesh.step_mm, options.resolution_mm);
+  DisplacementDecimator lattice(grid, mesh);
   std::size_t measured = 0, filled = 0;
   int done = 0;
   for (const ModelTile& tile : info.tiles) {

@@ -1,5 +1,7 @@
 #include <fmt/core.h>
 
+#include <cmath>
+
 #include "sewer3d/pipeline/process_chain.hpp"
 
 namespace sewer3d {
@@ -98,12 +100,18 @@ StageOutcome InspectOutcome(const InspectStageReport& r, const std::filesystem::
   std::string codes;
   for (const auto& [code, n] : r.per_code)
     codes += fmt::format("{}{} {}", codes.empty() ? "" : ", ", n, code);
+  // No ring measured all round: no inspected stations (NaN) to print.
+  const std::string stations =
+      std::isfinite(r.inspected_from_mm)
+          ? fmt::format("stations {:.0f}..{:.0f} mm inspected", r.inspected_from_mm,
+                        r.inspected_to_mm)
+          : std::string("no station inspected (no ring of the wall measured all round)");
   o.summary = fmt::format(
-      "inspect: {} observations{}; stations {:.0f}..{:.0f} mm inspected ({:.0f} % of the map), "
-      "wall noise {:.3f} mm; profile {} rows ({} measured all round); {:.1f} s",
-      r.observations, codes.empty() ? "" : " (" + codes + ")", r.inspected_from_mm,
-      r.inspected_to_mm, 100.0 * r.inspection.inspected_share, r.inspection.residual_sigma_mm,
-      r.profile_rows, r.profile_rows_measured, r.seconds);
+      "inspect: {} observations{}; {} ({:.0f} % of the map), wall noise {:.3f} mm; profile {} "
+      "rows ({} measured all round); {:.1f} s",
+      r.observations, codes.empty() ? "" : " (" + codes + ")", stations,
+      100.0 * r.inspection.inspected_share, r.inspection.residual_sigma_mm, r.profile_rows,
+      r.profile_rows_measured, r.seconds);
   return o;
 }
 

@@ -24,7 +24,10 @@ std::string UtcNow() {
 
 // Absolute and normalised, so that "run", "./run/" and "/abs/run" name the same run.
 std::string RunName(const std::filesystem::path& run_folder) {
-  std::filesystem::path p = std::filesystem::absolute(run_folder).lexically_normal();
+  // Links resolved: a run reached through a symbolic link is the same run.
+  std::error_code ec;
+  std::filesystem::path p = std::filesystem::weakly_canonical(run_folder, ec);
+  if (ec) p = std::filesystem::absolute(run_folder).lexically_normal();
   if (p.filename().empty()) p = p.parent_path();  // a trailing slash
   return p.string();
 }

@@ -10,8 +10,9 @@
 namespace sewer3d {
 
 void OdometryOptions::Check() const {
-  SEWER3D_VALIDATE(rate_hz > 0.0 && rate_hz <= 1000.0, "rate_hz",
-                   "must be > 0 and <= 1000, got " << rate_hz);
+  // A cable counter reports at least once a second (the pipeline interpolates between).
+  SEWER3D_VALIDATE(rate_hz >= 1.0 && rate_hz <= 1000.0, "rate_hz",
+                   "must be 1..1000, got " << rate_hz);
   SEWER3D_VALIDATE(std::abs(scale_error) < 0.2, "scale_error",
                    "must be within ±0.2, got " << scale_error);
   ValidateNotNegative("noise_mm", noise_mm);

@@ -210,6 +210,12 @@ void Scenario::Check() const {
   SEWER3D_VALIDATE(white_balance_error >= 0.0 && white_balance_error <= 0.5, "white_balance_error",
                    "must be 0..0.5, got " << white_balance_error);
   const double length = world.LengthMm();
+  for (size_t i = 0; i < odometry.slips.size(); ++i) {
+    const double s = odometry.slips[i].station_mm;
+    SEWER3D_VALIDATE(s >= -length && s <= 2.0 * length,
+                     "odometry.slips[" + std::to_string(i) + "].station_mm",
+                     "lies far outside the " << length << " mm pipe, got " << s);
+  }
   SEWER3D_VALIDATE(motion.start_station_mm - 0.5 * rig.carrier_length_mm >= -length &&
                        motion.start_station_mm + motion.travel_mm <= 2.0 * length,
                    "motion.travel_mm",

@@ -92,6 +92,8 @@ void Scene::Check() const {
                      "puts the camera outside the cylinder (decentring " << rho << " mm, radius "
                                                                          << f.radius << " mm)");
   }
+  SEWER3D_VALIDATE(type == Type::kPipeWall || features.empty(), "features",
+                   "only a pipe_wall scene has features (a plane or cylinder is plain)");
   SEWER3D_VALIDATE(features.size() <= PipeFeature::kMaxCount, "features",
                    "at most " << PipeFeature::kMaxCount << " features, got " << features.size());
   for (size_t i = 0; i < features.size(); ++i) {
@@ -105,12 +107,7 @@ void Scene::Check() const {
         "must be joint, bump, pit or crack, got "
             << PipeFeatureTypeName(ft.type)
             << " (connections, spalling and deposits need a pipe world: simulate run)");
-    CheckWithin(field, [&] {
-      if (type == Type::kPlane)
-        ft.Check();
-      else
-        ft.CheckInPipe(diameter_mm);
-    });
+    CheckWithin(field, [&] { ft.CheckInPipe(diameter_mm); });
   }
 }
 

@@ -92,7 +92,8 @@ Scene ReadScene(const std::filesystem::path& path) {
   const std::string text = ReadTextFile(path);
   try {
     const json doc = json::parse(text);
-    if (doc.is_object() && doc.contains("scene") && doc["scene"].is_object()) {
+    if (doc.is_object() && doc.contains("scene")) {
+      if (!doc["scene"].is_object()) JsonReader(path).Fail("scene", "must be an object");
       return ParseScene(doc["scene"].dump(), path);
     }
   } catch (const json::exception&) {
