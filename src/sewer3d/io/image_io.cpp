@@ -43,10 +43,8 @@ cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags, std::uint
                                         size->width, size->height, max_pixels));
     }
   }
-  static constexpr std::uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  const bool png = bytes.size() >= 8 && std::equal(kPngSignature, kPngSignature + 8, bytes.begin());
   PngCheck check;
-  if (png) {
+  if (ImageFormat(bytes) == "PNG") {
     check = CheckPng(bytes);
     if (!check.problem.empty()) throw FileError(path, "cannot decode image: " + check.problem);
   }
