@@ -3,7 +3,10 @@
 # $SEWER3D_FUZZ_BUILD_DIR) and runs each for SECONDS (default 60), starting from its committed
 # corpus tests/data/fuzz/<target>/ (docs/hardening.md). New inputs go to BUILD/corpus/<target>,
 # findings to BUILD/findings/. Ends with one line per target (executions, result) and
-# "fuzz: PASS" or "fuzz: FAIL".
+# "fuzz: PASS" or "fuzz: FAIL". With SEWER3D_FUZZ_RUNS=N each target stops after N executions
+# instead (SECONDS is then only a cap): the long run is SEWER3D_FUZZ_RUNS=10000000 fuzz.sh 36000.
+# One input running SEWER3D_FUZZ_TIMEOUT seconds (default 10, wall clock) is a hang: raise it
+# when the fuzzer shares its cores with other work (reniced, it can wait seconds for a core).
 # usage: fuzz.sh [SECONDS_PER_TARGET] [TARGET...]   (0 seconds: build only)   targets: module_json scenario_json g2o ply
 #                                                   run_index png
 set -euo pipefail
@@ -31,22 +34,26 @@ echo "fuzz: built ${#targets[@]} targets in $(($(date +%s) - t0)) s"
 export ASAN_OPTIONS=detect_leaks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 mkdir -p "$build_dir/findings" "$build_dir/logs"
+runs_limit=()
+if [ -n "${SEWER3D_FUZZ_RUNS:-}" ]; then runs_limit=(-runs="$SEWER3D_FUZZ_RUNS"); fi
 summary=()
 failed=0
 for t in "${targets[@]}"; do
   mkdir -p "$build_dir/corpus/$t"
   log=$build_dir/logs/$t.log
   status=0
-  # -timeout: one input taking 10 s is a hang; -rss_limit_mb: 2 GB is a memory blow-up (one
+  start=$(date +%s)
+  # -timeout: one input taking that long is a hang; -rss_limit_mb: 2 GB is a memory blow-up (one
   # malloc above it is reported too).
   "$build_dir/fuzz/fuzz_$t" "$build_dir/corpus/$t" "tests/data/fuzz/$t" -dict="fuzz/$t.dict" \
-    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-    -artifact_prefix="$build_dir/findings/$t-" >"$log" 2>&1 || status=$?
+    -max_total_time="$seconds" -timeout="${SEWER3D_FUZZ_TIMEOUT:-10}" -rss_limit_mb=2048 -print_final_stats=1 \
+    "${runs_limit[@]}" -artifact_prefix="$build_dir/findings/$t-" >"$log" 2>&1 || status=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   # Stopped by a finding: no final stats, the last progress line's count instead.
   [ -n "$runs" ] || runs=$(grep -oE '^#[0-9]+' "$log" | tail -1 | tr -d '#')
+  took=$(($(date +%s) - start))
   if [ "$status" -eq 0 ]; then
-    summary+=("fuzz: $t: ${runs:-?} executions in ${seconds} s, no finding")
+    summary+=("fuzz: $t: ${runs:-?} executions in ${took} s, no finding")
   else
     failed=1
     summary+=("fuzz: $t: FINDING after ${runs:-?} executions (exit $status), see $log")

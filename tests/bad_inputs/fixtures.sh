@@ -138,3 +138,4 @@ printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\n' >one.g2o
 "$S" simulate calibration --module m/module.json --poses 1 --out calib --supersampling 1 \
   --texture-supersampling 1 >/dev/null 2>&1
 : >zero.tiff
+mkdir -p foreign_cal/pose_00

@@ -5,10 +5,13 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "sewer3d/cli/calibrate_commands.hpp"
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -17,6 +20,31 @@
 #include "sewer3d/simio/scene_io.hpp"
 
 namespace sewer3d::cli {
+namespace {
+
+// Makes `out` ready for `poses` pose folders: those of an earlier simulated capture beyond
+// `poses` are removed (a calibration would take them for this one's); pose folders that
+// simulate calibration did not write (no truth/poses.json) are refused, never removed.
+void PrepareCaptureFolder(const std::filesystem::path& out, int poses) {
+  if (!std::filesystem::is_directory(out)) return;
+  static const std::regex pose_name("pose_([0-9]+)");
+  const bool simulated = std::filesystem::is_regular_file(out / "truth" / "poses.json");
+  std::vector<std::filesystem::path> stale;
+  for (const auto& entry : std::filesystem::directory_iterator(out)) {
+    std::smatch m;
+    const std::string name = entry.path().filename().string();
+    if (!std::regex_match(name, m, pose_name)) continue;
+    if (!simulated) {
+      throw FileError(out,
+                      "holds pose folders that simulate calibration did not write; "
+                      "choose another --out");
+    }
+    if (m[1].length() > 6 || std::stoi(m[1].str()) >= poses) stale.push_back(entry.path());
+  }
+  for (const auto& p : stale) std::filesystem::remove_all(p);
+}
+
+}  // namespace
 
 void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& a) {
   CLI::App* sub =
@@ -39,6 +67,7 @@ void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& a) {
                   "S x S samples per pixel of the board images (corner accuracy needs S >= 4)")
       ->capture_default_str()
       ->check(CLI::Range(1, 16));
+  sub->add_flag("--quiet", a.quiet, "No progress bar");
   a.app = sub;
 }
 
@@ -51,6 +80,8 @@ int RunCalibration(const CalibrationArgs& a) {
   board.square_mm = a.square_mm;
   const std::vector<Rigid3d> poses = RandomBoardPoses(loaded.module, board, a.poses, a.seed);
   const std::filesystem::path out(a.out);
+  PrepareCaptureFolder(out, a.poses);
+  ProgressBar progress(a.quiet);
   nlohmann::json truth;
   truth["board"] = {{"cols", board.cols}, {"rows", board.rows}, {"square_mm", board.square_mm}};
   truth["poses"] = nlohmann::json::array();
@@ -81,9 +112,9 @@ int RunCalibration(const CalibrationArgs& a) {
           {{"rotation",
             {r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}},
            {"translation_mm", {t.x(), t.y(), t.z()}}}}});
-    fmt::print(stderr, "\rsimulate calibration: {}/{} poses ", i + 1, poses.size());
+    progress.Update("simulate calibration", static_cast<int>(i + 1), static_cast<int>(poses.size()),
+                    "poses");
   }
-  fmt::print(stderr, "\n");
   WriteTextFile(out / "truth" / "poses.json", truth.dump(2) + "\n");
   fmt::print(
       "wrote {} poses of a {}x{} board ({} mm squares) to {}: pose_NN/texture.png, pattern.png; "

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <new>
+#include <regex>
 #include <stdexcept>
 
 #include "sewer3d/io/file_error.hpp"
@@ -17,6 +18,14 @@ ErrorExit Exit(int code, std::string message) {
   std::replace(message.begin(), message.end(), '\r', ' ');
   while (!message.empty() && message.back() == ' ') message.pop_back();
   return {code, std::move(message)};
+}
+
+// A bound as CLI11 prints it ("10.000000") without the trailing zeros ("10").
+std::string Bound(std::string text) {
+  if (text.find('.') == std::string::npos) return text;
+  while (text.back() == '0') text.pop_back();
+  if (text.back() == '.') text.pop_back();
+  return text;
 }
 
 }  // namespace
@@ -42,6 +51,14 @@ ErrorExit ExitForError(const std::exception_ptr& error) {
   } catch (...) {
     return Exit(kExitInternal, "internal error, please report: unknown exception");
   }
+}
+
+std::string ReadableRangeError(const std::string& message, bool whole) {
+  static const std::regex range("^(.*): Value (.*) not in range (\\S+) to (\\S+)$");
+  std::smatch m;
+  if (!std::regex_match(message, m, range)) return message;
+  return m[1].str() + ": expected " + (whole ? "a whole number" : "a number") + " from " +
+         Bound(m[3].str()) + " to " + Bound(m[4].str()) + ", got " + m[2].str();
 }
 
 }  // namespace sewer3d::cli

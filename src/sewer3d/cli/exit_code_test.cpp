@@ -30,6 +30,16 @@ TEST(ExitCode, BadFileNamesTheFile) {
   EXPECT_EQ(ExitFor(fs_error).code, kExitBadFile);
 }
 
+TEST(ExitCode, RangeRefusalsSayWhatIsExpected) {
+  EXPECT_EQ(ReadableRangeError("--rows: Value 12.5 not in range 2 to 4096", true),
+            "--rows: expected a whole number from 2 to 4096, got 12.5");
+  EXPECT_EQ(ReadableRangeError("--tilt-deg: Value 9x not in range -80 to 80", false),
+            "--tilt-deg: expected a number from -80 to 80, got 9x");
+  EXPECT_EQ(ReadableRangeError("--d: Value 9 not in range 10.000000 to 0.050000", false),
+            "--d: expected a number from 10 to 0.05, got 9");
+  EXPECT_EQ(ReadableRangeError("--out is required", true), "--out is required");
+}
+
 TEST(ExitCode, RejectedValuesAreUsageErrors) {
   const ErrorExit e = ExitFor(InvalidValue("supersampling", "must be 1..16, got 0"));
   EXPECT_EQ(e.code, kExitUsage);

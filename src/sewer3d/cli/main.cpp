@@ -48,6 +48,20 @@ std::pair<const CLI::Option*, const char*> BadValue(const CLI::App& app) {
   return {nullptr, nullptr};
 }
 
+// Whether the option that a CLI11 message starts with ("--rows: …") takes whole numbers, looked
+// up in the chosen subcommands.
+bool TakesWholeNumbers(const CLI::App& app, const std::string& message) {
+  const std::string name = message.substr(0, message.find(':'));
+  for (const CLI::App* sub : app.get_subcommands()) {
+    if (const CLI::Option* option = sub->get_option_no_throw(name); option != nullptr) {
+      const std::string type = option->get_type_name();
+      return type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
+    }
+    if (TakesWholeNumbers(*sub, message)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -89,6 +103,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp&) {
     std::cout << app.help("", CLI::AppFormatMode::All);
     return 0;
+  } catch (const CLI::ValidationError& e) {
+    std::cerr << "sewer3d: error: "
+              << sewer3d::cli::ReadableRangeError(e.what(), TakesWholeNumbers(app, e.what()))
+              << " (see sewer3d --help)\n";
+    return sewer3d::cli::kExitUsage;
   } catch (const CLI::ParseError& e) {
     // Subcommand --help arrives here too, as CallForHelp raised inside the subcommand.
     if (e.get_exit_code() == 0) {

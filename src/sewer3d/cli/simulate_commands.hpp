@@ -18,6 +18,7 @@ struct CalibrationArgs {
   /// The board images' square edges alias at S < 4 (corner errors ~0.2 px at S = 2, 0.1 px
   /// at S = 4, measured against the true corners).
   int texture_supersampling = 4;
+  bool quiet = false;
 };
 
 void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& args);

@@ -97,6 +97,17 @@ std::vector<std::string> OdometryWarnings(const CaptureRun& run,
           "span: they got the nearest reading's distance, so the odometry does not place them",
           file, first, last, outside, nodes.size()));
     }
+    const auto [low, high] =
+        std::minmax_element(run.odometry.begin(), run.odometry.end(),
+                            [](const OdometryReading& a, const OdometryReading& b) {
+                              return a.distance_mm < b.distance_mm;
+                            });
+    if (run.odometry.size() >= 2 && high->distance_mm - low->distance_mm < 1.0) {
+      lines.push_back(fmt::format(
+          "{}: the distance stays at {:.1f} mm in all {} readings: the carrier did not move or "
+          "the counter is stuck, so the odometry separates no acquisitions",
+          file, low->distance_mm, run.odometry.size()));
+    }
   }
   for (const OdometryGap& g : f.gaps) {
     std::string inside;

@@ -46,12 +46,12 @@ StageOutcome RegisterOutcome(const RegisterStageReport& report,
   const std::filesystem::path folder = workspace / "registration";
   o.output = folder / "poses.csv";
   o.summary = fmt::format(
-      "register: {} acquisitions, {} nodes, {} left out; {} pairs ({} done, {} from an earlier "
-      "run, {} failed): {} feature, {} projection ({} degenerate); {} rig/odometry/straightness "
-      "edges; {} rejected by the gate; {:.1f} s ({:.2f} s per pair)",
+      "register: {} acquisitions, {} nodes, {} left out; {} pairs ({} registered now, {} from an "
+      "earlier run): {} feature, {} projection ({} degenerate), {} failed; {} "
+      "rig/odometry/straightness edges; {} rejected by the gate; {:.1f} s ({:.2f} s per pair)",
       report.acquisitions, report.nodes, report.left_out.size(), report.pairs, report.pairs_done,
-      report.pairs_skipped, report.pairs_failed, report.feature_edges, report.projection_edges,
-      report.degenerate_edges, report.prior_edges, report.fusion.rejected, report.seconds,
+      report.pairs_skipped, report.feature_edges, report.projection_edges, report.degenerate_edges,
+      report.pairs_failed, report.prior_edges, report.fusion.rejected, report.seconds,
       report.seconds_per_pair);
   for (const std::string& w : report.odometry_warnings) o.details.push_back("warning: " + w);
   for (const LeftOutAcquisition& l : report.left_out)

@@ -1,7 +1,9 @@
 #include "sewer3d/pipeline/workspace.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <nlohmann/json.hpp>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
@@ -32,6 +34,30 @@ std::string RunName(const std::filesystem::path& run_folder) {
   return p.string();
 }
 
+// The options that differ between two stage records, as "resolution_mm 0.2, now 0.5" (nested
+// members by their path, "a.b"); the whole records when either is not JSON.
+std::string OptionsChange(const std::string& before, const std::string& now) {
+  const auto a = nlohmann::json::parse(before, nullptr, false);
+  const auto b = nlohmann::json::parse(now, nullptr, false);
+  if (a.is_discarded() || b.is_discarded()) return before + ", now " + now;
+  const nlohmann::json fa = a.flatten();
+  const nlohmann::json fb = b.flatten();
+  std::string change;
+  const auto add = [&](const std::string& key, const nlohmann::json& x, const nlohmann::json& y) {
+    std::string name = key.empty() ? "options" : key.substr(1);
+    std::replace(name.begin(), name.end(), '/', '.');
+    change += (change.empty() ? "" : "; ") + name + " " + (x.is_null() ? "unset" : x.dump()) +
+              ", now " + (y.is_null() ? "unset" : y.dump());
+  };
+  for (const auto& [key, value] : fa.items()) {
+    if (!fb.contains(key) || fb[key] != value) add(key, value, fb.value(key, nlohmann::json()));
+  }
+  for (const auto& [key, value] : fb.items()) {
+    if (!fa.contains(key)) add(key, nlohmann::json(), value);
+  }
+  return change.empty() ? before + ", now " + now : change;
+}
+
 }  // namespace
 
 std::string SoftwareVersion() { return SEWER3D_VERSION; }
@@ -54,9 +80,10 @@ void Workspace::BeginStage(const std::string& stage, const std::string& options_
   const auto it = record_.stages.find(stage);
   const bool recorded = it != record_.stages.end();
   if (recorded && it->second.options_json != options_json && !force) {
-    throw WorkspaceConflict(RecordFile().string() + ": stage '" + stage + "' was run with " +
-                            it->second.options_json + ", now " + options_json +
-                            "; use --force to redo it (its outputs are removed)");
+    throw WorkspaceConflict(RecordFile().string() + ": stage '" + stage +
+                            "' was run with other options (" +
+                            OptionsChange(it->second.options_json, options_json) +
+                            "); use --force to redo it (its outputs are removed)");
   }
   WorkspaceStage& s = record_.stages[stage];
   if (force) RemoveFolder(StageFolder(stage));

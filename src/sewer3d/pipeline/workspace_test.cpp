@@ -73,6 +73,7 @@ TEST_F(WorkspaceTest, OtherOptionsAreRefusedUnlessForcedAndForcingRemovesOutputs
     const std::string what = e.what();
     EXPECT_NE(what.find("workspace.json"), std::string::npos) << what;
     EXPECT_NE(what.find("--force"), std::string::npos) << what;
+    EXPECT_NE(what.find("(a 1, now 2)"), std::string::npos) << what;
   }
   EXPECT_TRUE(ReadWorkspaceRecord(ws.RecordFile()).stages["rgbd"].done);  // unchanged
   ws.BeginStage("rgbd", R"({"a":2})", true);

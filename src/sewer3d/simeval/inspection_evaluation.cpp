@@ -181,7 +181,8 @@ InspectionEvaluation EvaluateObservations(const std::vector<Observation>& observ
     if (best >= 0) {
       const Observation& ob = observations[best];
       used[best] = true;
-      ++e.found;
+      // "found of inspected": an item outside the inspected stations is matched, not counted.
+      if (m.inspected) ++e.found;
       m.observation_id = ob.id;
       m.station_error_mm = ob.station_mm - m.station_mm;
       m.clock_error_h = ClockDiffH(ob.clock_h, m.clock_h, period);
