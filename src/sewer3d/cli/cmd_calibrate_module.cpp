@@ -46,56 +46,51 @@ std::vector<fs::path> PoseFolders(const fs::path& captures) {
   return poses;
 }
 
-int RunModule(const ModuleArgs& a) {
-  const auto board_size = ParseSize(a.board);
-  CheckOutputFile(a.out);  // before minutes of work
-  const std::vector<fs::path> poses = PoseFolders(a.captures);
-  if (poses.size() < 3) {
-    throw FileError(
-        a.captures,
-        fmt::format("{} pose folders with texture.png and pattern.png; calibration needs at "
-                    "least 3 (layout: docs/calibration.md)",
-                    poses.size()));
-  }
-  // The nominal (design) module: pattern, projector size, and a geometry close enough to
-  // predict the lattice and pick the pattern tile.
-  ModuleDescription nominal;
+// The nominal (design) module: pattern, projector size, and a geometry close enough to predict
+// the lattice and pick the pattern tile; the default module at the images' size without one.
+struct Nominal {
+  ModuleDescription module;
   BinaryArray pattern;
-  const cv::Mat first = ReadImage(poses[0] / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
+  PatternConstraints constraints;
+};
+
+Nominal LoadNominal(const ModuleArgs& a, const fs::path& first_image, const cv::Size& size) {
+  Nominal n;
   if (!a.nominal.empty()) {
     LoadedModule loaded = LoadModule(a.nominal);
-    nominal = loaded.module;
-    pattern = loaded.pattern;
+    n.module = loaded.module;
+    n.pattern = loaded.pattern;
   } else {
     DefaultModuleOptions options;
-    options.camera_width = first.cols;
-    options.camera_height = first.rows;
-    nominal = MakeDefaultModule(options);
-    pattern = DefaultPatternArray();
+    options.camera_width = size.width;
+    options.camera_height = size.height;
+    n.module = MakeDefaultModule(options);
+    n.pattern = DefaultPatternArray();
   }
-  if (first.cols != nominal.camera.width || first.rows != nominal.camera.height) {
-    throw FileError(poses[0] / "texture.png",
-                    fmt::format("image is {}x{}, the nominal module's camera {}x{}", first.cols,
-                                first.rows, nominal.camera.width, nominal.camera.height));
+  if (size.width != n.module.camera.width || size.height != n.module.camera.height) {
+    throw FileError(first_image,
+                    fmt::format("image is {}x{}, the nominal module's camera {}x{}", size.width,
+                                size.height, n.module.camera.width, n.module.camera.height));
   }
-  BoardLayout board_layout;
-  board_layout.cols = board_size->first;
-  board_layout.rows = board_size->second;
-  board_layout.square_mm = a.square_mm;
   // The nominal module's pattern must be one the decoder can use: its file is named if not.
-  PatternConstraints constraints;
-  const auto infer = [&] { constraints = InferConstraints(pattern); };
+  const auto infer = [&] { n.constraints = InferConstraints(n.pattern); };
   if (a.nominal.empty())
     infer();
   else
     ValidateFileContents(a.nominal, infer);
-  ModuleCalibrator calibrator(nominal, pattern, constraints, board_layout);
+  return n;
+}
+
+// Adds every pose's captures; returns the names of the poses used (the others are reported).
+std::vector<std::string> AddCaptures(ModuleCalibrator& calibrator,
+                                     const std::vector<fs::path>& poses, const cv::Size& size,
+                                     const ModuleArgs& a) {
   std::vector<std::string> used;
   ProgressBar bar(a.quiet);
   for (const fs::path& pose : poses) {
     const cv::Mat texture = ReadImage(pose / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
     const cv::Mat pattern_image = ReadGreyImage(pose / "pattern.png");
-    if (texture.size() != first.size() || pattern_image.size() != first.size()) {
+    if (texture.size() != size || pattern_image.size() != size) {
       throw FileError(pose, "images differ in size from the first pose's");
     }
     const CaptureOutcome outcome = calibrator.AddCapture(texture, pattern_image);
@@ -112,32 +107,14 @@ int RunModule(const ModuleArgs& a) {
     bar.Update("calibrate module", static_cast<int>(used.size()), static_cast<int>(poses.size()),
                "poses");
   }
-  if (used.size() < 3) {
-    fmt::print(stderr,
-               "sewer3d: error: {} of {} poses usable; module calibration needs at least 3\n",
-               used.size(), poses.size());
-    return 1;
-  }
-  ModuleFromCapturesResult calibrated;
-  try {
-    calibrated = calibrator.Calibrate();
-  } catch (const std::invalid_argument& e) {
-    // The estimate left the valid range: the captures do not fix the module.
-    fmt::print(stderr,
-               "sewer3d: error: calibration failed: the estimate is not a valid module ({}); "
-               "check that each pose's texture and pattern images belong together\n",
-               e.what());
-    return 1;
-  }
-  const ModuleCalibrationResult& r = calibrated.second_pass;
-  ModuleDescription module = calibrated.module;
-  module.pattern.matrix_path = "pattern.png";
-  module.source_json.clear();
-  SaveModule(a.out, module);
-  WritePatternMatrix(fs::path(a.out).parent_path() / "pattern.png", pattern);
+  return used;
+}
+
+void PrintCalibration(const ModuleCalibrationResult& r, const std::vector<std::string>& used,
+                      std::size_t poses) {
   fmt::print(
       "calibrated module from {} of {} poses: camera RMS {:.4f} px, projector RMS {:.4f} px{}\n",
-      used.size(), poses.size(), r.camera_rms_px, r.projector_rms_px,
+      used.size(), poses, r.camera_rms_px, r.projector_rms_px,
       r.converged ? "" : " (not converged)");
   fmt::print(
       "camera     fx {:.3f} ± {:.3f}  fy {:.3f} ± {:.3f}  cx {:.3f} ± {:.3f}  cy {:.3f} ± {:.3f}  "
@@ -158,6 +135,51 @@ int RunModule(const ModuleArgs& a) {
     fmt::print("  {}  camera {:.4f} px  projector {:.4f} px\n", used[v], r.view_camera_rms_px[v],
                r.view_projector_rms_px[v]);
   }
+}
+
+int RunModule(const ModuleArgs& a) {
+  const auto board_size = ParseSize(a.board);
+  CheckOutputFile(a.out);  // before minutes of work
+  const std::vector<fs::path> poses = PoseFolders(a.captures);
+  if (poses.size() < 3) {
+    throw FileError(
+        a.captures,
+        fmt::format("{} pose folders with texture.png and pattern.png; calibration needs at "
+                    "least 3 (layout: docs/calibration.md)",
+                    poses.size()));
+  }
+  const fs::path first_image = poses[0] / "texture.png";
+  const cv::Size size = ReadImage(first_image, cv::IMREAD_GRAYSCALE, kMaxCameraPixels).size();
+  const Nominal nominal = LoadNominal(a, first_image, size);
+  BoardLayout board_layout;
+  board_layout.cols = board_size->first;
+  board_layout.rows = board_size->second;
+  board_layout.square_mm = a.square_mm;
+  ModuleCalibrator calibrator(nominal.module, nominal.pattern, nominal.constraints, board_layout);
+  const std::vector<std::string> used = AddCaptures(calibrator, poses, size, a);
+  if (used.size() < 3) {
+    fmt::print(stderr,
+               "sewer3d: error: {} of {} poses usable; module calibration needs at least 3\n",
+               used.size(), poses.size());
+    return 1;
+  }
+  ModuleFromCapturesResult calibrated;
+  try {
+    calibrated = calibrator.Calibrate();
+  } catch (const std::invalid_argument& e) {
+    // The estimate left the valid range: the captures do not fix the module.
+    fmt::print(stderr,
+               "sewer3d: error: calibration failed: the estimate is not a valid module ({}); "
+               "check that each pose's texture and pattern images belong together\n",
+               e.what());
+    return 1;
+  }
+  ModuleDescription module = calibrated.module;
+  module.pattern.matrix_path = "pattern.png";
+  module.source_json.clear();
+  SaveModule(a.out, module);
+  WritePatternMatrix(fs::path(a.out).parent_path() / "pattern.png", nominal.pattern);
+  PrintCalibration(calibrated.second_pass, used, poses.size());
   fmt::print("wrote {} and pattern.png beside it\n", a.out);
   return 0;
 }

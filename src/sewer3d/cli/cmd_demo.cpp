@@ -3,7 +3,6 @@
 
 #include <fmt/core.h>
 #include <sys/resource.h>
-#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -19,6 +18,7 @@
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/pipeline/parallel_items.hpp"
 #include "sewer3d/pipeline/report_stage.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/simeval/rgbd_evaluation.hpp"
@@ -65,9 +65,7 @@ int SimulateUnlessDone(const fs::path& run, const DemoArgs& a, bool& simulated) 
   args.preset = kPreset;
   args.out = run.string();
   args.quiet = a.quiet;
-  const auto allowed =
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  tbb::task_arena arena(static_cast<int>(std::min<std::size_t>(a.threads, allowed)));
+  tbb::task_arena arena(AllowedThreads(a.threads));
   simulated = true;
   return arena.execute([&] { return RunRun(args); });
 }

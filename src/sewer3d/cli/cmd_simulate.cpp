@@ -13,40 +13,11 @@
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/sim/scene_presets.hpp"
 #include "sewer3d/simio/scene_io.hpp"
 
 namespace sewer3d::cli {
 namespace {
-
-// The pipe-wall preset: a DN300 wall with a displaced open joint, an intrusion, a pit and a
-// crack, all inside the default module's field of view.
-std::vector<PipeFeature> PipeWallPreset() {
-  using T = PipeFeature::Type;
-  // Clock positions in hours, 12 h = 360° (so −18° is −18 / 30 h) from the view direction.
-  return {{.type = T::kJointStep,
-           .station_mm = 45.0,
-           .clock_h = 0.0,
-           .depth_mm = 4.0,
-           .gap_mm = 6.0,
-           .offset_mm = 5.0},
-          {.type = T::kBump,
-           .station_mm = 10.0,
-           .clock_h = -18.0 / 30.0,
-           .height_mm = 6.0,
-           .radius_mm = 6.0},
-          {.type = T::kPit,
-           .station_mm = 0.0,
-           .clock_h = 15.0 / 30.0,
-           .depth_mm = 4.0,
-           .radius_mm = 10.0},
-          {.type = T::kCrack,
-           .station_mm = 90.0,
-           .clock_h = -5.0 / 30.0,
-           .length_mm = 60.0,
-           .width_mm = 1.0,
-           .depth_mm = 2.0,
-           .angle_deg = 70.0}};
-}
 
 // Checks a scene built from the options, naming the option where the scene names its field.
 void CheckSceneOptions(const Scene& scene) {
@@ -70,18 +41,85 @@ void CheckSceneOptions(const Scene& scene) {
   }
 }
 
+struct FrameArgs {
+  std::string module, scene = "plane", out, material = "concrete";
+  double distance = 140.0, tilt = 0.0, diameter = 300.0;
+  std::vector<double> decentre{0.0, 0.0};
+  std::vector<double> axis{0.0, 1.0, 0.0};
+  bool ideal = false;
+  RenderOptions render;
+};
+
+bool IsBuiltInScene(const std::string& name) {
+  return name == "plane" || name == "cylinder" || name == "pipe-wall";
+}
+
+// plane, cylinder or pipe-wall, from the options.
+Scene BuiltInScene(const FrameArgs& a) {
+  Scene scene;
+  scene.type = a.scene == "plane"      ? Scene::Type::kPlane
+               : a.scene == "cylinder" ? Scene::Type::kCylinder
+                                       : Scene::Type::kPipeWall;
+  scene.material = a.material == "plastic"          ? Material::kPlastic
+                   : a.material == "vitrified_clay" ? Material::kVitrifiedClay
+                                                    : Material::kConcrete;
+  scene.distance_mm = a.distance;
+  scene.tilt_deg = a.tilt;
+  scene.diameter_mm = a.diameter;
+  scene.axis_point_mm = {a.decentre[0], 0.0, a.decentre[1]};
+  scene.axis = {a.axis[0], a.axis[1], a.axis[2]};
+  if (scene.type == Scene::Type::kPipeWall) scene.features = PipeWallPresetFeatures();
+  CheckSceneOptions(scene);
+  return scene;
+}
+
+// A scene file; its render options, with the render flags given on the command line over them.
+Scene FileScene(const FrameArgs& a, const CLI::App& frame, RenderOptions& options) {
+  const std::filesystem::path file(a.scene);
+  if (file.extension() != ".json" && !std::filesystem::exists(file)) {
+    throw InvalidValue("--scene",
+                       "must be plane, cylinder, pipe-wall or a scene JSON file, got " + a.scene);
+  }
+  Scene scene = ReadScene(file);
+  if (ReadSceneRenderOptions(file, options)) {
+    if (frame.count("--seed")) options.seed = a.render.seed;
+    if (frame.count("--supersampling")) options.supersampling = a.render.supersampling;
+    if (frame.count("--bits")) options.sensor.bits = a.render.sensor.bits;
+    if (frame.count("--speed-mm-s")) options.speed_mm_s = a.render.speed_mm_s;
+    if (frame.count("--exposure-ms")) options.exposure_ms = a.render.exposure_ms;
+  }
+  return scene;
+}
+
+int RunFrame(const FrameArgs& a, const CLI::App& frame) {
+  const LoadedModule loaded = LoadModule(a.module);
+  RenderOptions options = a.render;
+  const Scene scene = IsBuiltInScene(a.scene) ? BuiltInScene(a) : FileScene(a, frame, options);
+  if (a.ideal) {
+    const RenderOptions ideal = RenderOptions::Ideal();
+    options.camera_f_number = ideal.camera_f_number;
+    options.projector_f_number = ideal.projector_f_number;
+    options.ambient_level = ideal.ambient_level;
+    options.vignetting = ideal.vignetting;
+    options.sensor.noise = false;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const RenderedFrame rendered = RenderFrame(loaded.module, loaded.pattern, scene, options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  WriteRenderedFrame(a.out, rendered, scene, options, a.module);
+  fmt::print("rendered {}x{} px, {} samples in {:.2f} s ({:.1f} M samples/s)\n",
+             loaded.module.camera.width, loaded.module.camera.height, rendered.samples, seconds,
+             rendered.samples / seconds * 1e-6);
+  fmt::print("wrote {}/pattern.png, texture.png, truth_depth.tiff, depth_preview.png, scene.json\n",
+             a.out);
+  return 0;
+}
+
 }  // namespace
 
 Command AddSimulateCommand(CLI::App& app) {
-  struct Args {
-    std::string module, scene = "plane", out, material = "concrete";
-    double distance = 140.0, tilt = 0.0, diameter = 300.0;
-    std::vector<double> decentre{0.0, 0.0};
-    std::vector<double> axis{0.0, 1.0, 0.0};
-    bool ideal = false;
-    RenderOptions render;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<FrameArgs>();
   auto run_args = std::make_shared<RunArgs>();
   auto calibration_args = std::make_shared<CalibrationArgs>();
   CLI::App* sim = app.add_subcommand("simulate", "Render simulated captures");
@@ -132,66 +170,11 @@ Command AddSimulateCommand(CLI::App& app) {
   frame->add_flag("--ideal", args->ideal, "No noise, defocus, ambient light or vignetting");
   AddRunCommand(*sim, *run_args);
   AddCalibrationCommand(*sim, *calibration_args);
-  return {
-      sim, [args, run_args, calibration_args, frame] {
-        if (calibration_args->app->parsed()) return RunCalibration(*calibration_args);
-        if (!frame->parsed()) return RunRun(*run_args);
-        const LoadedModule loaded = LoadModule(args->module);
-        Scene scene;
-        RenderOptions options = args->render;
-        if (args->scene == "plane" || args->scene == "cylinder" || args->scene == "pipe-wall") {
-          scene.type = args->scene == "plane"      ? Scene::Type::kPlane
-                       : args->scene == "cylinder" ? Scene::Type::kCylinder
-                                                   : Scene::Type::kPipeWall;
-          scene.material = args->material == "plastic"          ? Material::kPlastic
-                           : args->material == "vitrified_clay" ? Material::kVitrifiedClay
-                                                                : Material::kConcrete;
-          scene.distance_mm = args->distance;
-          scene.tilt_deg = args->tilt;
-          scene.diameter_mm = args->diameter;
-          scene.axis_point_mm = {args->decentre[0], 0.0, args->decentre[1]};
-          scene.axis = {args->axis[0], args->axis[1], args->axis[2]};
-          if (scene.type == Scene::Type::kPipeWall) scene.features = PipeWallPreset();
-          CheckSceneOptions(scene);
-        } else {
-          const std::filesystem::path file(args->scene);
-          if (file.extension() != ".json" && !std::filesystem::exists(file)) {
-            throw InvalidValue("--scene",
-                               "must be plane, cylinder, pipe-wall or a scene JSON "
-                               "file, got " +
-                                   args->scene);
-          }
-          scene = ReadScene(file);
-          // The file's render options, with the render flags given on the command line over them.
-          if (ReadSceneRenderOptions(file, options)) {
-            if (frame->count("--seed")) options.seed = args->render.seed;
-            if (frame->count("--supersampling")) options.supersampling = args->render.supersampling;
-            if (frame->count("--bits")) options.sensor.bits = args->render.sensor.bits;
-            if (frame->count("--speed-mm-s")) options.speed_mm_s = args->render.speed_mm_s;
-            if (frame->count("--exposure-ms")) options.exposure_ms = args->render.exposure_ms;
-          }
-        }
-        if (args->ideal) {
-          const RenderOptions ideal = RenderOptions::Ideal();
-          options.camera_f_number = ideal.camera_f_number;
-          options.projector_f_number = ideal.projector_f_number;
-          options.ambient_level = ideal.ambient_level;
-          options.vignetting = ideal.vignetting;
-          options.sensor.noise = false;
-        }
-        const auto start = std::chrono::steady_clock::now();
-        const RenderedFrame rendered = RenderFrame(loaded.module, loaded.pattern, scene, options);
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        WriteRenderedFrame(args->out, rendered, scene, options, args->module);
-        fmt::print("rendered {}x{} px, {} samples in {:.2f} s ({:.1f} M samples/s)\n",
-                   loaded.module.camera.width, loaded.module.camera.height, rendered.samples,
-                   seconds, rendered.samples / seconds * 1e-6);
-        fmt::print(
-            "wrote {}/pattern.png, texture.png, truth_depth.tiff, depth_preview.png, scene.json\n",
-            args->out);
-        return 0;
-      }};
+  return {sim, [args, run_args, calibration_args, frame] {
+            if (calibration_args->app->parsed()) return RunCalibration(*calibration_args);
+            if (!frame->parsed()) return RunRun(*run_args);
+            return RunFrame(*args, *frame);
+          }};
 }
 
 }  // namespace sewer3d::cli

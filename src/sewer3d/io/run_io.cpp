@@ -36,9 +36,7 @@ bool InsideRun(const std::string& file) {
 }
 
 // run.json's counts, where it gives them, must match the rig and the index of a complete run.
-void CheckRunCounts(const fs::path& folder, const CaptureRun& run) {
-  const fs::path path = folder / "run.json";
-  const RunCounts counts = ReadRunCounts(path);
+void CheckRunCounts(const fs::path& path, const RunCounts& counts, const CaptureRun& run) {
   const auto modules = static_cast<int>(run.rig.modules.size());
   if (counts.modules >= 0 && counts.modules != modules) {
     throw FileError(
@@ -123,9 +121,9 @@ void WriteRunInfo(const fs::path& path, const RunInfo& info, const RunCounts& co
   WriteTextFile(path, j.dump(2) + "\n");
 }
 
-RunInfo ReadRunInfo(const fs::path& path) {
-  const JsonReader in(path);
-  const json j = in.ParseObject(ReadTextFile(path));
+namespace {
+
+RunInfo InfoOf(const JsonReader& in, const json& j) {
   if (in.Text(j, "format", "", "") != "sewer3d-run") in.Fail("format", "must be \"sewer3d-run\"");
   if (in.Integer(j, "version", "", 1) != 1) in.Fail("version", "must be 1");
   for (const char* key : {"rig", "index", "odometry"}) {
@@ -155,9 +153,7 @@ RunInfo ReadRunInfo(const fs::path& path) {
   return info;
 }
 
-RunCounts ReadRunCounts(const fs::path& path) {
-  const JsonReader in(path);
-  const json j = in.ParseObject(ReadTextFile(path));
+RunCounts CountsOf(const JsonReader& in, const json& j) {
   RunCounts counts;
   for (auto [key, count] :
        {std::pair{"modules", &counts.modules}, std::pair{"acquisitions", &counts.acquisitions},
@@ -172,6 +168,18 @@ RunCounts ReadRunCounts(const fs::path& path) {
             fmt::format("must be 3 x modules x acquisitions ({}), got {}", planned, counts.images));
   }
   return counts;
+}
+
+}  // namespace
+
+RunInfo ReadRunInfo(const fs::path& path) {
+  const JsonReader in(path);
+  return InfoOf(in, in.ParseObject(ReadTextFile(path)));
+}
+
+RunCounts ReadRunCounts(const fs::path& path) {
+  const JsonReader in(path);
+  return CountsOf(in, in.ParseObject(ReadTextFile(path)));
 }
 
 void WriteIndex(const fs::path& path, const std::vector<RunImage>& images) {
@@ -239,7 +247,10 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
   if (!fs::is_directory(folder, ec)) throw FileError(folder, "is not a run folder");
   CaptureRun run;
   run.folder = folder;
-  run.info = ReadRunInfo(folder / "run.json");
+  const JsonReader info_reader(folder / "run.json");
+  const json info_json = info_reader.ParseObject(ReadTextFile(folder / "run.json"));
+  run.info = InfoOf(info_reader, info_json);
+  const RunCounts counts = CountsOf(info_reader, info_json);
   if (!run.info.complete && !options.allow_incomplete) {
     throw FileError(folder / "run.json",
                     "the capture stopped part-way (\"complete\": false); images may be missing");
@@ -266,7 +277,7 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
     }
     run.images.push_back(std::move(image));
   }
-  CheckRunCounts(folder, run);
+  CheckRunCounts(folder / "run.json", counts, run);
   OdometryCheck odometry = CheckOdometry(ReadOdometry(folder / "odometry.csv"));
   if (odometry.kept.empty()) throw FileError(folder / "odometry.csv", "has no reading");
   const double first = odometry.kept.front().time_s, last = odometry.kept.back().time_s;

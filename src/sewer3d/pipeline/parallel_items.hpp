@@ -16,6 +16,14 @@
 
 namespace sewer3d {
 
+/// `threads`, capped at what TBB allows (the machine's cores): more would only make TBB print a
+/// warning when an arena of that size is made.
+inline int AllowedThreads(int threads) {
+  const auto allowed =
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  return static_cast<int>(std::min<std::size_t>(std::max(threads, 1), allowed));
+}
+
 /// Calls `work(i, state)` for every i in [0, count) on `threads` workers; `make_state()` builds
 /// one State per worker. `done(finished)` is called after each item, never from two threads at
 /// once. Each worker holds one item at a time (the arena isolates nested parallelism).
@@ -36,10 +44,7 @@ void ForEachItem(std::size_t count, int threads, MakeState make_state, Work work
     return;
   }
   tbb::enumerable_thread_specific<State> per_worker(make_state);
-  // More threads than TBB allows (the machine's cores) would only make TBB print a warning.
-  const auto allowed =
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  tbb::task_arena arena(static_cast<int>(std::min<std::size_t>(threads, allowed)));
+  tbb::task_arena arena(AllowedThreads(threads));
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {
