@@ -65,6 +65,11 @@ Command AddReconstructCommand(CLI::App& app) {
             "report.json\n",
             frame.report.spots_found, frame.report.spots_decoded, frame.points.size(),
             out.string());
+        if (frame.report.not_of_module) {
+          fmt::print(stderr, "sewer3d: error: {}: {} (see {}/report.json)\n", args->image,
+                     NotOfModuleReason(frame.report), out.string());
+          return 1;
+        }
         if (frame.points.empty()) {
           fmt::print(stderr, "sewer3d: error: {}: no spot pattern decoded (see {}/report.json)\n",
                      args->image, out.string());

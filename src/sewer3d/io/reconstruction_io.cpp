@@ -42,7 +42,9 @@ void WriteFrameReport(const std::filesystem::path& path, const FrameReport& r,
                         {"beyond_lens_fold", r.rejected.beyond_lens_fold},
                         {"no_tile_on_epipolar_line", r.rejected.no_tile_on_epipolar_line},
                         {"several_tiles_fit", r.rejected.several_tiles_fit},
-                        {"depth_outlier_or_isolated", r.rejected.depth_outlier_or_isolated}};
+                        {"depth_outlier_or_isolated", r.rejected.depth_outlier_or_isolated},
+                        {"not_of_module", r.rejected.not_of_module}};
+  report["not_of_module"] = r.not_of_module;
   report["points"] = r.points;
   report["seconds"] = {{"binarise", r.seconds.binarise},       {"spots", r.seconds.spots},
                        {"lattice", r.seconds.lattice},         {"codewords", r.seconds.codewords},

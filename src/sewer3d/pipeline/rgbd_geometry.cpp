@@ -58,6 +58,10 @@ RgbdAcquisitionResult RgbdGeometryPass(const CaptureRun& run, const Acquisition&
     const nlohmann::json extra = {{"module", a.module},
                                   {"counter", a.counter},
                                   {"seconds", {{"read_and_reconstruct", seconds}}}};
+    if (frame.report.not_of_module) {
+      FailAcquisition(result, pattern_file, NotOfModuleReason(frame.report));
+      return result;
+    }
     WriteRgbdGeometry(files, frame, pattern_file.lexically_relative(run.folder).string(),
                       extra.dump());
     result.frame = frame.report;

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/triangulate/depth_map.hpp"
@@ -28,6 +30,20 @@ void FrameReconstructionOptions::Check() const {
   triangulation.Check();
   outliers.Check();
   ValidatePositive("max_edge_steps", max_edge_steps);
+  for (const auto& [field, value] :
+       {std::pair{"mismatch_off_epipolar_fraction", mismatch_off_epipolar_fraction},
+        std::pair{"mismatch_window_fraction", mismatch_window_fraction}})
+    SEWER3D_VALIDATE(value >= 0.0 && value <= 1.0, field, "must be 0..1, got " << value);
+  SEWER3D_VALIDATE(mismatch_min_decoded >= 1, "mismatch_min_decoded",
+                   "must be >= 1, got " << mismatch_min_decoded);
+}
+
+std::string NotOfModuleReason(const FrameReport& r) {
+  return std::to_string(r.rejected.no_tile_on_epipolar_line) + " of " +
+         std::to_string(r.spots_decoded) +
+         " decoded spots fit no tile on their epipolar line and " +
+         std::to_string(r.windows_decoded) + " of " + std::to_string(r.windows_read) +
+         " windows decode: the image is mirrored or flipped, or not of this module's pattern";
 }
 
 FrameReconstructor::FrameReconstructor(const ModuleDescription& module, const BinaryArray& pattern,
@@ -53,6 +69,15 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
   std::vector<TriangulatedPoint> points = triangulator_.Triangulate(observations, &stats);
   report.rejected.depth_outlier_or_isolated =
       RejectDepthOutliers(points, observations, options_.outliers);
+  const auto decoded_spots = static_cast<double>(decoded.codes.size());
+  if (decoded_spots >= options_.mismatch_min_decoded &&
+      stats.no_element > options_.mismatch_off_epipolar_fraction * decoded_spots &&
+      decoded.stats.windows_decoded <
+          options_.mismatch_window_fraction * decoded.stats.windows_read) {
+    report.not_of_module = true;
+    report.rejected.not_of_module = static_cast<int>(points.size());
+    points.clear();
+  }
   report.seconds.triangulate = Since(t);
   t = Clock::now();
   frame.coloured = texture_bgr != nullptr;

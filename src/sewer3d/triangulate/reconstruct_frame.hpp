@@ -27,6 +27,16 @@ struct FrameReconstructionOptions {
   /// Depth map: longest triangle edge, in pattern pitches (module.pattern.pitch_px each, taken
   /// as camera pixels). Longer edges span holes, depth steps or the border of the lit area.
   double max_edge_steps = 5.5;
+  /// A frame is not of this module's pattern as the module sees it (a mirrored or flipped
+  /// image, another pattern) when, of at least `mismatch_min_decoded` decoded spots, more than
+  /// `mismatch_off_epipolar_fraction` fit no tile on their epipolar line and under
+  /// `mismatch_window_fraction` of the windows read decode: its chance points are dropped
+  /// (FrameReport::not_of_module). Measured: flipped 2592 px frames 86–95 % off the line and
+  /// 13–26 % of windows; the demo's frames at most 25 % off the line. A real frame that looks
+  /// into a deep opening loses spots to the depth range, but its windows still decode.
+  double mismatch_off_epipolar_fraction = 0.6;
+  double mismatch_window_fraction = 0.5;
+  int mismatch_min_decoded = 50;
   void Check() const;
 };
 
@@ -56,7 +66,10 @@ struct FrameReport {
     int no_tile_on_epipolar_line = 0;   ///< no tile of the decoded position fits
     int several_tiles_fit = 0;          ///< more than one tile fits
     int depth_outlier_or_isolated = 0;  ///< RejectDepthOutliers
+    int not_of_module = 0;              ///< dropped with the whole frame (not_of_module)
   } rejected;
+  /// The frame does not fit the module (FrameReconstructionOptions::mismatch_*): no points.
+  bool not_of_module = false;
   int points = 0;  ///< triangulated points kept
   /// Wall-clock time of each stage.
   struct Seconds {
@@ -75,6 +88,9 @@ struct FrameReconstruction {
   cv::Mat1f depth_mm;
   FrameReport report;
 };
+
+/// Why a frame with FrameReport::not_of_module was refused, in words.
+std::string NotOfModuleReason(const FrameReport& report);
 
 /// The single-frame chain for one module, with everything that depends only on the module
 /// (decoder lattice prediction and buffers, projector element centres) built once: a run

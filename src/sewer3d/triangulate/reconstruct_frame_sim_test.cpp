@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "sewer3d/pattern/default_pattern.hpp"
@@ -129,6 +130,38 @@ TEST(ReconstructFrame, Dn300Cylinder) {
   EXPECT_LT(o.depth_rms_mm, 0.1);  // the points' bound holds for the map as well
   EXPECT_GT(o.depth_pixels, o.points * 20);
   EXPECT_EQ(o.colour_mismatches, 0);
+}
+
+// A mirrored or flipped pattern image decodes windows by chance, and a few of those land on
+// their epipolar line: the frame is refused as a whole rather than giving those points.
+TEST(ReconstructFrame, MirroredImagesGiveNoPoints) {
+  Scene cylinder;
+  cylinder.type = Scene::Type::kCylinder;
+  cylinder.diameter_mm = 300.0;
+  const ModuleDescription module = testing::SmallDefaultModule(2592);
+  const BinaryArray pattern = DefaultPatternArray();
+  RenderOptions render;
+  render.supersampling = 1;
+  const RenderedFrame rendered = RenderFrame(module, pattern, cylinder, render);
+  FrameReconstructor reconstructor(module, pattern, PatternConstraints{});
+  const FrameReconstruction upright = reconstructor.Reconstruct(rendered.pattern);
+  EXPECT_FALSE(upright.report.not_of_module);
+  EXPECT_GT(upright.report.points, 0.9 * upright.report.spots_found);
+  for (const int flip : {0, 1, -1}) {  // upside down, mirrored, both
+    cv::Mat flipped;
+    cv::flip(rendered.pattern, flipped, flip);
+    const FrameReconstruction frame = reconstructor.Reconstruct(flipped);
+    EXPECT_TRUE(frame.report.not_of_module) << NotOfModuleReason(frame.report);
+    EXPECT_TRUE(frame.points.empty()) << flip;
+    EXPECT_EQ(frame.report.points, 0);
+    // Without the check, chance decodes on their epipolar line become points.
+    FrameReconstructionOptions unchecked;
+    unchecked.mismatch_off_epipolar_fraction = 1.0;
+    const FrameReconstruction chance =
+        ReconstructFrame(module, pattern, PatternConstraints{}, flipped, nullptr, unchecked);
+    EXPECT_FALSE(chance.report.not_of_module);
+    EXPECT_GT(chance.report.points, 10) << flip;
+  }
 }
 
 }  // namespace
