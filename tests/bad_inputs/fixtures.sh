@@ -139,3 +139,16 @@ printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\n' >one.g2o
   --texture-supersampling 1 >/dev/null 2>&1
 : >zero.tiff
 mkdir -p foreign_cal/pose_00
+# Session 26 (fifth probe).
+json_with m/module.json m/offset_huge.json 'pattern.offset_px=[-1e9,0]'
+json_with m/module.json m/k_huge.json 'camera.k=[1e10,0,0]'
+python3 -c "import sys; t = open('m/module.json').read(); open('m/nul.json', 'w').write(t[:100] + chr(0) + t[100:])"
+json_with frame8/scene.json scene_psf_huge.json 'render.projector_psf_px=1e6'
+json_with fpw/scene.json scene_joint_offset.json 'scene.features.0.offset_mm=1000'
+json_with fpw/scene.json scene_axis_big.json 'scene.axis=[0,1e308,1e308]'
+mkfifo pfifo.json
+mkdir -p rfifo && mkfifo rfifo/report.json
+printf 'VERTEX_SE3:QUAT 0 1e300 0 0 0 0 0 1\nFIX 0\n' >far.g2o
+broken_run exposure acquisitions.csv '2s/^\([^,]*,[^,]*,[^,]*,[^,]*,\)[^,]*,/\11000000,/'
+broken_run same_file acquisitions.csv '3s|,[^,]*$|,'"$(sed -n 2p run_ok/acquisitions.csv | sed 's/.*,//')"'|'
+broken_run times_zero acquisitions.csv '2,$s/^\([^,]*,[^,]*,[^,]*,\)[^,]*,/\10.000000,/'

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sewer3d/camera/field_of_view.hpp"
 #include "sewer3d/core/check.hpp"
 
 namespace sewer3d {
@@ -36,6 +37,20 @@ void ModuleDescription::Check() const {
       pattern.pitch_px >= 1.0 && pattern.pitch_px <= std::min(projector.width, projector.height),
       "pattern.pitch_px",
       "must be between 1 px and the projector's size, got " << pattern.pitch_px);
+  const CameraModel model(camera);
+  const double fov_x = FieldOfViewDeg(model, true), fov_y = FieldOfViewDeg(model, false);
+  SEWER3D_VALIDATE(!(fov_x < kMinFieldOfViewDeg || fov_y < kMinFieldOfViewDeg), "camera.k",
+                   "the camera sees " << fov_x << " x " << fov_y << " deg (under "
+                                      << kMinFieldOfViewDeg
+                                      << " deg): its distortion or focal length leaves no view");
+  // The grid's offset shifts the spots within the projector image; beyond its size no spot of
+  // the grid is left on the projector (and a huge offset makes the tile search unbounded).
+  SEWER3D_VALIDATE(std::abs(pattern.offset_px.x()) <= projector.width &&
+                       std::abs(pattern.offset_px.y()) <= projector.height,
+                   "pattern.offset_px",
+                   "must lie within the projector's size (±"
+                       << projector.width << ", ±" << projector.height << " px), got ("
+                       << pattern.offset_px.x() << ", " << pattern.offset_px.y() << ")");
   SEWER3D_VALIDATE(std::abs(projector_from_camera.rotation.norm() - 1.0) < 1e-9,
                    "projector_from_camera.rotation", "must be a rotation");
 }

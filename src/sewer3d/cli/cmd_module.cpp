@@ -73,7 +73,17 @@ Command AddModuleCommand(CLI::App& app) {
             const auto size = *ParseSize(args->camera_size);
             args->options.camera_width = size.first;
             args->options.camera_height = size.second;
-            const ModuleDescription module = MakeDefaultModule(args->options);
+            args->options.Check();  // the options' own refusals name their fields
+            ModuleDescription module;
+            try {
+              module = MakeDefaultModule(args->options);
+              module.Check();
+            } catch (const InvalidValue& e) {  // valid options, but no valid module from them
+              throw InvalidValue("--hfov-deg, --stereo-angle-deg",
+                                 fmt::format("this geometry gives no valid module ({}: {}): choose "
+                                             "a wider field of view or a smaller stereo angle",
+                                             e.field(), e.problem()));
+            }
             const std::filesystem::path dir = args->out;
             const BinaryArray pattern = DefaultPatternArray();
             // A module the decoder cannot use is refused before anything is written.
@@ -88,8 +98,12 @@ Command AddModuleCommand(CLI::App& app) {
                               kWorkingDistanceMinMm, kWorkingDistanceMaxMm,
                               std::ceil(range.max_cols), pattern.cols));
             }
-            WritePatternMatrix(dir / module.pattern.matrix_path, pattern);
             const SubmapSearchOptions search = DefaultPatternSearchOptions();
+            if (const std::string problem = WindowFitProblem(module, search.constraints.window);
+                !problem.empty()) {
+              throw InvalidValue("--pitch-px", problem);
+            }
+            WritePatternMatrix(dir / module.pattern.matrix_path, pattern);
             WritePatternSidecar(PatternSidecarPath(dir / module.pattern.matrix_path),
                                 {&search, nullptr, "shipped"},
                                 VerifyPattern(pattern, search.constraints));

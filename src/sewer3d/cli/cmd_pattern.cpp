@@ -2,10 +2,13 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/pattern_io.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
@@ -20,6 +23,7 @@ Command AddPatternCommand(CLI::App& app) {
     bool plain = false;
     bool allow_adjacent = false;
     bool quiet = false;
+    double max_moves = 0.0;  ///< read as a number so that 1e15 is accepted; whole (checked)
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -57,9 +61,16 @@ Command AddPatternCommand(CLI::App& app) {
   sub->add_option("--seed", s.seed, "Random seed (the search is deterministic for a seed)")
       ->check(Digits())
       ->capture_default_str();
-  sub->add_option("--max-moves", s.max_moves, "Give up after this many moves")
+  args->max_moves = static_cast<double>(s.max_moves);
+  sub->add_option("--max-moves", args->max_moves, "Give up after this many moves")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 1e15));
+      ->check(CLI::Range(1.0, 1e15))
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            const double v = std::strtod(text.c_str(), nullptr);
+            return v == std::floor(v) ? std::string() : "expected a whole number, got " + text;
+          },
+          "", "whole"));
   sub->add_option("--max-seconds", s.max_seconds, "Give up after this many seconds (0: no limit)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e7));
@@ -69,6 +80,7 @@ Command AddPatternCommand(CLI::App& app) {
   sub->add_flag("--quiet", args->quiet, "No progress output");
   return {sub, [args] {
             auto options = args->search;
+            options.max_moves = static_cast<std::int64_t>(args->max_moves);
             options.constraints.torus = !args->plain;
             options.constraints.isolated = !args->allow_adjacent;
             if (!args->quiet) {
@@ -80,6 +92,9 @@ Command AddPatternCommand(CLI::App& app) {
               };
             }
             options.Check();
+            // Both outputs checked before the search: a refusal leaves neither written.
+            CheckOutputFile(args->out);
+            CheckOutputFile(PatternSidecarPath(args->out));
             const char* kind = options.constraints.torus ? "torus" : "plain";
             fmt::print(
                 "searching a {}x{} {} array: window {}, min Hamming {}, min weight {}, {}, "

@@ -80,6 +80,14 @@ Scene FileScene(const FrameArgs& a, const CLI::App& frame, RenderOptions& option
     throw InvalidValue("--scene",
                        "must be plane, cylinder, pipe-wall or a scene JSON file, got " + a.scene);
   }
+  // The geometry flags describe the built-in scenes; a scene file has its own.
+  for (const char* flag :
+       {"--material", "--distance-mm", "--tilt-deg", "--diameter-mm", "--decentre-mm", "--axis"}) {
+    if (frame.count(flag) > 0) {
+      throw InvalidValue(flag, "applies to the built-in scenes; " + a.scene +
+                                   " sets its own (edit the file instead)");
+    }
+  }
   Scene scene = ReadScene(file);
   if (ReadSceneRenderOptions(file, options)) {
     if (frame.count("--seed")) options.seed = a.render.seed;
@@ -91,8 +99,21 @@ Scene FileScene(const FrameArgs& a, const CLI::App& frame, RenderOptions& option
   return scene;
 }
 
+// The frame's files must not replace a module's: its pattern.png is the pattern matrix.
+void CheckFrameFolder(const std::filesystem::path& out, const LoadedModule& loaded) {
+  std::error_code ec;
+  const auto matrix = std::filesystem::weakly_canonical(loaded.pattern_file, ec);
+  const auto image = std::filesystem::weakly_canonical(out / "pattern.png", ec);
+  if (std::filesystem::exists(out / "module.json") || (!ec && matrix == image)) {
+    throw InvalidValue("--out", out.string() +
+                                    " holds a module, whose pattern.png the rendered "
+                                    "image would replace; choose another folder");
+  }
+}
+
 int RunFrame(const FrameArgs& a, const CLI::App& frame) {
   const LoadedModule loaded = LoadModule(a.module);
+  CheckFrameFolder(a.out, loaded);
   RenderOptions options = a.render;
   const Scene scene = IsBuiltInScene(a.scene) ? BuiltInScene(a) : FileScene(a, frame, options);
   if (a.ideal) {

@@ -55,7 +55,12 @@ ErrorExit ExitForError(const std::exception_ptr& error) {
 
 std::string ReadableRangeError(const std::string& message, bool whole) {
   static const std::regex range("^(.*): Value (.*) not in range (\\S+) to (\\S+)$");
+  static const std::regex convert("^Could not convert: (\\S+) = (.*)$");
   std::smatch m;
+  if (std::regex_match(message, m, convert)) {
+    return m[1].str() + ": expected " + (whole ? "a whole number" : "a number") + ", got " +
+           m[2].str();
+  }
   if (!std::regex_match(message, m, range)) return message;
   return m[1].str() + ": expected " + (whole ? "a whole number" : "a number") + " from " +
          Bound(m[3].str()) + " to " + Bound(m[4].str()) + ", got " + m[2].str();

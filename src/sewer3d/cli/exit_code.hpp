@@ -32,7 +32,8 @@ ErrorExit ExitForError(const std::exception_ptr& error);
 
 /// CLI11's range refusal ("--rows: Value 12.5 not in range 2 to 4096") in the words of the other
 /// value errors: "--rows: expected a whole number from 2 to 4096, got 12.5" (`whole`: the option
-/// takes integers; otherwise "a number"). Any other message comes back unchanged.
+/// takes integers; otherwise "a number"). CLI11's "Could not convert: --rows = 1.5" becomes
+/// "--rows: expected a whole number, got 1.5". Any other message comes back unchanged.
 std::string ReadableRangeError(const std::string& message, bool whole);
 
 }  // namespace sewer3d::cli

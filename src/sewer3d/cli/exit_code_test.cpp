@@ -37,6 +37,8 @@ TEST(ExitCode, RangeRefusalsSayWhatIsExpected) {
             "--tilt-deg: expected a number from -80 to 80, got 9x");
   EXPECT_EQ(ReadableRangeError("--d: Value 9 not in range 10.000000 to 0.050000", false),
             "--d: expected a number from 10 to 0.05, got 9");
+  EXPECT_EQ(ReadableRangeError("Could not convert: --seed = 1.5", true),
+            "--seed: expected a whole number, got 1.5");
   EXPECT_EQ(ReadableRangeError("--out is required", true), "--out is required");
 }
 

@@ -51,7 +51,11 @@ std::pair<const CLI::Option*, const char*> BadValue(const CLI::App& app) {
 // Whether the option that a CLI11 message starts with ("--rows: …") takes whole numbers, looked
 // up in the chosen subcommands.
 bool TakesWholeNumbers(const CLI::App& app, const std::string& message) {
-  const std::string name = message.substr(0, message.find(':'));
+  static const std::string convert = "Could not convert: ";
+  const std::string name =
+      message.rfind(convert, 0) == 0
+          ? message.substr(convert.size(), message.find(' ', convert.size()) - convert.size())
+          : message.substr(0, message.find(':'));
   for (const CLI::App* sub : app.get_subcommands()) {
     if (const CLI::Option* option = sub->get_option_no_throw(name); option != nullptr) {
       const std::string type = option->get_type_name();
@@ -103,11 +107,6 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp&) {
     std::cout << app.help("", CLI::AppFormatMode::All);
     return 0;
-  } catch (const CLI::ValidationError& e) {
-    std::cerr << "sewer3d: error: "
-              << sewer3d::cli::ReadableRangeError(e.what(), TakesWholeNumbers(app, e.what()))
-              << " (see sewer3d --help)\n";
-    return sewer3d::cli::kExitUsage;
   } catch (const CLI::ParseError& e) {
     // Subcommand --help arrives here too, as CallForHelp raised inside the subcommand.
     if (e.get_exit_code() == 0) {
@@ -122,7 +121,11 @@ int main(int argc, char** argv) {
       std::cout << app.help();
       return 0;
     }
-    return ReportError(std::current_exception());
+    // Range and conversion refusals in the words of the other value errors.
+    std::cerr << "sewer3d: error: "
+              << sewer3d::cli::ReadableRangeError(e.what(), TakesWholeNumbers(app, e.what()))
+              << " (see sewer3d --help)\n";
+    return sewer3d::cli::kExitUsage;
   }
   if (const auto [option, problem] = BadValue(app); option != nullptr) {
     std::cerr << "sewer3d: error: invalid value: " << option->get_name() << ": " << problem << "\n";

@@ -2,27 +2,15 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/camera/field_of_view.hpp"
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/pattern/constraints.hpp"
 
 namespace sewer3d::cli {
-namespace {
-
-// Full field of view (deg) along x or y through the principal point.
-double FieldOfView(const CameraModel& model, bool horizontal) {
-  const auto& c = model.intrinsics();
-  const auto a = horizontal ? model.Unproject({-0.5, c.cy}) : model.Unproject({c.cx, -0.5});
-  const auto b =
-      horizontal ? model.Unproject({c.width - 0.5, c.cy}) : model.Unproject({c.cx, c.height - 0.5});
-  if (!a || !b) return std::nan("");
-  return RadToDeg(horizontal ? std::atan(b->x()) - std::atan(a->x())
-                             : std::atan(b->y()) - std::atan(a->y()));
-}
-
-}  // namespace
 
 std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pattern) {
   const CameraModel camera(m.camera), projector(m.projector);
@@ -31,8 +19,8 @@ std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pa
       "{:g}]\n",
       m.camera.width, m.camera.height, m.camera.fx, m.camera.fy, m.camera.cx, m.camera.cy,
       m.camera.k[0], m.camera.k[1], m.camera.k[2]);
-  fmt::print("           field of view {:.1f} x {:.1f} deg{}\n", FieldOfView(camera, true),
-             FieldOfView(camera, false),
+  const double fov_x = FieldOfViewDeg(camera, true), fov_y = FieldOfViewDeg(camera, false);
+  fmt::print("           field of view {:.1f} x {:.1f} deg{}\n", fov_x, fov_y,
              camera.WholeImageInvertible() ? "" : " (distortion folds over inside the image!)");
   fmt::print("projector  {}x{} px, f {:.1f}/{:.1f} px, principal point ({:.1f}, {:.1f})\n",
              m.projector.width, m.projector.height, m.projector.fx, m.projector.fy, m.projector.cx,
@@ -67,11 +55,22 @@ std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pa
   const int needed = static_cast<int>(std::ceil(range.max_cols));
   fmt::print("           {} columns {} the {} the disparity range needs\n", pattern.cols,
              spans ? "cover" : "do NOT cover", needed);
+  if (std::string problem = WindowFitProblem(m, constraints.window); !problem.empty())
+    return problem;
   if (!report.valid) return "the pattern matrix violates its constraints: " + Describe(report);
   if (!spans)
     return fmt::format("the pattern's {} columns do not cover the {} the disparity range needs",
                        pattern.cols, needed);
   return "";
+}
+
+std::string WindowFitProblem(const ModuleDescription& m, int window) {
+  const double window_px = window * m.pattern.pitch_px;
+  if (window_px <= std::min(m.projector.width, m.projector.height)) return "";
+  return fmt::format(
+      "a {0}x{0} pattern window at pitch {1:g} px spans {2:g} px, more than the {3}x{4} "
+      "projector: no window can be decoded (lower pattern.pitch_px)",
+      window, m.pattern.pitch_px, window_px, m.projector.width, m.projector.height);
 }
 
 }  // namespace sewer3d::cli

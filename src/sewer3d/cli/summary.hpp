@@ -14,4 +14,8 @@ namespace sewer3d::cli {
 /// (the pattern does not span the disparity range, or violates its constraints), or "".
 std::string PrintModuleSummary(const ModuleDescription& module, const BinaryArray& pattern);
 
+/// "" when a window of `window` x `window` pattern elements fits on the projector at the
+/// module's pitch (the decoder reads such windows), else why not.
+std::string WindowFitProblem(const ModuleDescription& module, int window);
+
 }  // namespace sewer3d::cli

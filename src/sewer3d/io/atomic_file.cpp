@@ -58,7 +58,10 @@ void WriteTextFileAtomically(const std::filesystem::path& path, const std::strin
 void CheckOutputFile(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
+  const fs::file_status status = fs::symlink_status(path, ec);
   if (fs::is_directory(path, ec)) throw FileError(path, "is a folder, not a file");
+  if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_symlink(status))
+    throw FileError(path, "not a regular file (a FIFO, socket or device); not replaced");
   fs::path above = fs::absolute(path, ec).parent_path();
   while (!fs::exists(above, ec) && above.has_parent_path() && above != above.parent_path())
     above = above.parent_path();

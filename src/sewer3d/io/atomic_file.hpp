@@ -26,8 +26,10 @@ std::filesystem::path TemporaryPathFor(const std::filesystem::path& path);
 /// WriteTextFile (text_file.hpp) through WriteFileAtomically.
 void WriteTextFileAtomically(const std::filesystem::path& path, const std::string& text);
 
-/// Before long work whose result goes to `path`: FileError when `path` is a folder, or when the
-/// nearest existing folder above it is no folder (a file) or not writable. Creates nothing.
+/// Before work whose result goes to `path`: FileError when `path` is a folder, a FIFO, socket or
+/// device, or when the nearest existing folder above it is no folder (a file) or not writable.
+/// Creates nothing. Commands writing several files check them all first, so that a refusal
+/// leaves none written.
 void CheckOutputFile(const std::filesystem::path& path);
 
 /// True when `path` names an existing regular file (no exception).

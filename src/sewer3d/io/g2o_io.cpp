@@ -56,9 +56,18 @@ class LineParser {
     if (!std::isfinite(v)) Fail("value " + std::to_string(i) + " is " + t + " (not finite)");
     return v;
   }
+  static constexpr double kMaxTranslation = 1e9;
   /// Translation and quaternion from tokens first..first+6.
   Rigid3d Pose(size_t first) const {
     const Eigen::Vector3d t(Number(first), Number(first + 1), Number(first + 2));
+    // Positions beyond 1e9 (a thousand km in mm, or in any unit a pose graph uses) are no
+    // survey: their squares overflow the solver's cost.
+    if (!(t.cwiseAbs().maxCoeff() <= kMaxTranslation)) {
+      std::ostringstream out;
+      out << "translation (" << t.x() << ", " << t.y() << ", " << t.z() << ") is beyond ±"
+          << kMaxTranslation;
+      Fail(out.str());
+    }
     const Eigen::Quaterniond q(Number(first + 6), Number(first + 3), Number(first + 4),
                                Number(first + 5));
     const double norm = q.norm();

@@ -21,6 +21,9 @@ void JsonReader::Fail(const std::string& field, const std::string& problem) cons
 }
 
 JsonReader::json JsonReader::ParseObject(const std::string& text) const {
+  // nlohmann reads a NUL as the end of the input ("unexpected end of input"): name it.
+  if (const auto nul = text.find('\0'); nul != std::string::npos)
+    throw FileError(path_, "a NUL byte at offset " + std::to_string(nul) + ": not a text file");
   json j;
   try {
     j = json::parse(text);

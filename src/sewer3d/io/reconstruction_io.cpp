@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/ply_io.hpp"
@@ -18,6 +19,8 @@ void WriteFrameReconstruction(const std::filesystem::path& folder, const FrameRe
     xyz.push_back(p.point_mm);
     if (frame.coloured) colours.push_back(p.rgb);
   }
+  for (const char* name : {"cloud.ply", "depth.tiff", "depth.png", "report.json"})
+    CheckOutputFile(folder / name);  // all before any: a refusal leaves none written
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw FileError(folder, "cannot create folder: " + ec.message());

@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <set>
+#include <string>
 #include <tuple>
 
 #include "sewer3d/io/csv.hpp"
@@ -22,8 +25,9 @@ using nlohmann::json;
 constexpr const char* kIndexHeader = "module,counter,image,time_s,exposure_ms,file";
 constexpr const char* kOdometryHeader = "time_s,distance_mm";
 // Plausible bounds for a cable counter: beyond them a value is a corrupt field, not a run.
-constexpr double kMaxOdometryMm = 1e7;  // 10 km of cable
-constexpr double kMaxTimeS = 1e7;       // about 115 days
+constexpr double kMaxOdometryMm = 1e7;     // 10 km of cable
+constexpr double kMaxTimeS = 1e7;          // about 115 days
+constexpr double kMaxExposureMs = 1000.0;  // a second: no moving inspection camera exposes longer
 
 // A file name from the index must stay inside the run folder.
 bool InsideRun(const std::string& file) {
@@ -191,8 +195,39 @@ void WriteIndex(const fs::path& path, const std::vector<RunImage>& images) {
   WriteTextFile(path, text);
 }
 
+namespace {
+
+// Each acquisition's images must be taken in order: texture before < pattern < texture after
+// (the colour pass interpolates between the two textures to the pattern's instant).
+void CheckTripletOrder(const fs::path& path, const std::vector<RunImage>& images,
+                       const std::vector<int>& lines) {
+  struct Triplet {
+    std::array<double, 3> time_s{NAN, NAN, NAN};
+    int line = 0;
+  };
+  std::map<std::pair<int, int>, Triplet> triplets;
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    Triplet& t = triplets[{images[i].module, images[i].counter}];
+    t.time_s[static_cast<int>(images[i].kind)] = images[i].time_s;
+    t.line = std::max(t.line, lines[i]);
+  }
+  for (const auto& [key, t] : triplets) {
+    const auto [before, pattern, after] = t.time_s;
+    if (before >= pattern || pattern >= after || after <= before) {  // NaN (absent) passes
+      throw FileError(path, fmt::format("line {}: module {} counter {}: the images must be taken "
+                                        "texture_before < pattern < texture_after, got {} s, {} "
+                                        "s, {} s",
+                                        t.line, key.first, key.second, before, pattern, after));
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<RunImage> ReadIndex(const fs::path& path) {
   std::vector<RunImage> out;
+  std::vector<int> lines;
+  std::map<std::string, int> file_lines;
   for (const CsvRow& row : ReadCsv(path, kIndexHeader)) {
     RunImage e;
     ReadImageKey(path, row, e);
@@ -203,16 +238,26 @@ std::vector<RunImage> ReadIndex(const fs::path& path) {
     };
     if (e.module < 0) fail(fmt::format("module {} is negative", e.module));
     if (e.counter < 0) fail(fmt::format("counter {} is negative", e.counter));
-    if (e.exposure_ms < 0.0) fail(fmt::format("exposure_ms {} is negative", e.exposure_ms));
+    if (!(e.exposure_ms >= 0.0 && e.exposure_ms <= kMaxExposureMs)) {
+      fail(fmt::format("exposure_ms {} must be 0..{:g} ms", e.exposure_ms, kMaxExposureMs));
+    }
     if (std::abs(e.time_s) > kMaxTimeS)
       fail(fmt::format("time_s {} is beyond ±{:g} s", e.time_s, kMaxTimeS));
     if (!InsideRun(e.file)) fail("file '" + e.file + "' must be a path inside the run folder");
+    if (const auto [it, fresh] =
+            file_lines.emplace(fs::path(e.file).lexically_normal().string(), row.line);
+        !fresh) {
+      fail(fmt::format("file '{}' is listed on line {} too: each image is one file", e.file,
+                       it->second));
+    }
     if (!out.empty() && e.time_s < out.back().time_s) {
       fail(fmt::format("time_s {} is before the line above's {}: rows must be sorted by time",
                        e.time_s, out.back().time_s));
     }
     out.push_back(e);
+    lines.push_back(row.line);
   }
+  CheckTripletOrder(path, out, lines);
   return out;
 }
 

@@ -182,7 +182,10 @@ TEST_F(RunIoTest, RefusesInconsistentRuns) {
   images_[5] = images_[4];
   images_[5].time_s += 0.001;
   WriteIndex(dir_ / "acquisitions.csv", images_);
-  EXPECT_NE(ErrorOf().find("lists two"), std::string::npos);
+  EXPECT_NE(ErrorOf().find("is listed on line"), std::string::npos) << ErrorOf();  // one file
+  images_[5].file += ".copy.png";
+  WriteIndex(dir_ / "acquisitions.csv", images_);
+  EXPECT_NE(ErrorOf().find("lists two"), std::string::npos) << ErrorOf();  // one image kind
 
   WriteRun();
   std::swap(images_[0], images_[1]);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -254,6 +255,17 @@ class SearchState {
 
 }  // namespace
 
+namespace {
+
+// n choose k as a double (exact up to 2^53; a bound beyond).
+double BinomialCoefficient(int n, int k) {
+  double c = 1.0;
+  for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
+  return c;
+}
+
+}  // namespace
+
 void SubmapSearchOptions::Check() const {
   constraints.Check();
   const int n = constraints.window;
@@ -263,6 +275,16 @@ void SubmapSearchOptions::Check() const {
   SEWER3D_VALIDATE(static_cast<std::int64_t>(rows) * cols <= kMaxPatternElements, "cols",
                    "the array (" << rows << "x" << cols << ") must have at most "
                                  << kMaxPatternElements << " elements");
+  // Every window must differ from every other: there must be as many distinct windows of
+  // at least min_weight spots as the array has windows (the isolated rule allows even fewer).
+  double distinct = 0.0;
+  for (int k = constraints.min_weight; k <= n * n; ++k)
+    distinct += std::round(BinomialCoefficient(n * n, k));
+  const int needed = WindowCount(rows, cols, constraints);
+  SEWER3D_VALIDATE(distinct >= needed, "min_weight",
+                   "only " << distinct << " distinct " << n << "x" << n << " windows have at least "
+                           << constraints.min_weight << " spots, and the " << rows << "x" << cols
+                           << " array needs " << needed);
   SEWER3D_VALIDATE(max_moves > 0, "max_moves", "must be > 0, got " << max_moves);
   SEWER3D_VALIDATE(noise >= 0.0 && noise <= 1.0, "noise", "must be 0..1, got " << noise);
   SEWER3D_VALIDATE(tabu_tenure >= 0, "tabu_tenure", "must not be negative, got " << tabu_tenure);

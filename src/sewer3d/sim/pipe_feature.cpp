@@ -79,6 +79,10 @@ void PipeFeature::CheckInPipe(double d) const {
   if (type != Type::kConnection) below("height_mm", height_mm, 0.5 * d, "half");
   if (type == Type::kBump || type == Type::kPit) below("radius_mm", radius_mm, d, "the whole");
   if (type == Type::kConnection) below("diameter_mm", diameter_mm, d, "the whole");
+  if (type == Type::kJointStep) {
+    below("offset_mm", std::abs(offset_mm), 0.2 * d, "a fifth");
+    below("gap_mm", gap_mm, d, "the whole");
+  }
 }
 
 double PipeFeatureReachMm(const PipeFeature& f) {

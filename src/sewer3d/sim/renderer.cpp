@@ -204,32 +204,47 @@ void BlurAlongMotion(const CameraModel& camera, const cv::Mat1f& depth,
 }  // namespace
 
 void RenderOptions::Check() const {
+  // Upper bounds are far beyond any real module; beyond them the images are pure noise or
+  // saturation, or the blur kernels make rendering run for hours.
+  const auto within = [](const char* field, double value, double low, double high) {
+    SEWER3D_VALIDATE(value >= low && value <= high, field,
+                     "must be " << low << ".." << high << ", got " << value);
+  };
   SEWER3D_VALIDATE(supersampling >= 1 && supersampling <= 16, "supersampling",
                    "must be 1..16, got " << supersampling);
-  ValidatePositive("sensor_width_mm", sensor_width_mm);
-  ValidateNotNegative("camera_f_number", camera_f_number);
-  ValidateNotNegative("projector_f_number", projector_f_number);
-  ValidatePositive("camera_focus_mm", camera_focus_mm);
-  ValidatePositive("projector_focus_mm", projector_focus_mm);
-  ValidatePositive("projector_psf_px", projector_psf_px);
-  ValidateNotNegative("texture_level", texture_level);
-  ValidateNotNegative("pattern_level", pattern_level);
-  ValidateNotNegative("ambient_level", ambient_level);
-  ValidateNotNegative("ring_light_exponent", ring_light_exponent);
+  SEWER3D_VALIDATE(sensor_width_mm > 0.0 && sensor_width_mm <= 100.0, "sensor_width_mm",
+                   "must be > 0 and at most 100 mm, got " << sensor_width_mm);
+  within("camera_f_number", camera_f_number, 0.0, 64.0);
+  within("projector_f_number", projector_f_number, 0.0, 64.0);
+  SEWER3D_VALIDATE(camera_focus_mm > 0.0 && camera_focus_mm <= 1e5, "camera_focus_mm",
+                   "must be > 0 and at most 1e5 mm, got " << camera_focus_mm);
+  SEWER3D_VALIDATE(projector_focus_mm > 0.0 && projector_focus_mm <= 1e5, "projector_focus_mm",
+                   "must be > 0 and at most 1e5 mm, got " << projector_focus_mm);
+  SEWER3D_VALIDATE(projector_psf_px > 0.0 && projector_psf_px <= 20.0, "projector_psf_px",
+                   "must be > 0 and at most 20 px, got " << projector_psf_px);
+  // Levels are fractions of the sensor's full scale for a white wall at the reference.
+  within("texture_level", texture_level, 0.0, 10.0);
+  within("pattern_level", pattern_level, 0.0, 10.0);
+  within("ambient_level", ambient_level, 0.0, 10.0);
+  within("ring_light_exponent", ring_light_exponent, 0.0, 16.0);
   SEWER3D_VALIDATE(std::abs(ring_light_color_shift) <= 0.5, "ring_light_color_shift",
                    "must be within ±0.5, got " << ring_light_color_shift);
   SEWER3D_VALIDATE(color_shading.minCoeff() >= 0.0 && color_shading.maxCoeff() <= 8.0,
                    "color_shading", "must be 0..8 per channel");
   SEWER3D_VALIDATE(white_balance.minCoeff() > 0.0 && white_balance.maxCoeff() <= 4.0,
                    "white_balance", "gains must be in (0, 4]");
-  ValidateNotNegative("speed_mm_s", speed_mm_s);
-  ValidateNotNegative("exposure_ms", exposure_ms);
-  SEWER3D_VALIDATE(motion_direction.norm() > 0.0, "motion_direction",
-                   "must be a non-zero direction");
+  within("speed_mm_s", speed_mm_s, 0.0, 10000.0);
+  within("exposure_ms", exposure_ms, 0.0, 1000.0);
+  SEWER3D_VALIDATE(motion_direction.allFinite() && motion_direction.norm() > 0.0 &&
+                       std::isfinite(motion_direction.norm()),
+                   "motion_direction", "must be a finite, non-zero direction");
   SEWER3D_VALIDATE(sensor.bits >= 8 && sensor.bits <= 12, "bits",
                    "must be 8..12, got " << sensor.bits);
-  ValidatePositive("full_well_e", sensor.full_well_e);
-  ValidateNotNegative("read_noise_e", sensor.read_noise_e);
+  SEWER3D_VALIDATE(sensor.full_well_e > 0.0 && sensor.full_well_e <= 1e7, "full_well_e",
+                   "must be > 0 and at most 1e7 electrons, got " << sensor.full_well_e);
+  SEWER3D_VALIDATE(
+      sensor.read_noise_e >= 0.0 && sensor.read_noise_e <= sensor.full_well_e, "read_noise_e",
+      "must be 0..full_well_e (" << sensor.full_well_e << "), got " << sensor.read_noise_e);
 }
 
 RenderOptions RenderOptions::Ideal() {

@@ -81,7 +81,11 @@ void Scene::Check() const {
   SEWER3D_VALIDATE(std::abs(tilt_deg) < 89.0, "tilt_deg",
                    "must be within ±89 (exclusive), got " << tilt_deg);
   if (type != Type::kPlane) ValidatePositive("diameter_mm", diameter_mm);
-  SEWER3D_VALIDATE(axis.norm() > 0.0 && axis.allFinite(), "axis", "must be a non-zero direction");
+  // Its norm must be finite too: (0, 1e308, 1e308) overflows when normalised.
+  SEWER3D_VALIDATE(axis.allFinite() && axis.norm() > 0.0 && std::isfinite(axis.norm()), "axis",
+                   "must be a finite, non-zero direction");
+  SEWER3D_VALIDATE(axis_point_mm.allFinite() && axis_point_mm.norm() < 1e7, "axis_point_mm",
+                   "must be finite and within 1e7 mm");
   SEWER3D_VALIDATE(type == Type::kPlane || std::abs(axis.normalized().z()) < 0.99, "axis",
                    "must not run (nearly) along the camera's optical axis");
   if (type != Type::kPlane) {
