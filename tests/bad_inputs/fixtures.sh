@@ -152,3 +152,5 @@ printf 'VERTEX_SE3:QUAT 0 1e300 0 0 0 0 0 1\nFIX 0\n' >far.g2o
 broken_run exposure acquisitions.csv '2s/^\([^,]*,[^,]*,[^,]*,[^,]*,\)[^,]*,/\11000000,/'
 broken_run same_file acquisitions.csv '3s|,[^,]*$|,'"$(sed -n 2p run_ok/acquisitions.csv | sed 's/.*,//')"'|'
 broken_run times_zero acquisitions.csv '2,$s/^\([^,]*,[^,]*,[^,]*,\)[^,]*,/\10.000000,/'
+scenario_with nominal_far.json 'capture={"nominal_diameter_mm": 1000}'
+scenario_with gap_deep.json 'pipe.joints.0.gap_depth_mm=500'

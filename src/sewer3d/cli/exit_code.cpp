@@ -56,7 +56,9 @@ ErrorExit ExitForError(const std::exception_ptr& error) {
 std::string ReadableRangeError(const std::string& message, bool whole) {
   static const std::regex range("^(.*): Value (.*) not in range (\\S+) to (\\S+)$");
   static const std::regex convert("^Could not convert: (\\S+) = (.*)$");
+  static const std::regex empty_file("^(\\S+): File does not exist: $");
   std::smatch m;
+  if (std::regex_match(message, m, empty_file)) return m[1].str() + ": must not be empty";
   if (std::regex_match(message, m, convert)) {
     return m[1].str() + ": expected " + (whole ? "a whole number" : "a number") + ", got " +
            m[2].str();

@@ -39,6 +39,8 @@ TEST(ExitCode, RangeRefusalsSayWhatIsExpected) {
             "--d: expected a number from 10 to 0.05, got 9");
   EXPECT_EQ(ReadableRangeError("Could not convert: --seed = 1.5", true),
             "--seed: expected a whole number, got 1.5");
+  EXPECT_EQ(ReadableRangeError("--images: File does not exist: ", false),
+            "--images: must not be empty");
   EXPECT_EQ(ReadableRangeError("--out is required", true), "--out is required");
 }
 

@@ -69,6 +69,8 @@ CarrierOffsetEstimate FirstInstantOffset(const std::vector<AcquisitionNode>& nod
   return EstimateCarrierOffset(run.rig, walls, options.carrier_offset);
 }
 
+constexpr double kMaxCarrierSpeedMmS = 2000.0;
+
 /// The odometry's problems (CaptureRun::odometry_findings) in words, naming the file, its
 /// lines and the acquisitions they concern.
 std::vector<std::string> OdometryWarnings(const CaptureRun& run,
@@ -102,6 +104,21 @@ std::vector<std::string> OdometryWarnings(const CaptureRun& run,
                             [](const OdometryReading& a, const OdometryReading& b) {
                               return a.distance_mm < b.distance_mm;
                             });
+    // A crawler moves at most a few hundred mm/s; a jump far faster is a counter glitch or a
+    // reading in other units, and places the acquisitions around it wrongly.
+    for (std::size_t i = 1; i < run.odometry.size(); ++i) {
+      const OdometryReading &a = run.odometry[i - 1], &b = run.odometry[i];
+      const double speed = (b.distance_mm - a.distance_mm) / (b.time_s - a.time_s);
+      if (speed > kMaxCarrierSpeedMmS) {
+        lines.push_back(fmt::format(
+            "{}: lines {}-{}: the distance jumps {:.1f} mm in {:.3f} s ({:.0f} mm/s, more than a "
+            "carrier's {:.0f} mm/s): a counter glitch or other units; acquisitions around it are "
+            "placed by it",
+            file, a.line, b.line, b.distance_mm - a.distance_mm, b.time_s - a.time_s, speed,
+            kMaxCarrierSpeedMmS));
+        break;  // the first one: the cause is the same for the others
+      }
+    }
     if (run.odometry.size() >= 2 && high->distance_mm - low->distance_mm < 1.0) {
       lines.push_back(fmt::format(
           "{}: the distance stays at {:.1f} mm in all {} readings: the carrier did not move or "

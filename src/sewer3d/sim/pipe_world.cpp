@@ -80,6 +80,9 @@ void PipeWorld::Check() const {
     SEWER3D_VALIDATE(j.gap_mm < max_gap, field + "gap_mm",
                      "must be less than half the shorter neighbouring section ("
                          << max_gap << "), got " << j.gap_mm);
+    SEWER3D_VALIDATE(j.gap_depth_mm < 0.2 * sections[i].diameter_mm, field + "gap_depth_mm",
+                     "must be less than 20 % of the section's diameter ("
+                         << 0.2 * sections[i].diameter_mm << "), got " << j.gap_depth_mm);
     SEWER3D_VALIDATE(j.offset_mm < 0.2 * sections[i].diameter_mm, field + "offset_mm",
                      "must be less than 20 % of the section's diameter ("
                          << 0.2 * sections[i].diameter_mm << "), got " << j.offset_mm);

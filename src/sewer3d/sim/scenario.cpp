@@ -1,5 +1,6 @@
 #include "sewer3d/sim/scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -205,6 +206,19 @@ void Scenario::Check() const {
   CheckWithin("pipe.", [&] { world.Check(); });
   CheckWithin("motion.", [&] { motion.Check(); });
   CheckWithin("capture.", [&] { capture.Check(); });
+  // The capture is planned for this diameter; far from the pipe's, the planned overlap is not
+  // the overlap the run gets.
+  double smallest = 1e300, largest = 0.0;
+  for (const PipeSection& section : world.sections) {
+    smallest = std::min(smallest, section.diameter_mm);
+    largest = std::max(largest, section.diameter_mm);
+  }
+  SEWER3D_VALIDATE(world.sections.empty() || (capture.nominal_diameter_mm >= 0.75 * smallest &&
+                                              capture.nominal_diameter_mm <= 1.25 * largest),
+                   "capture.nominal_diameter_mm",
+                   "must lie within 25 % of the pipe's diameters (" << smallest << ".." << largest
+                                                                    << " mm), got "
+                                                                    << capture.nominal_diameter_mm);
   CheckWithin("odometry.", [&] { odometry.Check(); });
   CheckWithin("render.", [&] { render.Check(); });
   SEWER3D_VALIDATE(white_balance_error >= 0.0 && white_balance_error <= 0.5, "white_balance_error",
