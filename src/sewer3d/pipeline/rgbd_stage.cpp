@@ -1,7 +1,10 @@
 #include "sewer3d/pipeline/rgbd_stage.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -255,8 +258,23 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
   // Every module's median wall is given the modules' common colour (CommonWallColour).
   CorrectionOptions correction = options.colour.correction;
   std::vector<cv::Vec3d> levels;
-  for (const RgbdReferenceResult& r : report.references) {
-    if (r.reference) levels.push_back(r.reference->level_bgr);
+  for (RgbdReferenceResult& r : report.references) {
+    if (!r.reference) continue;
+    const cv::Vec3d& level = r.reference->level_bgr;
+    const auto usable = [](double x) { return x > 0.0 && std::isfinite(x); };
+    if (!(usable(level[0]) && usable(level[1]) && usable(level[2]))) {
+      // A black (or unbounded) channel: the points the reference was fitted on do not lie on the
+      // lit wall (a rig whose camera does not match its images, or no light): the module goes
+      // uncorrected.
+      r.reference.reset();
+      r.file = (run.folder / "rig.json").string();
+      r.reason = fmt::format(
+          "the reference wall level is ({:.3g}, {:.3g}, {:.3g}) (B, G, R), not a light level: do "
+          "the rig's camera parameters match the images?",
+          level[0], level[1], level[2]);
+      continue;
+    }
+    levels.push_back(level);
   }
   if (!levels.empty())
     correction.target_bgr = CommonWallColour(levels, correction.wall_level_linear);
