@@ -82,6 +82,13 @@ Command AddRgbdCommand(CLI::App& app) {
             }
             const StageOutcome outcome = RgbdOutcome(report, args->out);
             PrintStageOutcome(outcome);
+            if (args->debug_images && report.skipped > 0) {
+              fmt::print(
+                  stderr,
+                  "sewer3d: warning: rgbd: --debug-images: {} acquisitions were done by an earlier "
+                  "run and got no debug images (add --force to redo them)\n",
+                  report.skipped);
+            }
             fmt::print("wrote {}\n", outcome.output.string());
             if (!outcome.ok) {
               fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);

@@ -15,6 +15,7 @@
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/pipeline/acquisition_images.hpp"
+#include "sewer3d/pipeline/rgbd_inputs.hpp"
 #include "sewer3d/texture/colour.hpp"
 #include "sewer3d/texture/depth_prior.hpp"
 
@@ -177,6 +178,12 @@ RgbdAcquisitionResult RgbdColourPass(const CaptureRun& run, const Acquisition& a
     const RgbdGeometry geometry = ReadRgbdGeometry(files);
     const cv::Mat3f before = ReadLinearTexture(run, a, ImageKind::kTextureBefore);
     const cv::Mat3f after = ReadLinearTexture(run, a, ImageKind::kTextureAfter);
+    for (const auto& [image, kind] : {std::pair{&before, ImageKind::kTextureBefore},
+                                      std::pair{&after, ImageKind::kTextureAfter}}) {
+      const std::string problem = ExposureProblem(*image);
+      if (!problem.empty())
+        result.warnings.push_back(AcquisitionImageFile(run, a, kind).string() + ": " + problem);
+    }
     const RigModule& m = run.rig.modules.at(a.module);
     const CameraModel camera(m.module.camera);
     const double diameter =
@@ -218,6 +225,7 @@ RgbdAcquisitionResult RgbdColourPass(const CaptureRun& run, const Acquisition& a
                             .string();
     report["color"] = kRgbdColorSource;
     report["color_steps"] = texture;
+    for (const std::string& w : result.warnings) report["warnings"].push_back(w);
     report["seconds"]["color"] = std::chrono::duration<double>(Clock::now() - start).count();
     WriteRgbdColour(files, color, geometry.points, PointColours(geometry.points, camera, color),
                     report.dump(2) + "\n");

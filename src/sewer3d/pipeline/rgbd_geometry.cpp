@@ -1,11 +1,14 @@
 #include "sewer3d/pipeline/rgbd_geometry.hpp"
 
+#include <fmt/core.h>
+
 #include <chrono>
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/pipeline/acquisition_images.hpp"
+#include "sewer3d/pipeline/rgbd_inputs.hpp"
 
 namespace sewer3d {
 namespace {
@@ -55,8 +58,16 @@ RgbdAcquisitionResult RgbdGeometryPass(const CaptureRun& run, const Acquisition&
     const FrameReconstruction frame =
         reconstructors.For(a.module).Reconstruct(ReadPatternImage(run, a));
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    if (frame.report.points == 0) {
+      result.warnings.push_back(fmt::format(
+          "{}: no depth: {} spots found, none decoded into a point (a blank, blown-out or "
+          "foreign pattern image?); its texture is placed by the pipe prior alone",
+          pattern_file.string(), frame.report.spots_found));
+    }
     const nlohmann::json extra = {{"module", a.module},
                                   {"counter", a.counter},
+                                  {"inputs", InputStamps(run, a)},
+                                  {"warnings", result.warnings},
                                   {"seconds", {{"read_and_reconstruct", seconds}}}};
     if (frame.report.not_of_module) {
       FailAcquisition(result, pattern_file, NotOfModuleReason(frame.report));

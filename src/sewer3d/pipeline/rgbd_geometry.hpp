@@ -25,6 +25,8 @@ struct RgbdAcquisitionResult {
   std::string reason;  ///< kFailed: one line
   FrameReport frame;   ///< geometry pass, kDone: spots, points, rejections, stage times
   double seconds = 0;  ///< kDone: reading, processing and writing
+  /// kDone: problems of its inputs that did not stop it (rgbd_inputs.hpp), one line each.
+  std::vector<std::string> warnings;
 };
 
 /// Marks `result` failed at `file`; `message` may start with "file: " (FileError), which is

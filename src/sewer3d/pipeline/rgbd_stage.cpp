@@ -17,6 +17,7 @@
 #include "sewer3d/pattern/constraints.hpp"
 #include "sewer3d/pipeline/acquisition_images.hpp"
 #include "sewer3d/pipeline/parallel_items.hpp"
+#include "sewer3d/pipeline/rgbd_inputs.hpp"
 
 namespace sewer3d {
 namespace {
@@ -85,6 +86,10 @@ void ReadTotals(const std::filesystem::path& rgbd_folder, RgbdAcquisitionSummary
     throw FileError(files.report, "not a JSON object: remove it to redo the acquisition");
   s.spots = report.value("spots_found", 0LL);
   s.points = report.value("points", 0LL);
+  if (report.contains("warnings") && report["warnings"].is_array()) {
+    for (const json& w : report["warnings"])
+      if (w.is_string()) s.warnings.push_back(w.get<std::string>());
+  }
 }
 
 void Summarise(RgbdStageReport& report) {
@@ -197,6 +202,7 @@ std::string RgbdStageReportToJson(const RgbdStageReport& report) {
       {"wall_colour_bgr",
        {report.wall_colour_bgr[0], report.wall_colour_bgr[1], report.wall_colour_bgr[2]}},
       {"acquisitions", report.acquisitions},
+      {"warnings", report.warnings},
       {"done", report.done},
       {"skipped", report.skipped},
       {"failed", report.failed},
@@ -226,6 +232,9 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
   const int total = static_cast<int>(acquisitions.size());
 
   RgbdStageReport report;
+  report.warnings = PatternMatrixWarnings(run, constraints);
+  for (std::string& line : ForgetChangedAcquisitions(run, acquisitions, folder))
+    report.warnings.push_back(std::move(line));
   report.acquisitions = total;
   report.threads = options.threads;
   report.results.resize(acquisitions.size());
@@ -244,6 +253,8 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
         s.geometry = RgbdGeometryPass(run, acquisitions[i], folder, reconstructors);
       },
       progress_of("geometry"));
+  for (std::string& line : RepeatedImageWarnings(run, acquisitions, folder))
+    report.warnings.push_back(std::move(line));
   const size_t modules = run.rig.modules.size();
   report.references.resize(modules);
   ForEachItem<int>(
@@ -311,7 +322,10 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
       },
       progress_of("colour"));
 
-  for (RgbdAcquisitionSummary& s : report.results) ReadTotals(folder, s);
+  for (RgbdAcquisitionSummary& s : report.results) {
+    ReadTotals(folder, s);
+    for (const std::string& line : s.warnings) report.warnings.push_back(line);
+  }
   Summarise(report);
   report.seconds = SecondsSince(start);
   WriteTextFileAtomically(folder / "report.json", RgbdStageReportToJson(report));

@@ -52,6 +52,7 @@ struct RgbdAcquisitionSummary {
   bool complete = false;           ///< its report exists after this run
   long long spots = 0;             ///< complete: from its report
   long long points = 0;
+  std::vector<std::string> warnings;  ///< complete: its inputs' problems, from its report
   /// The failure of this acquisition (geometry's, else colour's), or null.
   const RgbdAcquisitionResult* Failure() const;
 };
@@ -76,6 +77,10 @@ struct RgbdStageReport {
   double seconds_per_acquisition = 0;
   double max_seconds_per_acquisition = 0;
   int threads = 1;
+  /// Problems of the inputs that did not stop the stage (rgbd_inputs.hpp), one line each:
+  /// pattern matrices, acquisitions redone because their images changed, repeated frames,
+  /// blown-out or black textures.
+  std::vector<std::string> warnings;
   /// The first failed acquisition in (module, counter) order; null when none failed.
   const RgbdAcquisitionResult* FirstFailure() const;
 };

@@ -16,6 +16,11 @@ StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::p
       report.seconds_per_acquisition, report.seconds, report.threads, kRgbdColorSource);
   // A bad acquisition is left out and named; the stage fails only when nothing is left.
   constexpr int kListed = 10;
+  for (size_t i = 0; i < report.warnings.size() && i < kListed; ++i)
+    o.details.push_back("warning: rgbd: " + report.warnings[i]);
+  if (report.warnings.size() > kListed)
+    o.details.push_back(fmt::format("warning: rgbd: {} more warnings (see {})",
+                                    report.warnings.size() - kListed, o.output.string()));
   int listed = 0;
   for (const RgbdAcquisitionSummary& s : report.results) {
     const RgbdAcquisitionResult* f = s.Failure();
@@ -33,6 +38,8 @@ StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::p
     o.error =
         fmt::format("no acquisition could be processed: all {} failed (first: {}: {}; see {})",
                     report.failed, first->file, first->reason, o.output.string());
+    // What the inputs showed (a pattern matrix that cannot decode) often says why.
+    if (!report.warnings.empty()) o.error += "; " + report.warnings.front();
   } else if (report.acquisitions == 0) {
     o.ok = false;
     o.error = "the run has no acquisition";

@@ -1,0 +1,162 @@
+#include "sewer3d/pipeline/rgbd_inputs.hpp"
+
+#include <fmt/core.h>
+
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+#include "sewer3d/io/file_stamp.hpp"
+#include "sewer3d/io/rgbd_io.hpp"
+#include "sewer3d/io/text_file.hpp"
+#include "sewer3d/pipeline/acquisition_images.hpp"
+
+namespace sewer3d {
+namespace {
+
+using json = nlohmann::json;
+
+// The "inputs" of an acquisition's geometry report; an empty object when it has none (written
+// before stamps existed) or cannot be read.
+json RecordedStamps(const std::filesystem::path& geometry_report) {
+  try {
+    const json j = json::parse(ReadTextFile(geometry_report));
+    if (j.contains("inputs") && j["inputs"].is_object()) return j["inputs"];
+  } catch (const std::exception&) {  // a damaged report is redone by the pass that reads it
+  }
+  return json::object();
+}
+
+FileStamp StampFromJson(const json& j) {
+  FileStamp s;
+  s.bytes = j.at("bytes").get<std::uintmax_t>();
+  s.mtime_ns = j.at("mtime_ns").get<std::int64_t>();
+  s.hash = std::stoull(j.at("hash").get<std::string>(), nullptr, 16);
+  return s;
+}
+
+// The first image of `recorded` the run no longer holds as stamped; empty when all match.
+std::string ChangedImage(const CaptureRun& run, const json& recorded) {
+  for (const auto& [kind, entry] : recorded.items()) {
+    try {
+      const std::filesystem::path file = run.folder / entry.at("file").get<std::string>();
+      if (!StillStamped(StampFromJson(entry), file)) return file.string();
+    } catch (const std::exception&) {
+      return kind;  // a stamp that cannot be read is not trusted
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+json InputStamps(const CaptureRun& run, const Acquisition& a) {
+  json stamps = json::object();
+  for (const ImageKind kind : kImageKinds) {
+    if (a.Image(kind) < 0 || run.images[a.Image(kind)].missing) continue;
+    const RunImage& image = run.images[a.Image(kind)];
+    const FileStamp s = StampFile(run.folder / image.file);
+    stamps[ImageKindName(kind)] = {{"file", image.file},
+                                   {"bytes", s.bytes},
+                                   {"mtime_ns", s.mtime_ns},
+                                   {"hash", fmt::format("{:016x}", s.hash)}};
+  }
+  return stamps;
+}
+
+std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
+                                                   const std::vector<Acquisition>& acquisitions,
+                                                   const std::filesystem::path& rgbd_folder) {
+  std::vector<std::string> lines;
+  for (const Acquisition& a : acquisitions) {
+    const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter);
+    if (!RgbdGeometryDone(files)) continue;
+    const std::string changed = ChangedImage(run, RecordedStamps(files.geometry));
+    if (changed.empty()) continue;
+    std::error_code ec;
+    std::filesystem::remove(files.report, ec);
+    std::filesystem::remove(files.geometry, ec);
+    lines.push_back(
+        fmt::format("m{} counter {}: {} changed since an earlier run processed it: "
+                    "the acquisition is redone",
+                    a.module, a.counter, changed));
+  }
+  return lines;
+}
+
+std::vector<std::string> PatternMatrixWarnings(const CaptureRun& run,
+                                               const std::vector<PatternConstraints>& inferred) {
+  const PatternConstraints wanted;
+  std::vector<std::string> lines;
+  for (size_t k = 0; k < inferred.size() && k < run.rig.modules.size(); ++k) {
+    const PatternConstraints& c = inferred[k];
+    std::string problem;
+    if (!c.isolated) problem = "spots touch (8-adjacent)";
+    if (c.min_hamming < wanted.min_hamming) {
+      problem += fmt::format("{}windows differ in as few as {} spots (at least {} wanted)",
+                             problem.empty() ? "" : ", ", c.min_hamming, wanted.min_hamming);
+    }
+    if (c.min_weight < wanted.min_weight) {
+      problem += fmt::format("{}windows hold as few as {} spots (at least {} wanted)",
+                             problem.empty() ? "" : ", ", c.min_weight, wanted.min_weight);
+    }
+    if (problem.empty()) continue;
+    lines.push_back(fmt::format(
+        "{}: modules[{}]: the pattern matrix {} breaks the pattern constraints: {}; its spots "
+        "decode badly or not at all (sewer3d describe checks a module)",
+        (run.folder / "rig.json").string(), k, run.rig.modules[k].module.pattern.matrix_path,
+        problem));
+  }
+  return lines;
+}
+
+std::vector<std::string> RepeatedImageWarnings(const CaptureRun& run,
+                                               const std::vector<Acquisition>& acquisitions,
+                                               const std::filesystem::path& rgbd_folder) {
+  std::vector<std::string> lines;
+  std::string previous_hash;
+  const Acquisition* previous = nullptr;
+  for (const Acquisition& a : acquisitions) {  // ordered by (module, counter)
+    const json stamps =
+        RecordedStamps(RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter).geometry);
+    const std::string hash =
+        stamps.contains("pattern") ? stamps["pattern"].value("hash", std::string()) : "";
+    if (!hash.empty() && previous != nullptr && previous->module == a.module &&
+        hash == previous_hash) {
+      lines.push_back(fmt::format(
+          "{}: the pattern image of m{} counter {} is byte for byte that of counter {}: a camera "
+          "that delivers the same frame again? The odometry places the two at different stations",
+          AcquisitionImageFile(run, a, ImageKind::kPattern).string(), a.module, a.counter,
+          previous->counter));
+    }
+    previous_hash = hash;
+    previous = &a;
+  }
+  return lines;
+}
+
+std::string ExposureProblem(const cv::Mat3f& linear) {
+  if (linear.empty()) return {};
+  constexpr float kSaturated = 254.5F / 255.0F, kBlack = 1.5F / 255.0F;
+  long long saturated = 0, black = 0;
+  for (int r = 0; r < linear.rows; ++r) {
+    for (const cv::Vec3f& p : cv::Mat_<cv::Vec3f>(linear.row(r))) {
+      const float high = std::max({p[0], p[1], p[2]});
+      saturated += high >= kSaturated;
+      black += high <= kBlack;
+    }
+  }
+  const double total = static_cast<double>(linear.total());
+  if (saturated > total / 2) {
+    return fmt::format(
+        "{:.0f} % of the pixels are saturated (blown out): the texture there has "
+        "no colour and no detail",
+        100.0 * saturated / total);
+  }
+  if (black > total / 2) {
+    return fmt::format("{:.0f} % of the pixels are black: no light, or a lens cap?",
+                       100.0 * black / total);
+  }
+  return {};
+}
+
+}  // namespace sewer3d
