@@ -154,3 +154,120 @@ broken_run same_file acquisitions.csv '3s|,[^,]*$|,'"$(sed -n 2p run_ok/acquisit
 broken_run times_zero acquisitions.csv '2,$s/^\([^,]*,[^,]*,[^,]*,\)[^,]*,/\10.000000,/'
 scenario_with nominal_far.json 'capture={"nominal_diameter_mm": 1000}'
 scenario_with gap_deep.json 'pipe.joints.0.gap_depth_mm=500'
+# Session 27 (probe 5's leftovers).
+# white_png PNG: the 8-bit PNG replaced by an all-white one of its size and colour type.
+white_png() {
+  python3 - "$1" <<'PY'
+import struct, sys, zlib
+path = sys.argv[1]
+w, h, depth, colour = struct.unpack(">IIBB", open(path, "rb").read()[16:26])
+channels = {0: 1, 2: 3}[colour]
+def chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+rows = b"".join(b"\0" + b"\xff" * (channels * w) for _ in range(h))
+open(path, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, colour, 0, 0, 0))
+                       + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+PY
+}
+broken_run swapped rig.json 'modules.0.name="m1"' 'modules.1.name="m0"'
+cp -r run_ok run_odo_ms
+awk -F, 'NR == 1 { print; next } { printf "%.3f,%s\n", $1 * 1000, $2 }' run_ok/odometry.csv \
+  >run_odo_ms/odometry.csv
+# One module, two acquisitions (100 mm of travel), at the smallest size rgbd decodes (648 px)
+# for what compares counters.
+python3 -c "import json; s = json.load(open('scenario_ok.json')); s['motion']['travel_mm'] = 100; \
+s['camera_width'] = 648; s['rig'] = {'modules': 1}; s['render'] = {'supersampling': 1}; \
+json.dump(s, open('scenario_two.json', 'w'))"
+"$S" simulate run --scenario scenario_two.json --out run_two --quiet >/dev/null
+cp -r run_two run_stuck
+cp run_stuck/images/m0/000000_pattern.png run_stuck/images/m0/000001_pattern.png
+cp -r run_two run_white
+white_png run_white/images/m0/000001_texture_before.png
+cp -r run_two run_replaced
+# The run's pattern matrix with every spot doubled to the right: spots touch.
+cp -r run_ok run_touching
+python3 - run_touching/pattern.png <<'PY'
+import struct, sys, zlib
+path = sys.argv[1]
+b = open(path, "rb").read()
+w, h, depth, colour = struct.unpack(">IIBB", b[16:26])
+assert depth == 8 and colour == 0, (depth, colour)
+data, at = b"", 8
+while at < len(b):
+    n, kind = struct.unpack(">I4s", b[at:at + 8])
+    if kind == b"IDAT":
+        data += b[at + 8:at + 8 + n]
+    at += 12 + n
+raw = zlib.decompress(data)
+rows, prior = [], [0] * w
+for r in range(h):  # undo the PNG row filters (one byte per pixel)
+    kind, line, px = raw[r * (w + 1)], raw[r * (w + 1) + 1:(r + 1) * (w + 1)], []
+    for c in range(w):
+        a, b, cc = px[c - 1] if c else 0, prior[c], prior[c - 1] if c else 0
+        p = a + b - cc
+        paeth = a if abs(p - a) <= min(abs(p - b), abs(p - cc)) else (b if abs(p - b) <= abs(p - cc) else cc)
+        px.append((line[c] + [0, a, b, (a + b) // 2, paeth][kind]) & 0xFF)
+    prior = px
+    rows.append(b"\0" + bytes(max(px[c], px[c - 1]) for c in range(w)))
+def chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+open(path, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0))
+                       + chunk(b"IDAT", zlib.compress(b"".join(rows))) + chunk(b"IEND", b""))
+PY
+cp -r run_two run_jump
+awk -F, 'NR == 1 { print; next } { printf "%s,%.4f\n", $1, $2 + (NR > 8 ? 1000 : 0) }' \
+  run_two/odometry.csv >run_jump/odometry.csv
+# Session 27 (sixth probe).
+json_with m/module.json m/matrix_nul.json 'pattern.matrix="pattern.png\u0000.txt"'
+json_with m/module.json m/along_axis.json 'projector_from_camera.translation_mm=[0,0,-77]' \
+  'projector_from_camera.rotation=[0,1,0,-1,0,0,0,0,1]'
+mkdir -p m_dir/module.json
+mkdir -p same && cp frame8/pattern.png same/depth.png
+cp frame8/pattern.png in5.png
+mkdir -p cm_p
+python3 - <<'PY'
+import random, struct
+random.seed(1)
+# A flat, slightly noisy cloud: no curvature for a cylinder to measure.
+pts = [(random.uniform(-40, 40), random.uniform(-30, 30), 120 + random.gauss(0, 0.05)) for _ in range(400)]
+with open("flat.ply", "w") as f:
+    f.write("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n" % len(pts))
+    f.writelines("%.4f %.4f %.4f\n" % p for p in pts)
+# A TIFF whose strips reach past the end of the file: OpenCV's decoder fails inside and writes
+# to std::cerr.
+w = h = 64; rps = 8; n = h // rps
+data = bytes([100]) * (w * rps * 2)
+ifd_off = 8 + len(data); arr = ifd_off + 2 + 10 * 12 + 4
+tags = [(256, 3, 1, w), (257, 3, 1, h), (258, 3, 1, 8), (259, 3, 1, 1), (262, 3, 1, 1),
+        (273, 4, n, arr), (277, 3, 1, 1), (278, 3, 1, rps), (279, 4, n, arr + 4 * n), (284, 3, 1, 1)]
+ifd = struct.pack("<H", len(tags))
+for tag, kind, count, value in tags:
+    ifd += struct.pack("<HHIHH", tag, kind, count, value, 0) if kind == 3 else struct.pack("<HHII", tag, kind, count, value)
+ifd += struct.pack("<I", 0)
+offsets = [8 + i * w * rps for i in range(n)]
+open("strips_short.tiff", "wb").write(b"II*\0" + struct.pack("<I", ifd_off) + data + ifd
+                                      + struct.pack("<%dI" % n, *offsets) + struct.pack("<%dI" % n, *[w * rps] * n))
+PY
+cp -r run_ok run_nul
+python3 -c "p = 'run_nul/acquisitions.csv'; t = open(p, 'rb').read(); open(p, 'wb').write(t[:120] + b'\0' + t[120:])"
+cp -r run_two run_loop
+rm run_loop/images/m0/000000_pattern.png && ln -s 000000_pattern.png run_loop/images/m0/000000_pattern.png
+cp -r run_two run_blank
+white_png run_blank/images/m0/000000_pattern.png
+broken_run matrix_missing rig.json 'modules.0.module.pattern.matrix="nothing.png"'
+cp -r run_ok run_same_place
+python3 -c "import json; p = 'run_same_place/rig.json'; r = json.load(open(p)); \
+r['modules'][1]['carrier_from_camera']['translation_mm'] = r['modules'][0]['carrier_from_camera']['translation_mm']; \
+json.dump(r, open(p, 'w'))"
+"$S" rgbd run_two --out ws_rec --quiet >/dev/null 2>&1
+cp -r ws_rec ws_opt && python3 -c "import json; p = 'ws_opt/workspace.json'; w = json.load(open(p)); \
+w['stages']['rgbd']['options'] = {}; json.dump(w, open(p, 'w'))"
+cp -r ws_rec ws_stale && python3 -c "import json; p = 'ws_stale/workspace.json'; w = json.load(open(p)); \
+w['stages']['model'] = dict(w['stages']['rgbd'], done=False); json.dump(w, open(p, 'w'))"
+mkdir -p ws_stale/model && echo '{}' >ws_stale/model/model.json
+python3 -c "
+with open('chain_big.g2o', 'w') as f:
+    f.writelines('VERTEX_SE3:QUAT %d %d 0 0 0 0 0 1\n' % (i, i) for i in range(10001))
+    f.writelines('EDGE_SE3:QUAT %d %d 1 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n' % (i, i + 1) for i in range(10000))
+    f.write('FIX 0\n')"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/camera/field_of_view.hpp"
 #include "sewer3d/core/check.hpp"
 
@@ -53,6 +54,17 @@ void ModuleDescription::Check() const {
                        << pattern.offset_px.x() << ", " << pattern.offset_px.y() << ")");
   SEWER3D_VALIDATE(std::abs(projector_from_camera.rotation.norm() - 1.0) < 1e-9,
                    "projector_from_camera.rotation", "must be a rotation");
+  // Depth comes from disparity: a projector on the camera's line of sight, or one turned away
+  // from what the camera sees, measures none.
+  const int step = std::max(1, std::max(camera.width, camera.height) / 64);
+  const DisparityRange range =
+      ComputeDisparityRange(*this, kWorkingDistanceMinMm, kWorkingDistanceMaxMm, step);
+  SEWER3D_VALIDATE(range.max_du_px + range.max_dv_px >= 1.0, "projector_from_camera",
+                   "walls " << kWorkingDistanceMinMm << "-" << kWorkingDistanceMaxMm
+                            << " mm from the camera shift the pattern by "
+                            << range.max_du_px + range.max_dv_px
+                            << " px (under 1 px): the projector lies on the camera's line of "
+                               "sight or faces away from its view, so no depth can be measured");
 }
 
 DisparityRange ComputeDisparityRange(const ModuleDescription& module, double z_min_mm,

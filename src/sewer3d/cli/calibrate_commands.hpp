@@ -9,7 +9,7 @@
 
 namespace sewer3d::cli {
 
-/// The --board option of the calibrate subcommands: COLSxROWS, at least 3x3 inner corners.
+/// The --board option of the calibrate subcommands: COLSxROWS inner corners, each 3 to 200.
 CLI::Option* AddBoardOption(CLI::App& sub, std::string& board);
 
 /// The --square-mm option (board square size): 0.1..1000 mm (a board OpenCV can use).

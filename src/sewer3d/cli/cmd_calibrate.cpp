@@ -14,6 +14,7 @@
 #include "sewer3d/io/calibration_io.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/input_file.hpp"
 #include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d::cli {
@@ -29,6 +30,7 @@ struct CameraArgs {
 int RunCamera(const CameraArgs& a) {
   const auto board_size = ParseSize(a.board);
   CheckOutputFile(a.out);
+  for (const std::string& image : a.images) CheckNotAnInput(a.out, image, "--images");
   CameraCalibrationFile file;
   file.board_cols = board_size->first;
   file.board_rows = board_size->second;
@@ -116,10 +118,12 @@ CLI::Option* AddBoardOption(CLI::App& sub, std::string& board) {
       ->capture_default_str()
       ->check(CLI::Validator(
           [](std::string& s) {
+            constexpr int kMaxCorners = 200;  // a printable board has far fewer
             const auto size = ParseSize(s);
-            return size && size->first >= 3 && size->second >= 3
+            const auto fits = [](int n) { return n >= 3 && n <= kMaxCorners; };
+            return size && fits(size->first) && fits(size->second)
                        ? std::string()
-                       : "expected COLSxROWS, at least 3x3 inner corners, got " + s;
+                       : "expected COLSxROWS inner corners, each 3 to 200, got " + s;
           },
           "COLSxROWS"));
 }

@@ -13,9 +13,11 @@
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/calibrate_commands.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/input_file.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/pattern/constraints.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
@@ -140,6 +142,11 @@ void PrintCalibration(const ModuleCalibrationResult& r, const std::vector<std::s
 int RunModule(const ModuleArgs& a) {
   const auto board_size = ParseSize(a.board);
   CheckOutputFile(a.out);  // before minutes of work
+  // pattern.png is written beside the module file: they must be two files.
+  if (fs::path(a.out).filename() == "pattern.png")
+    throw InvalidValue("--out", "names the module file (JSON), got " + a.out +
+                                    ": pattern.png is written beside it");
+  CheckOutputFile(fs::path(a.out).parent_path() / "pattern.png");
   const std::vector<fs::path> poses = PoseFolders(a.captures);
   if (poses.size() < 3) {
     throw FileError(
@@ -175,6 +182,16 @@ int RunModule(const ModuleArgs& a) {
     return 1;
   }
   ModuleDescription module = calibrated.module;
+  try {
+    module.Check();
+  } catch (const InvalidValue& e) {
+    // Every length of the estimate scales with the board's square: a baseline out of range
+    // is a wrong --square-mm far more often than a wrong module.
+    if (e.field().rfind("projector_from_camera", 0) != 0) throw;
+    throw InvalidValue("--square-mm", fmt::format("{:g} mm makes the calibrated module's {}: "
+                                                  "{}; is it the board's square size?",
+                                                  a.square_mm, e.field(), e.problem()));
+  }
   module.pattern.matrix_path = "pattern.png";
   module.source_json.clear();
   SaveModule(a.out, module);

@@ -3,6 +3,8 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <thread>
@@ -73,6 +75,15 @@ Command AddModelCommand(CLI::App& app) {
                                  e.problem());
             }
             const CaptureRun run = LoadRun(args->run);
+            const double cells =
+                std::pow(ModelStageOptions{}.resolution_mm / args->options.resolution_mm, 2);
+            if (cells > 1.5) {  // the time and memory grow with the cell count
+              fmt::print(
+                  "model: {:g} mm cells: {:.0f} times the cells, time and map memory of the "
+                  "default {:g} mm\n",
+                  args->options.resolution_mm, cells, ModelStageOptions{}.resolution_mm);
+              std::fflush(stdout);
+            }
             ProgressBar bar(args->quiet);
             auto progress = [&](const std::string& pass, int done, int total) {
               bar.Update("model " + pass, done, total, pass == "tiles" ? "tiles" : "items");

@@ -12,6 +12,7 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/summary.hpp"
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/pattern_io.hpp"
@@ -103,6 +104,11 @@ Command AddModuleCommand(CLI::App& app) {
                 !problem.empty()) {
               throw InvalidValue("--pitch-px", problem);
             }
+            for (const std::filesystem::path& file :
+                 {dir / module.pattern.matrix_path,
+                  PatternSidecarPath(dir / module.pattern.matrix_path), dir / "pattern_preview.png",
+                  dir / "module.json"})
+              CheckOutputFile(file);  // all before any: a refusal leaves none written
             WritePatternMatrix(dir / module.pattern.matrix_path, pattern);
             WritePatternSidecar(PatternSidecarPath(dir / module.pattern.matrix_path),
                                 {&search, nullptr, "shipped"},

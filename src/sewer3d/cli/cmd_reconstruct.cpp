@@ -8,6 +8,7 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/input_file.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/reconstruction_io.hpp"
 #include "sewer3d/triangulate/reconstruct_frame.hpp"
@@ -34,6 +35,13 @@ Command AddReconstructCommand(CLI::App& app) {
       sub, [args] {
         const LoadedModule loaded = LoadModule(args->module);
         const ModuleDescription& module = loaded.module;
+        for (const char* name : {"cloud.ply", "depth.tiff", "depth.png", "report.json"}) {
+          const std::filesystem::path output = std::filesystem::path(args->out) / name;
+          CheckNotAnInput(output, args->image, "--image");
+          if (!args->texture.empty()) CheckNotAnInput(output, args->texture, "--texture");
+          CheckNotAnInput(output, args->module, "--module");
+          CheckNotAnInput(output, loaded.pattern_file, "pattern matrix");
+        }
         const cv::Mat image = ReadGreyImage(args->image);
         if (image.cols != module.camera.width || image.rows != module.camera.height) {
           throw FileError(args->image,

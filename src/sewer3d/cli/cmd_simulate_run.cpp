@@ -97,6 +97,16 @@ int RunRun(const RunArgs& a) {
       throw InvalidValue("", e.problem() + " (--allow-large runs it anyway)");
     }
   }
+  // The plan before the work: rendering time grows with the image size and the square of the
+  // supersampling.
+  const int ss = s.render.supersampling;
+  fmt::print(
+      "simulate '{}': {} images of {}x{} px at {}x{} samples per pixel ({:.2g} samples in "
+      "all), about {:.1f} MB\n",
+      s.name, size.images, module.camera.width, module.camera.height, ss, ss,
+      static_cast<double>(size.images) * module.camera.width * module.camera.height * ss * ss,
+      size.bytes / 1e6);
+  std::fflush(stdout);
   in_scenario(simulate);
   fmt::print("run '{}': {} acquisitions x {} modules x 3 images = {} images of {}x{} px\n", s.name,
              r.plan.acquisitions, s.rig.modules, r.images, module.camera.width,

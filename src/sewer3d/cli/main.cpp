@@ -1,7 +1,10 @@
 // sewer3d: one binary, one subcommand per task (DESIGN.md, command-line contract).
 // Errors end here: one line on stderr and the exit status of cli/exit_code.hpp (README's table).
 
+#include <fmt/core.h>
+
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -20,7 +23,7 @@ namespace {
 
 int ReportError(const std::exception_ptr& error) {
   const sewer3d::cli::ErrorExit exit = sewer3d::cli::ExitForError(error);
-  std::cerr << "sewer3d: error: " << exit.message << "\n";
+  fmt::print(stderr, "sewer3d: error: {}\n", exit.message);
   return exit.code;
 }
 
@@ -66,6 +69,29 @@ bool TakesWholeNumbers(const CLI::App& app, const std::string& message) {
   return false;
 }
 
+// Whether some (sub)command of `app` has the long option `--name`.
+bool HasLongOption(const CLI::App& app, const std::string& name) {
+  if (app.get_option_no_throw("--" + name) != nullptr) return true;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (HasLongOption(*sub, name)) return true;
+  }
+  return false;
+}
+
+// The first argument written as a long option with one dash ("-out"), which CLI11 would read as
+// the short flags -o -u -t and then report --out as missing; empty when none.
+std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--") break;
+    if (arg.size() < 3 || arg[0] != '-' || std::isalpha(static_cast<unsigned char>(arg[1])) == 0) {
+      continue;
+    }
+    if (HasLongOption(app, arg.substr(1, arg.find('=') - 1))) return arg;
+  }
+  return {};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,8 +118,14 @@ int main(int argc, char** argv) {
     known |= argc >= 2 && c.app->get_name() == argv[1];
   }
   if (argc >= 2 && argv[1][0] != '-' && !known) {
-    std::cerr << "sewer3d: error: unknown command '" << argv[1] << "'; the commands are " << names
-              << "\n";
+    fmt::print(stderr, "sewer3d: error: unknown command '{}'; the commands are {}\n", argv[1],
+               names);
+    return sewer3d::cli::kExitUsage;
+  }
+  if (const std::string arg = SingleDashLongOption(app, argc, argv); !arg.empty()) {
+    fmt::print(stderr,
+               "sewer3d: error: {}: long options take two dashes: -{} (see sewer3d --help)\n", arg,
+               arg);
     return sewer3d::cli::kExitUsage;
   }
   try {
@@ -122,20 +154,19 @@ int main(int argc, char** argv) {
       return 0;
     }
     // Range and conversion refusals in the words of the other value errors.
-    std::cerr << "sewer3d: error: "
-              << sewer3d::cli::ReadableRangeError(e.what(), TakesWholeNumbers(app, e.what()))
-              << " (see sewer3d --help)\n";
+    fmt::print(stderr, "sewer3d: error: {} (see sewer3d --help)\n",
+               sewer3d::cli::ReadableRangeError(e.what(), TakesWholeNumbers(app, e.what())));
     return sewer3d::cli::kExitUsage;
   }
   if (const auto [option, problem] = BadValue(app); option != nullptr) {
-    std::cerr << "sewer3d: error: invalid value: " << option->get_name() << ": " << problem << "\n";
+    fmt::print(stderr, "sewer3d: error: invalid value: {}: {}\n", option->get_name(), problem);
     return sewer3d::cli::kExitUsage;
   }
   try {
     for (const auto& c : commands) {
       if (c.app->parsed()) return c.run();
     }
-    std::cerr << "sewer3d: error: no subcommand\n";
+    fmt::print(stderr, "sewer3d: error: no subcommand\n");
     return sewer3d::cli::kExitUsage;
   } catch (...) {
     return ReportError(std::current_exception());

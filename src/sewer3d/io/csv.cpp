@@ -15,6 +15,8 @@ std::vector<CsvRow> ReadCsv(const std::filesystem::path& path, const std::string
   std::string text = ReadTextFile(path);
   // Spreadsheet exports: a UTF-8 byte-order mark first, CRLF line ends; both are read as plain.
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+  if (const size_t nul = text.find('\0'); nul != std::string::npos)
+    throw FileError(path, fmt::format("a NUL byte at offset {}: not a text file", nul));
   std::istringstream in(text);
   std::string line;
   const auto next = [&] {

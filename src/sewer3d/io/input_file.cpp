@@ -109,4 +109,15 @@ std::optional<ImageSize> ImageHeaderSize(const std::vector<std::uint8_t>& b) {
   return std::nullopt;
 }
 
+void CheckNotAnInput(const std::filesystem::path& output, const std::filesystem::path& input,
+                     const std::string& option) {
+  std::error_code ec;
+  const bool same = std::filesystem::equivalent(output, input, ec) && !ec;
+  if (same || output.lexically_normal() == input.lexically_normal()) {
+    throw FileError(output, fmt::format("is also the input {} ({}): it would be overwritten; "
+                                        "choose another output",
+                                        option, input.string()));
+  }
+}
+
 }  // namespace sewer3d

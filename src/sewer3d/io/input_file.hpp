@@ -25,6 +25,11 @@ std::uintmax_t CheckInputFile(const std::filesystem::path& path,
 std::vector<std::uint8_t> ReadFileBytes(const std::filesystem::path& path,
                                         std::uintmax_t max_bytes = kMaxInputFileBytes);
 
+/// FileError naming `output` when it is the file `input` (the same path, or a link to it): the
+/// result would overwrite what it is made from. `option` names the input ("--image").
+void CheckNotAnInput(const std::filesystem::path& output, const std::filesystem::path& input,
+                     const std::string& option);
+
 struct ImageSize {
   std::uint64_t width = 0, height = 0;
 };

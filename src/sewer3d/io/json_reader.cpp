@@ -107,6 +107,8 @@ std::string JsonReader::Text(const json& j, const char* key, const std::string& 
   const auto it = j.find(key);
   if (it == j.end()) return fallback;
   if (!it->is_string()) Fail(prefix + key, "must be a string");
+  if (it->get<std::string>().find('\0') != std::string::npos)
+    Fail(prefix + key, "holds a NUL character (\\u0000)");
   return it->get<std::string>();
 }
 
@@ -162,6 +164,8 @@ std::string JsonReader::Text(const json& j, const char* key, const std::string& 
   const json& value = Member(j, key, prefix);
   if (!value.is_string() || value.get<std::string>().empty())
     Fail(prefix + key, "must be a non-empty string");
+  if (value.get<std::string>().find('\0') != std::string::npos)
+    Fail(prefix + key, "holds a NUL character (\\u0000)");
   return value.get<std::string>();
 }
 

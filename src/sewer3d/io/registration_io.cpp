@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/csv.hpp"
@@ -50,10 +52,15 @@ void WriteRegistrationPoses(const std::filesystem::path& path,
 
 std::vector<RegistrationPoseRow> ReadRegistrationPoses(const std::filesystem::path& path) {
   std::vector<RegistrationPoseRow> rows;
+  std::map<std::pair<int, int>, int> seen;  // (module, counter) -> line
   for (const CsvRow& row : ReadCsv(path, kPosesHeader)) {
     RegistrationPoseRow r;
     r.module = CsvInteger(path, row, 0, "module");
     r.counter = CsvInteger(path, row, 1, "counter");
+    if (const auto [it, added] = seen.emplace(std::pair{r.module, r.counter}, row.line); !added) {
+      throw FileError(path, fmt::format("line {}: m{} counter {} has a pose already (line {})",
+                                        row.line, r.module, r.counter, it->second));
+    }
     r.time_s = CsvNumber(path, row, 2, "time_s");
     const Eigen::Vector3d p(CsvNumber(path, row, 3, "x_mm"), CsvNumber(path, row, 4, "y_mm"),
                             CsvNumber(path, row, 5, "z_mm"));

@@ -99,7 +99,11 @@ LoadedRig ReadRig(const fs::path& path) {
     rm.carrier_from_camera = in.Pose(m, "carrier_from_camera", p);
     fs::path matrix = rm.module.pattern.matrix_path;
     if (matrix.is_relative()) matrix = path.parent_path() / matrix;
-    out.patterns.push_back(ReadPatternMatrix(matrix));
+    try {
+      out.patterns.push_back(ReadPatternMatrix(matrix));
+    } catch (const FileError& e) {  // the field that names the file, then the file's problem
+      throw FileError(path, p + "module.pattern.matrix: " + e.what());
+    }
     out.rig.modules.push_back(rm);
   }
   ValidateFileContents(path, [&] { out.rig.Check(); });
@@ -287,6 +291,61 @@ std::vector<OdometryReading> ReadOdometry(const fs::path& path) {
   return out;
 }
 
+namespace {
+
+// A rig whose module entries are named after the image folders (m0 .. m5, as the simulator
+// and docs/formats.md name them) but in another order than acquisitions.csv's module numbers
+// would place every image with another module's calibration and pose: refused.
+void CheckFolderMatchesRigName(const fs::path& folder, const std::string& rig_name,
+                               const RunImage& image) {
+  const auto is_module_name = [](const std::string& name) {
+    return name.size() >= 2 && name[0] == 'm' &&
+           std::all_of(name.begin() + 1, name.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  const std::string image_folder = fs::path(image.file).parent_path().filename().string();
+  if (!is_module_name(rig_name) || !is_module_name(image_folder) || rig_name == image_folder)
+    return;
+  throw FileError(folder / "rig.json",
+                  fmt::format("modules[{0}] is named {1}, but acquisitions.csv lists {2} as "
+                              "module {0}'s: the rig's modules are not in the order of the image "
+                              "folders",
+                              image.module, rig_name, image.file));
+}
+
+// The odometry's readings against the images' times: some image must lie in their span, and a
+// span a thousand times the images' is a file written in milliseconds.
+void CheckOdometrySpan(const fs::path& file, const std::vector<OdometryReading>& readings,
+                       const std::vector<RunImage>& images) {
+  if (readings.empty()) throw FileError(file, "has no reading");
+  if (images.empty()) return;
+  const double first = readings.front().time_s, last = readings.back().time_s;
+  const bool any_inside = std::any_of(images.begin(), images.end(), [&](const RunImage& i) {
+    return i.time_s >= first && i.time_s <= last;
+  });
+  if (!any_inside) {
+    throw FileError(file, fmt::format("the readings cover {:.3f}-{:.3f} s, but no image of "
+                                      "acquisitions.csv lies in that time span",
+                                      first, last));
+  }
+  const auto [early, late] =
+      std::minmax_element(images.begin(), images.end(),
+                          [](const RunImage& a, const RunImage& b) { return a.time_s < b.time_s; });
+  const double image_span = late->time_s - early->time_s;
+  // Milliseconds read as seconds: a span 1000 times the images', and a 20 Hz counter's readings
+  // 50 "s" apart (no counter reads less often than once a second).
+  constexpr double kMaxSpanRatio = 200.0;
+  const double mean_interval = (last - first) / std::max<double>(1.0, readings.size() - 1.0);
+  if (image_span > 0.0 && last - first > kMaxSpanRatio * image_span && mean_interval >= 1.0) {
+    throw FileError(
+        file, fmt::format("time_s: the readings span {:.3f}-{:.3f} s, {:.0f} times "
+                          "the images' {:.3f}-{:.3f} s: time_s must be in seconds "
+                          "(milliseconds?)",
+                          first, last, (last - first) / image_span, early->time_s, late->time_s));
+  }
+}
+
+}  // namespace
+
 CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw FileError(folder, "is not a run folder");
@@ -312,6 +371,7 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
                       fmt::format("modules: {} modules, but acquisitions.csv lists {} of module {}",
                                   run.rig.modules.size(), image.file, image.module));
     }
+    CheckFolderMatchesRigName(folder, run.rig.modules[image.module].name, image);
     if (!seen.emplace(image.module, image.counter, static_cast<int>(image.kind)).second) {
       throw FileError(index, fmt::format("module {} counter {} lists two {} images", image.module,
                                          image.counter, ImageKindName(image.kind)));
@@ -324,17 +384,7 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
   }
   CheckRunCounts(folder / "run.json", counts, run);
   OdometryCheck odometry = CheckOdometry(ReadOdometry(folder / "odometry.csv"));
-  if (odometry.kept.empty()) throw FileError(folder / "odometry.csv", "has no reading");
-  const double first = odometry.kept.front().time_s, last = odometry.kept.back().time_s;
-  const bool any_inside = std::any_of(run.images.begin(), run.images.end(), [&](const RunImage& i) {
-    return i.time_s >= first && i.time_s <= last;
-  });
-  if (!run.images.empty() && !any_inside) {
-    throw FileError(folder / "odometry.csv",
-                    fmt::format("the readings cover {:.3f}-{:.3f} s, but no image of "
-                                "acquisitions.csv lies in that time span",
-                                first, last));
-  }
+  CheckOdometrySpan(folder / "odometry.csv", odometry.kept, run.images);
   run.odometry = std::move(odometry.kept);
   run.odometry_findings = std::move(odometry.findings);
   return run;

@@ -45,7 +45,7 @@ WorkspaceRecord WorkspaceFromJson(const std::string& text, const std::filesystem
     const std::string prefix = "stages." + name + ".";
     if (!s.is_object()) reader.Fail("stages." + name, "must be an object");
     WorkspaceStage stage;
-    stage.options_json = reader.Object(s, "options", prefix).dump();
+    stage.options_json = reader.RequiredObject(s, "options", prefix).dump();
     stage.done = reader.Bool(s, "done", prefix, false);
     stage.started_utc = reader.Text(s, "started_utc", prefix, "");
     if (s.contains("done_utc") && !s["done_utc"].is_null())

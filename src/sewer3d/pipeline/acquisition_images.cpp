@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -34,10 +35,13 @@ std::filesystem::path ExistingImageFile(const CaptureRun& run, const Acquisition
     throw FileError(file, std::string("no ") + ImageKindName(kind) + " image in acquisitions.csv");
   if (run.images[a.Image(kind)].missing) {
     std::error_code ec;
-    throw FileError(file, std::filesystem::exists(file, ec)
-                              ? "listed in acquisitions.csv but not a regular file (a folder, "
-                                "FIFO or device)"
-                              : "listed in acquisitions.csv but missing");
+    const bool exists = std::filesystem::exists(file, ec);
+    if (ec && ec != std::errc::no_such_file_or_directory) {  // a link loop, no permission
+      throw FileError(file, "listed in acquisitions.csv but cannot be reached: " + ec.message());
+    }
+    throw FileError(file, exists ? "listed in acquisitions.csv but not a regular file (a folder, "
+                                   "FIFO or device)"
+                                 : "listed in acquisitions.csv but missing");
   }
   return file;
 }

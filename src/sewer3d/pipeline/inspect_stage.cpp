@@ -142,6 +142,15 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
   options.Check();
   const auto start = Clock::now();
   const std::filesystem::path model_dir = workspace.StageFolder("model");
+  // A model left by an earlier registration while a newer one was interrupted is stale.
+  const auto model = workspace.record().stages.find("model");
+  if (model != workspace.record().stages.end() && !model->second.done &&
+      IsRegularFile(model_dir / "model.json")) {
+    throw FileError(model_dir / "model.json",
+                    "left by an earlier model: workspace.json records the model stage as not done "
+                    "(failed, interrupted, or its registration redone since): run `sewer3d "
+                    "model` first");
+  }
   const PipeModelInfo info = ReadModelJson(model_dir / "model.json");
   workspace.BeginStage(kStage, InspectOptionsJson(options), options.force);
   const InspectionFiles files = InspectionFilesIn(workspace.folder());

@@ -6,12 +6,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
+#include "sewer3d/io/text_file.hpp"
 #include "sewer3d/model/unroll.hpp"
 #include "sewer3d/pipeline/model_outputs.hpp"
 #include "sewer3d/pipeline/model_samples.hpp"
@@ -133,6 +135,23 @@ void WriteTiles(const CaptureRun& run, const std::filesystem::path& ws, const Ce
       });
 }
 
+// The register stage's odometry warnings (registration/report.json), which explain most
+// centrelines that cannot be fitted: a jump or gap in the odometry scatters the acquisitions
+// it places. Empty when there are none.
+std::string OdometryHint(const std::filesystem::path& ws) {
+  try {
+    const nlohmann::json j =
+        nlohmann::json::parse(ReadTextFile(ws / "registration" / "report.json"));
+    const nlohmann::json& warnings = j.at("initial_poses").at("odometry_warnings");
+    if (!warnings.is_array() || warnings.empty()) return {};
+    return fmt::format("; the registration warned of the odometry ({} warning{}), first: {}",
+                       warnings.size(), warnings.size() == 1 ? "" : "s",
+                       warnings.front().get<std::string>());
+  } catch (const std::exception&) {
+    return {};  // an old or damaged report: the message goes without the hint
+  }
+}
+
 }  // namespace
 
 void ModelStageOptions::Check() const {
@@ -187,6 +206,7 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
         "(a slice needs {} points over {:.0f} deg of the wall): too little of the pipe measured",
         fit.report.slices_used, fit.report.slices_used + fit.report.slices_rejected, all.size(),
         acquisitions.size(), fit_options.min_slice_points, fit_options.min_slice_coverage_deg);
+    report.message += OdometryHint(ws);
     workspace.FinishStage(kStage, false, {{"error", report.message}});
     return report;
   }

@@ -25,7 +25,8 @@ ProcessStage RgbdProcessStage() {
           [=](const CaptureRun& run, Workspace& ws, const ProcessOptions& o,
               const StageProgress& progress) {
             return RgbdOutcome(RunRgbdStage(run, ws, stage_options(o), progress), ws.folder());
-          }};
+          },
+          "rgbd/report.json"};
 }
 
 ProcessStage RegisterProcessStage() {
@@ -41,7 +42,8 @@ ProcessStage RegisterProcessStage() {
       [=](const CaptureRun& run, Workspace& ws, const ProcessOptions& o,
           const StageProgress& progress) {
         return RegisterOutcome(RunRegisterStage(run, ws, stage_options(o), progress), ws.folder());
-      }};
+      },
+      "registration/poses.csv"};
 }
 
 ProcessStage ModelProcessStage() {
@@ -57,7 +59,8 @@ ProcessStage ModelProcessStage() {
           [=](const CaptureRun& run, Workspace& ws, const ProcessOptions& o,
               const StageProgress& progress) {
             return ModelOutcome(RunModelStage(run, ws, stage_options(o), progress), ws.folder());
-          }};
+          },
+          "model/model.json"};
 }
 
 ProcessStage InspectProcessStage() {
@@ -71,21 +74,26 @@ ProcessStage InspectProcessStage() {
               const StageProgress& progress) {
             return InspectOutcome(RunInspectStage(run, ws, stage_options(o), progress),
                                   ws.folder());
-          }};
+          },
+          "inspection/observations.json"};
 }
 
 ProcessStage ReportProcessStage() {
   return {"report", [](const ProcessOptions&) { return std::string("{}"); },
           [](const CaptureRun& run, Workspace& ws, const ProcessOptions& o, const StageProgress&) {
             return ReportOutcome(RunReportStage(run, ws, o.force));
-          }};
+          },
+          "report/index.html"};
 }
 
-// Recorded done with the options it would run with now, and nothing before it changed.
-bool CanSkip(const Workspace& workspace, const std::string& stage, const std::string& options) {
-  const auto it = workspace.record().stages.find(stage);
+// Recorded done with the options it would run with now, nothing before it changed, and its
+// main output still on disk (a stage folder removed by hand is made again).
+bool CanSkip(const Workspace& workspace, const ProcessStage& stage, const std::string& options) {
+  const auto it = workspace.record().stages.find(stage.name);
+  std::error_code ec;
   return it != workspace.record().stages.end() && it->second.done &&
-         it->second.options_json == options;
+         it->second.options_json == options &&
+         std::filesystem::is_regular_file(workspace.folder() / stage.output, ec);
 }
 
 std::string StageNames() {
@@ -144,7 +152,7 @@ ProcessReport RunProcess(const CaptureRun& run, Workspace& workspace, const Proc
     r.name = stage.name;
     const auto stage_start = Clock::now();
     if (!options.force && upstream_unchanged &&
-        CanSkip(workspace, stage.name, stage.options_json(options))) {
+        CanSkip(workspace, stage, stage.options_json(options))) {
       r.skipped = true;
       r.seconds = workspace.record().stages.at(stage.name).seconds;
       r.outcome.summary = stage.name + ": done before with these options (workspace.json); skipped";

@@ -69,6 +69,8 @@ struct ProcessStage {
   std::function<StageOutcome(const CaptureRun&, Workspace&, const ProcessOptions&,
                              const StageProgress&)>
       run;
+  /// Its main output, relative to the workspace: a stage recorded done without it is redone.
+  std::string output;
 };
 
 /// The chain in order: rgbd, register, model, inspect, report.

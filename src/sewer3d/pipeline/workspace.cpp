@@ -7,6 +7,7 @@
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_error.hpp"
 
 #ifndef SEWER3D_VERSION
 #error "SEWER3D_VERSION (CMake's PROJECT_VERSION) must be defined by the build"
@@ -58,12 +59,26 @@ std::string OptionsChange(const std::string& before, const std::string& now) {
   return change.empty() ? before + ", now " + now : change;
 }
 
+// `folder`, unless it is the run's own folder: the stages would write into the capture run.
+const std::filesystem::path& NotTheRun(const std::filesystem::path& folder,
+                                       const std::filesystem::path& run_folder) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(folder, run_folder, ec) && !ec) {
+    throw FileError(folder,
+                    "is the capture run's own folder: the workspace (--out) must be "
+                    "another folder, so that the run stays as captured");
+  }
+  return folder;
+}
+
 }  // namespace
 
 std::string SoftwareVersion() { return SEWER3D_VERSION; }
 
 Workspace::Workspace(const std::filesystem::path& folder, const std::filesystem::path& run_folder)
-    : folder_(folder), lock_(folder), stale_temporaries_removed_(RemoveStaleTemporaries(folder)) {
+    : folder_(NotTheRun(folder, run_folder)),
+      lock_(folder),
+      stale_temporaries_removed_(RemoveStaleTemporaries(folder)) {
   const std::string run = RunName(run_folder);
   if (IsRegularFile(RecordFile())) {
     record_ = ReadWorkspaceRecord(RecordFile());
@@ -79,6 +94,11 @@ Workspace::Workspace(const std::filesystem::path& folder, const std::filesystem:
 void Workspace::BeginStage(const std::string& stage, const std::string& options_json, bool force) {
   const auto it = record_.stages.find(stage);
   const bool recorded = it != record_.stages.end();
+  if (recorded && it->second.options_json == "{}" && options_json != "{}" && !force) {
+    throw FileError(RecordFile(), "stages." + stage +
+                                      ".options: empty, but the stage has options: the record "
+                                      "was damaged; use --force to redo the stage");
+  }
   if (recorded && it->second.options_json != options_json && !force) {
     throw WorkspaceConflict(RecordFile().string() + ": stage '" + stage +
                             "' was run with other options (" +

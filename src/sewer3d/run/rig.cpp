@@ -29,6 +29,18 @@ void Rig::Check() const {
           field + "carrier_from_camera",
           "puts the camera or projector of module " << m.name << " outside the carrier");
     }
+    // Two cameras cannot share one place: a rig written with every camera at the carrier's
+    // centre would override the measurements with impossible rig edges.
+    constexpr double kMinCameraSpacingMm = 5.0;
+    for (size_t k = 0; k < i; ++k) {
+      const double d =
+          (m.carrier_from_camera.translation - modules[k].carrier_from_camera.translation).norm();
+      SEWER3D_VALIDATE(d >= kMinCameraSpacingMm, field + "carrier_from_camera",
+                       "puts the camera of module " << m.name << " " << d << " mm from that of "
+                                                    << modules[k].name << " (modules[" << k
+                                                    << "]): cameras are at least "
+                                                    << kMinCameraSpacingMm << " mm apart");
+    }
   }
 }
 
