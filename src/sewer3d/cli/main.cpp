@@ -82,7 +82,7 @@ bool HasLongOption(const CLI::App& app, const std::string& name) {
 // the short flags -o -u -t and then report --out as missing; empty when none.
 std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
+    std::string arg = argv[i];
     if (arg == "--") break;
     if (arg.size() < 3 || arg[0] != '-' || std::isalpha(static_cast<unsigned char>(arg[1])) == 0) {
       continue;
