@@ -114,9 +114,8 @@ Command AddEvaluateCommand(CLI::App& app) {
                                 "no cylinder fits the points (identical or collinear points, "
                                 "or the fit did not converge)");
               // A flat cloud "fits" a cylinder of any large radius: a plane that explains the
-              // points about as well means there is no curvature to measure.
-              if (const auto plane = FitPlane(points);
-                  plane && plane->rms_mm <= 2.0 * fit->rms_mm) {
+              // points at least as well means there is no curvature to measure.
+              if (const auto plane = FitPlane(points); plane && plane->rms_mm <= fit->rms_mm) {
                 throw FileError(args->cloud,
                                 fmt::format("the points lie on a plane (plane RMS {:.4f} mm, "
                                             "cylinder RMS {:.4f} mm): no curvature to measure a "
