@@ -271,3 +271,6 @@ with open('chain_big.g2o', 'w') as f:
     f.writelines('VERTEX_SE3:QUAT %d %d 0 0 0 0 0 1\n' % (i, i) for i in range(10001))
     f.writelines('EDGE_SE3:QUAT %d %d 1 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n' % (i, i + 1) for i in range(10000))
     f.write('FIX 0\n')"
+# Session 27 (seventh probe).
+json_with m/module.json m/cam_tiny.json 'camera.width=8' 'camera.height=6' 'camera.fx=5' \
+  'camera.fy=5' 'camera.cx=4' 'camera.cy=3'

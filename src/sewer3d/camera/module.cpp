@@ -54,6 +54,15 @@ void ModuleDescription::Check() const {
                        << pattern.offset_px.x() << ", " << pattern.offset_px.y() << ")");
   SEWER3D_VALIDATE(std::abs(projector_from_camera.rotation.norm() - 1.0) < 1e-9,
                    "projector_from_camera.rotation", "must be a rotation");
+  // The camera must resolve the spots: a pattern pitch imaged on a fraction of a pixel leaves
+  // nothing to decode (and would have the renderer sample many projector pixels per pixel).
+  constexpr double kMinPitchInCameraPx = 0.25;
+  const double pitch_in_camera = pattern.pitch_px * camera.fx / projector.fx;
+  SEWER3D_VALIDATE(pitch_in_camera >= kMinPitchInCameraPx, "camera.fx",
+                   "the pattern pitch of " << pattern.pitch_px << " projector px spans "
+                                           << pitch_in_camera << " camera px (under "
+                                           << kMinPitchInCameraPx
+                                           << "): the camera cannot resolve the spots");
   // Depth comes from disparity: a projector on the camera's line of sight, or one turned away
   // from what the camera sees, measures none.
   const int step = std::max(1, std::max(camera.width, camera.height) / 64);

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
@@ -16,6 +18,7 @@
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/model/fit.hpp"
+#include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/simeval/rgbd_evaluation.hpp"
 #include "sewer3d/simio/scene_io.hpp"
 
@@ -59,7 +62,20 @@ Command AddEvaluateCommand(CLI::App& app) {
       ->check(CLI::Range(0.05, 1.0));
   sub->add_option("--truth", args->truth,
                   "scene.json of the simulated capture: errors against the true surface");
-  return {sub, [args] {
+  return {sub, [args, sub] {
+            const bool of_workspace = args->surface != "plane" && args->surface != "cylinder";
+            // Options of the other kind of evaluation are refused, not ignored.
+            const std::vector<std::string> others =
+                of_workspace ? std::vector<std::string>{"--cloud", "--truth", "--inner-fraction"}
+                             : std::vector<std::string>{"--run", "--workspace", "--out", "--stride",
+                                                        "--smoothing-px"};
+            for (const std::string& name : others) {
+              if (sub->get_option(name)->count() > 0) {
+                throw InvalidValue(name, "does not apply to evaluate " + args->surface);
+              }
+            }
+            if (of_workspace && !args->run.empty() && !args->workspace.empty())
+              CheckWorkspaceOfRun(args->workspace, args->run);
             if (args->surface == "rgbd") {
               if (args->run.empty() || args->workspace.empty())
                 throw InvalidValue("--run, --workspace", "evaluate rgbd needs both");

@@ -285,6 +285,17 @@ void SubmapSearchOptions::Check() const {
                    "only " << distinct << " distinct " << n << "x" << n << " windows have at least "
                            << constraints.min_weight << " spots, and the " << rows << "x" << cols
                            << " array needs " << needed);
+  // Codes of n*n bits at least d apart: no more than the Hamming (sphere-packing) bound,
+  // 2^(n*n) / (the number of codes within (d - 1) / 2 of one).
+  const int bits = n * n, radius = (constraints.min_hamming - 1) / 2;
+  double ball = 0.0;
+  for (int k = 0; k <= std::min(radius, bits); ++k) ball += BinomialCoefficient(bits, k);
+  const double most =
+      constraints.min_hamming > bits ? 1.0 : std::floor(std::ldexp(1.0, bits) / ball);
+  SEWER3D_VALIDATE(most >= needed, "min_hamming",
+                   "at most " << most << " " << n << "x" << n << " windows can differ pairwise in "
+                              << constraints.min_hamming << " spots, and the " << rows << "x"
+                              << cols << " array needs " << needed);
   SEWER3D_VALIDATE(max_moves > 0, "max_moves", "must be > 0, got " << max_moves);
   SEWER3D_VALIDATE(noise >= 0.0 && noise <= 1.0, "noise", "must be 0..1, got " << noise);
   SEWER3D_VALIDATE(tabu_tenure >= 0, "tabu_tenure", "must not be negative, got " << tabu_tenure);

@@ -59,19 +59,34 @@ std::string OptionsChange(const std::string& before, const std::string& now) {
   return change.empty() ? before + ", now " + now : change;
 }
 
-// `folder`, unless it is the run's own folder: the stages would write into the capture run.
+// `folder`, unless it is the run's own folder, lies inside it, or holds another capture run:
+// the stages would write into a capture run.
 const std::filesystem::path& NotTheRun(const std::filesystem::path& folder,
                                        const std::filesystem::path& run_folder) {
-  std::error_code ec;
-  if (std::filesystem::equivalent(folder, run_folder, ec) && !ec) {
+  const std::filesystem::path run = RunName(run_folder), ws = RunName(folder);
+  const auto [end, at] = std::mismatch(run.begin(), run.end(), ws.begin(), ws.end());
+  if (end == run.end()) {
+    throw FileError(folder, std::string(at == ws.end() ? "is" : "lies inside") +
+                                " the capture run's own folder: the workspace (--out) must be "
+                                "another folder, so that the run stays as captured");
+  }
+  if (IsRegularFile(folder / "run.json")) {
     throw FileError(folder,
-                    "is the capture run's own folder: the workspace (--out) must be "
-                    "another folder, so that the run stays as captured");
+                    "holds a capture run (run.json): a workspace (--out) must be a "
+                    "folder of its own");
   }
   return folder;
 }
 
 }  // namespace
+
+void CheckWorkspaceOfRun(const std::filesystem::path& folder,
+                         const std::filesystem::path& run_folder) {
+  const std::filesystem::path record = folder / "workspace.json";
+  if (!IsRegularFile(record)) return;
+  const std::string recorded = ReadWorkspaceRecord(record).run, run = RunName(run_folder);
+  if (recorded != run) throw FileError(record, "workspace of run " + recorded + ", not of " + run);
+}
 
 std::string SoftwareVersion() { return SEWER3D_VERSION; }
 

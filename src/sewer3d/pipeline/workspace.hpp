@@ -21,6 +21,12 @@
 
 namespace sewer3d {
 
+/// Throws FileError naming `folder`/workspace.json when that workspace records another run
+/// than `run_folder` (an evaluation compares a workspace with its own run's truth only);
+/// nothing when it has no record.
+void CheckWorkspaceOfRun(const std::filesystem::path& folder,
+                         const std::filesystem::path& run_folder);
+
 /// The software version recorded in workspace.json: CMake's PROJECT_VERSION, e.g. "0.1.0".
 std::string SoftwareVersion();
 
