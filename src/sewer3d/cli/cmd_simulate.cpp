@@ -104,6 +104,11 @@ void CheckFrameFolder(const std::filesystem::path& out, const LoadedModule& load
   std::error_code ec;
   const auto matrix = std::filesystem::weakly_canonical(loaded.pattern_file, ec);
   const auto image = std::filesystem::weakly_canonical(out / "pattern.png", ec);
+  if (std::filesystem::exists(out / "run.json")) {
+    throw InvalidValue("--out", out.string() +
+                                    " holds a capture run, whose pattern.png the rendered image "
+                                    "would replace; choose another folder");
+  }
   if (std::filesystem::exists(out / "module.json") || (!ec && matrix == image)) {
     throw InvalidValue("--out", out.string() +
                                     " holds a module, whose pattern.png the rendered "

@@ -27,6 +27,8 @@ namespace {
 // simulate calibration did not write (no truth/poses.json) are refused, never removed.
 void PrepareCaptureFolder(const std::filesystem::path& out, int poses) {
   if (!std::filesystem::is_directory(out)) return;
+  if (std::filesystem::is_regular_file(out / "run.json"))
+    throw FileError(out, "holds a capture run (run.json); choose another --out");
   static const std::regex pose_name("pose_([0-9]+)");
   const bool simulated = std::filesystem::is_regular_file(out / "truth" / "poses.json");
   std::vector<std::filesystem::path> stale;

@@ -77,17 +77,18 @@ std::string Fixed(double value, int decimals) {
 }
 
 std::string Table(const std::vector<std::string>& header,
-                  const std::vector<std::vector<std::string>>& rows, const std::string& css_class) {
-  auto cell = [](const std::string& text) {
-    return !text.empty() && text[0] == '<' ? text : Escape(text);
-  };
+                  const std::vector<std::vector<std::string>>& rows, const std::string& css_class,
+                  int markup_column) {
   std::string out = css_class.empty() ? "<table>" : "<table class=\"" + css_class + "\">";
   out += "<thead><tr>";
   for (const std::string& h : header) out += "<th>" + Escape(h) + "</th>";
   out += "</tr></thead><tbody>\n";
   for (const auto& row : rows) {
     out += "<tr>";
-    for (const std::string& c : row) out += "<td>" + cell(c) + "</td>";
+    for (size_t i = 0; i < row.size(); ++i) {
+      const bool markup = static_cast<int>(i) == markup_column;
+      out += "<td>" + (markup ? row[i] : Escape(row[i])) + "</td>";
+    }
     out += "</tr>\n";
   }
   return out + "</tbody></table>\n";

@@ -26,11 +26,12 @@ std::string ScriptJson(const std::string& json_text);
 /// `value` with `decimals` decimals; "–" for NaN or infinity.
 std::string Fixed(double value, int decimals);
 
-/// A <table> with a header row and body rows; cells are escaped unless they start with '<'
-/// (already markup, e.g. an <img>).
+/// A <table> with a header row and body rows. Cells are escaped, except those of the column
+/// `markup_column` (≥ 0), which hold markup made here (an <img>): text from files (an
+/// observation's remark) never becomes markup.
 std::string Table(const std::vector<std::string>& header,
                   const std::vector<std::vector<std::string>>& rows,
-                  const std::string& css_class = "");
+                  const std::string& css_class = "", int markup_column = -1);
 
 /// A visible note: <p class="note">text</p>.
 std::string Note(const std::string& text);

@@ -82,7 +82,7 @@ std::string ObservationsSection(const std::optional<std::vector<Observation>>& o
   out += "<p>Crops: texture above displacement (scale as the maps), station to the right.</p>\n";
   out += html::Table({"id", "code", "station (m)", "length (m)", "clock from (h)", "clock to (h)",
                       "quantities", "confidence", "joint", "remark", "crop"},
-                     rows, "observations");
+                     rows, "observations", /*markup_column=*/10);
   return out + "</section>\n";
 }
 

@@ -191,5 +191,16 @@ TEST(ReportPieces, HeatScaleBase64AndEvaluationTables) {
   EXPECT_NE(EvaluationTables("x", "not json").find("class=\"note\""), std::string::npos);
 }
 
+TEST(ReportPieces, TableCellsFromFilesNeverBecomeMarkup) {
+  // A remark read from observations.json that starts like markup stays text; only the
+  // column made of markup is written as it is.
+  const std::string t =
+      html::Table({"remark", "crop"}, {{"</td><script>alert(1)</script>", "<img alt=\"crop\">"}},
+                  "", /*markup_column=*/1);
+  EXPECT_EQ(t.find("<script>"), std::string::npos) << t;
+  EXPECT_NE(t.find("&lt;/td&gt;&lt;script&gt;"), std::string::npos) << t;
+  EXPECT_NE(t.find("<td><img alt=\"crop\"></td>"), std::string::npos) << t;
+}
+
 }  // namespace
 }  // namespace sewer3d
