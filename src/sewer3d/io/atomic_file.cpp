@@ -60,6 +60,7 @@ void CheckOutputFile(const std::filesystem::path& path) {
   std::error_code ec;
   const fs::file_status status = fs::symlink_status(path, ec);
   if (fs::is_directory(path, ec)) throw FileError(path, "is a folder, not a file");
+  if (!path.has_filename()) throw FileError(path, "names a folder (ends with /), not a file");
   if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_symlink(status))
     throw FileError(path, "not a regular file (a FIFO, socket or device); not replaced");
   fs::path above = fs::absolute(path, ec).parent_path();
