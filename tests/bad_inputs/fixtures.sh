@@ -274,3 +274,14 @@ with open('chain_big.g2o', 'w') as f:
 # Session 27 (seventh probe).
 json_with m/module.json m/cam_tiny.json 'camera.width=8' 'camera.height=6' 'camera.fx=5' \
   'camera.fy=5' 'camera.cx=4' 'camera.cy=3'
+# Session 28 (probe 8 leftovers).
+{
+  echo 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1'
+  echo 'VERTEX_SE3:QUAT 1 1 0 0 0 0 0 1'
+  echo 'VERTEX_SE3:QUAT 2 1000000 0 0 0 0 0 1'
+  for e in '0 1' '1 2'; do
+    echo "EDGE_SE3:QUAT $e 1 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1"
+  done
+  echo 'FIX 0'
+  echo 'FIX 2'
+} >fixed_apart.g2o

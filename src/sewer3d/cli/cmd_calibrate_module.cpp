@@ -33,15 +33,20 @@ struct ModuleArgs {
   bool quiet = false;
 };
 
-// The pose folders below `captures` that hold texture.png and pattern.png, sorted.
+// The pose folders below `captures` that hold texture.png and pattern.png, sorted; a folder
+// with only one of the two is named as skipped.
 std::vector<fs::path> PoseFolders(const fs::path& captures) {
   std::vector<fs::path> poses;
   std::error_code ec;
   for (fs::directory_iterator it(captures, ec), end; !ec && it != end; it.increment(ec)) {
     const fs::path& p = it->path();
-    if (fs::is_directory(p, ec) && IsRegularFile(p / "texture.png") &&
-        IsRegularFile(p / "pattern.png"))
-      poses.push_back(p);
+    if (!fs::is_directory(p, ec)) continue;
+    const bool texture = IsRegularFile(p / "texture.png"),
+               pattern = IsRegularFile(p / "pattern.png");
+    if (texture && pattern) poses.push_back(p);
+    if (texture != pattern)
+      fmt::print("{}: {} without {}, skipped\n", p.string(),
+                 texture ? "texture.png" : "pattern.png", texture ? "pattern.png" : "texture.png");
   }
   if (ec) throw FileError(captures, "cannot list the folder: " + ec.message());
   std::sort(poses.begin(), poses.end());

@@ -15,7 +15,17 @@
 namespace sewer3d::cli {
 namespace {
 
-void PrintRigOverlap(const ModuleDescription& module) {
+// The worst overlap of the table: where neighbouring modules leave the widest gap (or overlap
+// least) — which DN, carrier offset, and whether in texture or 3-D.
+struct WorstOverlap {
+  double deg = 1e9, mm = 0.0, dn = 0.0;
+  Eigen::Vector2d offset = Eigen::Vector2d::Zero();
+  bool lit = false;
+};
+
+// Prints the rig's overlap table; returns its worst case.
+WorstOverlap PrintRigOverlap(const ModuleDescription& module) {
+  WorstOverlap worst;
   const Rig rig = MakeRig(module, {});
   fmt::print(
       "\nrig: {} modules on a carrier Ø{:.0f} x {:.0f} mm, cameras and projectors on its axis\n",
@@ -38,6 +48,7 @@ void PrintRigOverlap(const ModuleDescription& module) {
         const auto [lo, hi] = std::minmax_element(
             o.begin(), o.end(),
             [](const auto& a, const auto& b) { return a.overlap_deg < b.overlap_deg; });
+        if (lo->overlap_deg < worst.deg) worst = {lo->overlap_deg, lo->overlap_mm, dn, offset, lit};
         cells += fmt::format(" {:>5.1f}-{:<4.1f} ({:>3.0f}-{:<3.0f})", lo->overlap_deg,
                              hi->overlap_deg, lo->overlap_mm, hi->overlap_mm);
       }
@@ -45,6 +56,19 @@ void PrintRigOverlap(const ModuleDescription& module) {
                  cells);
     }
   }
+  return worst;
+}
+
+// One warning line when six such modules leave part of the wall unseen; true then.
+bool WarnOfGaps(const WorstOverlap& w) {
+  if (w.deg >= 0.0) return false;
+  std::fflush(stdout);  // the table first
+  fmt::print(stderr,
+             "sewer3d: warning: --rig: six such modules leave gaps of up to {:.1f}° ({:.0f} mm) "
+             "between neighbours in {} (DN{:.0f}, carrier offset {:.1f}, {:.1f} mm): that part "
+             "of the wall is never measured\n",
+             -w.deg, -w.mm, w.lit ? "3-D" : "texture", w.dn, w.offset.x(), w.offset.y());
+  return true;
 }
 
 }  // namespace
@@ -62,9 +86,12 @@ Command AddDescribeCommand(CLI::App& app) {
             const LoadedModule loaded = LoadModule(*module_path);
             fmt::print("{}: read\n", *module_path);
             const std::string problem = PrintModuleSummary(loaded.module, loaded.pattern);
-            if (*rig) PrintRigOverlap(loaded.module);
+            const bool gaps = *rig && WarnOfGaps(PrintRigOverlap(loaded.module));
             if (problem.empty()) {
-              fmt::print("{}: a valid, usable module\n", *module_path);
+              fmt::print("{}: {}\n", *module_path,
+                         gaps ? "a valid module, but six on the carrier do not cover the pipe "
+                                "all around"
+                              : "a valid, usable module");
               return 0;
             }
             std::fflush(stdout);

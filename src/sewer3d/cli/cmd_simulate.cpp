@@ -54,8 +54,22 @@ bool IsBuiltInScene(const std::string& name) {
   return name == "plane" || name == "cylinder" || name == "pipe-wall";
 }
 
+// The geometry flags of the other kind of built-in scene are refused, not ignored.
+void CheckSceneFlags(const std::string& scene, const CLI::App& frame) {
+  const bool plane = scene == "plane";
+  const auto flags = plane ? std::vector<const char*>{"--diameter-mm", "--decentre-mm", "--axis"}
+                           : std::vector<const char*>{"--distance-mm", "--tilt-deg"};
+  for (const char* flag : flags) {
+    if (frame.count(flag) > 0) {
+      throw InvalidValue(flag, std::string("does not apply to --scene ") + scene + " (only to " +
+                                   (plane ? "cylinder and pipe-wall" : "plane") + ")");
+    }
+  }
+}
+
 // plane, cylinder or pipe-wall, from the options.
-Scene BuiltInScene(const FrameArgs& a) {
+Scene BuiltInScene(const FrameArgs& a, const CLI::App& frame) {
+  CheckSceneFlags(a.scene, frame);
   Scene scene;
   scene.type = a.scene == "plane"      ? Scene::Type::kPlane
                : a.scene == "cylinder" ? Scene::Type::kCylinder
@@ -120,7 +134,8 @@ int RunFrame(const FrameArgs& a, const CLI::App& frame) {
   const LoadedModule loaded = LoadModule(a.module);
   CheckFrameFolder(a.out, loaded);
   RenderOptions options = a.render;
-  const Scene scene = IsBuiltInScene(a.scene) ? BuiltInScene(a) : FileScene(a, frame, options);
+  const Scene scene =
+      IsBuiltInScene(a.scene) ? BuiltInScene(a, frame) : FileScene(a, frame, options);
   if (a.ideal) {
     const RenderOptions ideal = RenderOptions::Ideal();
     options.camera_f_number = ideal.camera_f_number;

@@ -11,6 +11,7 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/module_io.hpp"
@@ -80,7 +81,14 @@ int RunCalibration(const CalibrationArgs& a) {
   board.cols = size->first;
   board.rows = size->second;
   board.square_mm = a.square_mm;
-  const std::vector<Rigid3d> poses = RandomBoardPoses(loaded.module, board, a.poses, a.seed);
+  std::vector<Rigid3d> poses;
+  try {
+    poses = RandomBoardPoses(loaded.module, board, a.poses, a.seed);
+  } catch (const InvalidValue& e) {  // named as the flags
+    if (e.field() == "square_mm") throw InvalidValue("--square-mm", e.problem());
+    if (e.field() == "board") throw InvalidValue("--board", e.problem());
+    throw;
+  }
   const std::filesystem::path out(a.out);
   PrepareCaptureFolder(out, a.poses);
   ProgressBar progress(a.quiet);

@@ -121,6 +121,9 @@ void InspectedRange(const CoarseMap& map, const std::vector<RingCoefficients>& r
 
 void InspectOptions::Check() const {
   ValidatePositive("cell_mm", cell_mm);
+  ValidatePositive("max_map_cell_mm", max_map_cell_mm);
+  SEWER3D_VALIDATE(cell_mm <= max_map_cell_mm, "cell_mm",
+                   "must be ≤ max_map_cell_mm (" << max_map_cell_mm << " mm), got " << cell_mm);
   ValidateNotNegative("nominal_diameter_mm", nominal_diameter_mm);
   SEWER3D_VALIDATE(min_ring_coverage > 0.0 && min_ring_coverage <= 1.0, "min_ring_coverage",
                    "must be in (0, 1], got " << min_ring_coverage);
@@ -141,6 +144,9 @@ Inspection Inspect(const CoarseMap& map, const Centreline& centreline,
   SEWER3D_VALIDATE(
       std::abs(dn - 2.0 * radius) <= 0.25 * 2.0 * radius, "nominal_diameter_mm",
       "must be within 25 % of the model's diameter (" << 2.0 * radius << " mm), got " << dn);
+  SEWER3D_VALIDATE(map.RowMm() <= options.max_map_cell_mm * (1.0 + 1e-9), "map",
+                   "cells of " << map.RowMm() << " mm are coarser than max_map_cell_mm ("
+                               << options.max_map_cell_mm << " mm)");
   Inspection out;
   InspectionReport& rep = out.report;
   rep.coarse_rows = map.displacement_mm.rows;
@@ -164,8 +170,10 @@ Inspection Inspect(const CoarseMap& map, const Centreline& centreline,
       o.at_joint = o.at_joint || gap <= options.joint_flag_mm;
     }
   }
-  for (const JointMeasure& j : joints)
-    out.observations.push_back(JointObservation(j, map, options.joints));
+  for (const JointMeasure& j : joints) {
+    Observation o = JointObservation(j, map, options.joints);
+    if (o.confidence > 0.0) out.observations.push_back(std::move(o));
+  }
   for (const RowRange& s : sections) {
     Observation o;
     if (Deformation(map, fits, s, radius, dn, options.min_deformation_pct, o))

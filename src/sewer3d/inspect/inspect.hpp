@@ -16,7 +16,11 @@
 namespace sewer3d {
 
 struct InspectOptions {
-  double cell_mm = 1.0;              ///< coarse map cell (coarse_map.hpp)
+  double cell_mm = 1.0;  ///< coarse map cell (coarse_map.hpp)
+  /// Maps (and coarse cells) coarser than this are refused: a crack (≤ defects.
+  /// crack_max_width_mm) must span 3 cells and a joint's gap its edges, or the findings are
+  /// invented shapes (a 50 mm map gave an "80 mm wide crack" and joints with nothing measured).
+  double max_map_cell_mm = 2.0;
   double nominal_diameter_mm = 0.0;  ///< DN; 0: twice the model radius
   double min_ring_coverage = 0.6;    ///< rows measured less around are not ring-fitted
   double smoothing_mm = 25.0;        ///< half window of the smooth wall along the pipe
@@ -49,7 +53,9 @@ struct Inspection {
   InspectionReport report;
 };
 
-/// Observations on `map` (CoarseMapBuilder) of a model with `centreline`.
+/// Observations on `map` (CoarseMapBuilder) of a model with `centreline`. InvalidValue
+/// ("map") when the map's cells are coarser than options.max_map_cell_mm. A joint with nothing
+/// measured on either side, or neither a gap nor an offset, is no observation.
 Inspection Inspect(const CoarseMap& map, const Centreline& centreline,
                    const InspectOptions& options);
 

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/model/axis_curve.hpp"
 
@@ -53,8 +54,8 @@ float Wall(double s, double th) {
   return static_cast<float>(d);
 }
 
-CoarseMap SyntheticMap() {
-  const MapGrid grid = MakeMapGrid(0.0, 600.0, kRadius, 0.5);
+CoarseMap SyntheticMap(double resolution_mm = 0.5) {
+  const MapGrid grid = MakeMapGrid(0.0, 600.0, kRadius, resolution_mm);
   PipeMaps maps;
   maps.grid = grid;
   maps.displacement_mm.create(grid.rows, grid.cols);
@@ -134,6 +135,15 @@ TEST(Inspect, FindsAndMeasuresEveryKindOnASyntheticPipe) {
   EXPECT_NEAR(Q(deformation, "deformation_pct"), 3.0, 0.3);
   EXPECT_EQ(deformation->characterisation, "A");
   EXPECT_NEAR(deformation->station_mm, 0.0, 2.0);
+}
+
+TEST(Inspect, MapsTooCoarseForTheThresholdsAreRefused) {
+  // 5 mm cells: the 2 mm crack and the 8 mm gap are one or two cells; what such a map shows
+  // would be invented shapes.
+  EXPECT_THROW(Inspect(SyntheticMap(5.0), Straight(), {}), InvalidValue);
+  InspectOptions coarse_cells;
+  coarse_cells.cell_mm = 3.0;
+  EXPECT_THROW(coarse_cells.Check(), InvalidValue);
 }
 
 }  // namespace

@@ -1,11 +1,12 @@
 #include "sewer3d/pipeline/inspect_stage.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgproc.hpp>
 #include <optional>
 
 #include "sewer3d/core/check.hpp"
@@ -14,6 +15,7 @@
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/inspection_io.hpp"
 #include "sewer3d/io/model_io.hpp"
+#include "sewer3d/pipeline/inspection_crops.hpp"
 
 namespace sewer3d {
 namespace {
@@ -49,51 +51,6 @@ void ForEachPiece(const std::filesystem::path& model_dir, const PipeModelInfo& i
     if (progress) progress(pass, ++done, static_cast<int>(info.tiles.size()));
   }
 }
-
-/// The crops of every observation, texture above displacement, filled piece by piece.
-class Crops {
- public:
-  Crops(const std::vector<Observation>& observations, const MapGrid& grid, double view_range_mm)
-      : grid_(grid), range_(view_range_mm) {
-    for (const Observation& o : observations) {
-      texture_.emplace_back(cv::Mat3b::zeros(std::max(1, o.crop.rows), std::max(1, o.crop.cols)));
-      displacement_.emplace_back(std::max(1, o.crop.rows), std::max(1, o.crop.cols));
-      displacement_.back().setTo(std::numeric_limits<float>::quiet_NaN());
-      boxes_.push_back(o.crop);
-    }
-  }
-  void Add(const PipeMaps& piece) {
-    const int p0 = static_cast<int>(
-        std::lround((piece.grid.station0_mm - grid_.station0_mm) / grid_.resolution_mm));
-    for (std::size_t i = 0; i < boxes_.size(); ++i) {
-      const MapCrop& b = boxes_[i];
-      const int from = std::max(b.row0, p0), to = std::min(b.row0 + b.rows, p0 + piece.grid.rows);
-      for (int r = from; r < to; ++r) {
-        for (int k = 0; k < b.cols; ++k) {
-          const int c = (b.col0 + k) % grid_.cols;
-          texture_[i](r - b.row0, k) = piece.texture(r - p0, c);
-          displacement_[i](r - b.row0, k) = piece.displacement_mm(r - p0, c);
-        }
-      }
-    }
-  }
-  /// Texture above the displacement view, scaled to at most max_side pixels.
-  [[nodiscard]] cv::Mat3b Image(std::size_t i, int max_side) const {
-    cv::Mat3b both;
-    cv::vconcat(texture_[i], DisplacementView(displacement_[i], range_), both);
-    const double scale =
-        std::min(1.0, static_cast<double>(max_side) / std::max(both.rows, both.cols));
-    if (scale < 1.0) cv::resize(both, both, cv::Size(), scale, scale, cv::INTER_AREA);
-    return both;
-  }
-
- private:
-  MapGrid grid_;
-  double range_;
-  std::vector<MapCrop> boxes_;
-  std::vector<cv::Mat3b> texture_;
-  std::vector<cv::Mat1f> displacement_;
-};
 
 }  // namespace
 
@@ -152,6 +109,14 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
                     "model` first");
   }
   const PipeModelInfo info = ReadModelJson(model_dir / "model.json");
+  const double limit = options.inspect.max_map_cell_mm;
+  if (info.grid.resolution_mm > limit * (1.0 + 1e-9)) {
+    throw FileError(model_dir / "model.json",
+                    fmt::format("maps of {:g} mm cells are too coarse to inspect (at most {:g} mm: "
+                                "cracks and joint gaps are a few mm wide); make the model with "
+                                "`sewer3d model --resolution-mm {:g}` or finer",
+                                info.grid.resolution_mm, limit, limit));
+  }
   workspace.BeginStage(kStage, InspectOptionsJson(options), options.force);
   const InspectionFiles files = InspectionFilesIn(workspace.folder());
 
@@ -170,13 +135,16 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
       progress, "maps");
   const Inspection inspection = Inspect(coarse.Finish(), info.centreline, options.inspect);
 
-  Crops crops(inspection.observations, info.grid, info.view_range_mm);
+  std::vector<MapCrop> boxes;
+  for (const Observation& o : inspection.observations) boxes.push_back(o.crop);
+  InspectionCrops crops(boxes, info.grid, info.view_range_mm, options.max_crop_side_px);
+  const InspectionCrops::Done write = [&](std::size_t i, const cv::Mat3b& image) {
+    WriteImage(files.folder / "crops" / (inspection.observations[i].id + ".png"), image);
+  };
   ForEachPiece(
-      model_dir, info, whole, [&](const PipeMaps& piece) { crops.Add(piece); }, progress, "crops");
-  for (std::size_t i = 0; i < inspection.observations.size(); ++i) {
-    WriteImage(files.folder / "crops" / (inspection.observations[i].id + ".png"),
-               crops.Image(i, options.max_crop_side_px));
-  }
+      model_dir, info, whole, [&](const PipeMaps& piece) { crops.Add(piece, write); }, progress,
+      "crops");
+  crops.Finish(write);
   WriteProfileCsv(files.profile_csv, profile);
   WriteObservationsCsv(files.observations_csv, inspection.observations);
   IsybauHeader header;

@@ -108,6 +108,12 @@ void ProcessOptions::Check() const {
   SEWER3D_VALIDATE(std::isfinite(start_station_mm), "start_station_mm", "must be finite");
   SEWER3D_VALIDATE(std::isfinite(resolution_mm) && resolution_mm >= 0.01 && resolution_mm <= 50.0,
                    "resolution_mm", "must be 0.01..50 mm, got " << resolution_mm);
+  SEWER3D_VALIDATE(resolution_mm <= inspect.inspect.max_map_cell_mm, "resolution_mm",
+                   "must be ≤ " << inspect.inspect.max_map_cell_mm
+                                << " mm for the inspection (cracks and joint gaps are a few mm "
+                                   "wide), got "
+                                << resolution_mm
+                                << "; a coarser model alone: `sewer3d model --resolution-mm`");
   SEWER3D_VALIDATE(threads >= 1, "threads", "must be at least 1, got " << threads);
   rgbd.Check();
   registration.Check();

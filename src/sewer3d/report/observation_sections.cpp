@@ -72,7 +72,13 @@ std::string ObservationsSection(const std::optional<std::vector<Observation>>& o
                "No observations (WS/inspection/observations.json; `sewer3d inspect` makes them).") +
            "</section>\n";
   if (observations->empty()) return out + "<p>No observations: nothing found.</p></section>\n";
-  if (!model.preview) out += notes.Add("Observations shown without crops: no maps.");
+  if (!model.preview)
+    out += notes.Add("Observations shown without crops: no maps.");
+  else if (model.crops.size() < observations->size())
+    out += notes.Add(fmt::format(
+        "Crops shown for the first {} of {} observations (ReportOptions::max_crops keeps the page "
+        "and the memory small).",
+        model.crops.size(), observations->size()));
   std::vector<std::vector<std::string>> rows;
   for (std::size_t i = 0; i < observations->size(); ++i) {
     const std::optional<CoarseMaps> none;

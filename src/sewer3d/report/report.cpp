@@ -41,9 +41,10 @@ void ReadPictures(const ReportInputs& in, ModelPictures& model) {
   const std::vector<Observation> observations =
       in.observations.value_or(std::vector<Observation>{});
   std::vector<std::optional<MapDownsampler>> crops;
-  crops.reserve(observations.size());  // `all` points into it: no reallocation
-  for (const Observation& obs : observations) {
-    const std::optional<MapCrop> c = ClippedCrop(obs.crop, g);
+  const std::size_t n_crops = std::min(observations.size(), static_cast<std::size_t>(o.max_crops));
+  crops.reserve(n_crops);  // `all` points into it: no reallocation
+  for (std::size_t i = 0; i < n_crops; ++i) {
+    const std::optional<MapCrop> c = ClippedCrop(observations[i].crop, g);
     crops.emplace_back();
     if (!c) continue;
     const int f = DownsampleFactor(std::max(c->rows, c->cols), o.crop_px);
@@ -84,6 +85,7 @@ void ReportOptions::Check() const {
   ValidatePositive("viewer_rows", viewer_rows);
   ValidatePositive("viewer_clocks", viewer_clocks);
   ValidatePositive("crop_px", crop_px);
+  SEWER3D_VALIDATE(max_crops >= 0, "max_crops", "must be ≥ 0");
   SEWER3D_VALIDATE(jpeg_quality >= 0 && jpeg_quality <= 100, "jpeg_quality", "must be 0 … 100");
 }
 

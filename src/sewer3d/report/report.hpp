@@ -24,7 +24,10 @@ struct ReportOptions {
   int viewer_rows = 1024;     ///< the viewer's vertex rows along the pipe, at most
   int viewer_clocks = 256;    ///< … and around it
   int crop_px = 240;          ///< an observation's crop at most this long on its long side
-  int jpeg_quality = 88;      ///< of the texture pictures (0..100)
+  /// Crops for the first this many observations of the table (each costs up to ~1 MB while the
+  /// maps are read and ~20 kB of page); the rest are listed without one, with a note.
+  int max_crops = 500;
+  int jpeg_quality = 88;  ///< of the texture pictures (0..100)
   void Check() const;
 };
 

@@ -81,6 +81,24 @@ TEST_F(ReportTest, WholeModelGivesEverySectionSelfContained) {
   EXPECT_EQ(html.find("<script src"), std::string::npos);
 }
 
+TEST_F(ReportTest, CropsStopAtTheLimitWithANote) {
+  WritePipeModel(dir_ / "model", centreline_, maps_, 0.0, ModelFileOptions{});
+  ReportInputs in = Inputs();
+  in.observations->resize(5, in.observations->front());
+  in.options.max_crops = 2;
+  std::string html;
+  const ReportSummary s = Write(in, html);
+  std::size_t crops = 0;
+  for (std::size_t at = html.find("class=\"crop\""); at != std::string::npos;
+       at = html.find("class=\"crop\"", at + 1))
+    ++crops;
+  EXPECT_EQ(crops, 2U);
+  bool noted = false;
+  for (const std::string& n : s.notes)
+    noted |= n.find("first 2 of 5 observations") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
 TEST_F(ReportTest, TiledModelIsDownsampledTileByTile) {
   ModelFileOptions options;
   options.max_whole_cells = 1;  // keep only the tiles

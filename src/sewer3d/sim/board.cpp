@@ -1,6 +1,7 @@
 #include "sewer3d/sim/board.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "sewer3d/camera/camera_model.hpp"
@@ -51,6 +52,14 @@ std::vector<Rigid3d> RandomBoardPoses(const ModuleDescription& module, const Che
   board.Check();
   module.Check();
   SEWER3D_VALIDATE(count >= 1, "poses", "must be at least 1, got " << count);
+  const double square_px =
+      std::min(module.camera.fx, module.camera.fy) * board.square_mm / o.distance_max_mm;
+  SEWER3D_VALIDATE(square_px >= o.min_square_px, "square_mm",
+                   board.square_mm << " mm squares look " << square_px << " px wide at "
+                                   << o.distance_max_mm << " mm, too small to detect; at least "
+                                   << o.min_square_px * o.distance_max_mm /
+                                          std::min(module.camera.fx, module.camera.fy)
+                                   << " mm");
   const CameraModel camera(module.camera), projector(module.projector);
   const Eigen::Vector3d centre(0.5 * (board.cols - 1) * board.square_mm,
                                0.5 * (board.rows - 1) * board.square_mm, 0.0);

@@ -42,10 +42,14 @@ struct BoardPoseOptions {
   double distance_min_mm = 90.0, distance_max_mm = 200.0;  ///< board centre along the view
   double max_tilt_deg = 35.0;  ///< between the board normal and the camera's optical axis
   double margin_px = 20.0;     ///< corners this far inside camera and projector images
+  /// A square must look at least this large at distance_max_mm, or no checkerboard detector
+  /// finds the board (0.1 mm squares rendered a board of a few pixels).
+  double min_square_px = 8.0;
 };
 
 /// `count` random poses (deterministic for a seed) with every inner corner inside both the
-/// camera and the projector image; throws std::invalid_argument if they cannot be found.
+/// camera and the projector image; throws InvalidValue ("square_mm") when a square would look
+/// smaller than options.min_square_px, ("board") when no such poses can be found.
 std::vector<Rigid3d> RandomBoardPoses(const ModuleDescription& module, const Checkerboard& board,
                                       int count, std::uint64_t seed,
                                       const BoardPoseOptions& options = {});
