@@ -3,9 +3,17 @@
 /// Pieces of `sewer3d calibrate` kept in their own files.
 
 #include <CLI/CLI.hpp>
+#include <cstddef>
+#include <filesystem>
+#include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
+#include "sewer3d/calib/module_from_captures.hpp"
+#include "sewer3d/camera/module.hpp"
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/pattern/binary_array.hpp"
+#include "sewer3d/pattern/constraints.hpp"
 
 namespace sewer3d::cli {
 
@@ -17,5 +25,34 @@ CLI::Option* AddSquareOption(CLI::App& sub, double& square_mm);
 
 /// `sewer3d calibrate module` (docs/calibration.md), registered under `calibrate`.
 Command AddCalibrateModuleCommand(CLI::App& calibrate);
+
+// Its steps (calibrate_module_steps.cpp).
+
+/// The pose folders below `captures` that hold texture.png and pattern.png, sorted; a folder
+/// with only one of the two is printed as skipped.
+std::vector<std::filesystem::path> PoseFolders(const std::filesystem::path& captures);
+
+/// The nominal (design) module: pattern, projector size, and a geometry close enough to
+/// predict the lattice and pick the pattern tile.
+struct NominalModule {
+  ModuleDescription module;
+  BinaryArray pattern;
+  PatternConstraints constraints;
+};
+
+/// The module of `nominal_file`, or the default module at the images' `size` when it is "";
+/// FileError naming `first_image` when the sizes differ.
+NominalModule LoadNominal(const std::string& nominal_file, const std::filesystem::path& first_image,
+                          const cv::Size& size);
+
+/// Adds every pose's captures (progress bar unless quiet); returns the names of the poses
+/// used, and prints why each other one was skipped (`board`: the --board text).
+std::vector<std::string> AddCaptures(ModuleCalibrator& calibrator,
+                                     const std::vector<std::filesystem::path>& poses,
+                                     const cv::Size& size, const std::string& board, bool quiet);
+
+/// The estimate with its uncertainties and each used pose's reprojection RMS.
+void PrintModuleCalibration(const ModuleCalibrationResult& r, const std::vector<std::string>& used,
+                            std::size_t poses);
 
 }  // namespace sewer3d::cli

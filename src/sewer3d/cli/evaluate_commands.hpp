@@ -1,10 +1,17 @@
 #pragma once
 /// \file
-/// The parts of `sewer3d evaluate` that judge a processing stage on a simulated run.
+/// The parts of `sewer3d evaluate`: a surface fitted to a cloud, and the judges of a
+/// processing stage on a simulated run.
 
 #include <string>
 
 namespace sewer3d::cli {
+
+/// `sewer3d evaluate plane|cylinder --cloud PLY [--truth scene.json] [--inner-fraction F]`:
+/// fits `surface` to the inner part of the cloud and prints the fit (and the errors against
+/// the true scene); FileError for a cloud that fits no such surface. Returns the exit code.
+int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
+                       const std::string& truth_file, double inner_fraction);
 
 /// `sewer3d evaluate rgbd --run RUN --workspace WS [--out DIR]`: prints the colour figures,
 /// writes DIR/evaluation.json and DIR/colour_montage.png; returns the exit code.

@@ -5,8 +5,28 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
+#include <vector>
+
+#include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/sim/scene.hpp"
 
 namespace sewer3d::cli {
+
+/// `sewer3d simulate frame`'s arguments.
+struct FrameArgs {
+  std::string module, scene = "plane", out, material = "concrete";
+  double distance = 140.0, tilt = 0.0, diameter = 300.0;
+  std::vector<double> decentre{0.0, 0.0};
+  std::vector<double> axis{0.0, 1.0, 0.0};
+  bool ideal = false;
+  RenderOptions render;
+};
+
+/// The scene `simulate frame` renders: a built-in one (plane, cylinder, pipe-wall) from the
+/// geometry flags, or a scene file with its render options (the render flags given on the
+/// command line over them, into `options`). InvalidValue naming the flag for a flag that does
+/// not apply or a geometry that is not valid.
+Scene FrameScene(const FrameArgs& args, const CLI::App& frame, RenderOptions& options);
 
 struct CalibrationArgs {
   CLI::App* app = nullptr;

@@ -108,6 +108,10 @@ std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& point
     fit.max_mm = std::max(fit.max_mm, std::abs(e));
   }
   fit.rms_mm = std::sqrt(sum2 / points.size());
+  if (const auto plane = FitPlane(points)) {
+    fit.plane_rms_mm = plane->rms_mm;
+    fit.flat = plane->rms_mm <= fit.rms_mm;
+  }
   return fit;
 }
 

@@ -26,10 +26,15 @@ struct CylinderFit {
   double rms_mm = 0.0;  ///< of |distance to axis − radius|
   double max_mm = 0.0;
   bool converged = false;
+  /// A plane fits the points at least as well (plane_rms_mm ≤ rms_mm): a flat cloud "fits" a
+  /// cylinder of any large radius, so the radius measures nothing.
+  bool flat = false;
+  double plane_rms_mm = 0.0;  ///< of the total-least-squares plane (FitPlane)
 };
 
 /// Geometric fit (Ceres, Levenberg–Marquardt) of distance-to-axis − r, started from an
-/// algebraic circle fit in the plane perpendicular to `axis_guess`.
+/// algebraic circle fit in the plane perpendicular to `axis_guess`; `flat` tells a cloud with
+/// no curvature to measure.
 std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& points,
                                        const Eigen::Vector3d& axis_guess);
 

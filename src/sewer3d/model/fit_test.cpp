@@ -46,6 +46,20 @@ TEST(FitCylinder, RecoversDecentredTiltedCylinderFromAPatch) {
   EXPECT_NEAR(fit->radius_mm, 150.0, 0.1);
   EXPECT_LT(std::acos(std::min(1.0, std::abs(fit->axis_direction.dot(axis)))), 2e-3);
   EXPECT_NEAR(fit->rms_mm, 0.1, 0.005);
+  EXPECT_FALSE(fit->flat);
+  EXPECT_GT(fit->plane_rms_mm, 1.0);  // a 69° arc of r 150 mm is far from flat
+}
+
+TEST(FitCylinder, TellsAFlatCloud) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  std::uniform_real_distribution<double> xy(-60.0, 60.0);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 3000; ++i) points.emplace_back(xy(rng), xy(rng), 140.0 + noise(rng));
+  const auto fit = FitCylinder(points, Eigen::Vector3d::UnitY());
+  ASSERT_TRUE(fit.has_value());  // some huge cylinder: only `flat` tells it measures nothing
+  EXPECT_TRUE(fit->flat) << "plane RMS " << fit->plane_rms_mm << ", cylinder " << fit->rms_mm;
+  EXPECT_NEAR(fit->plane_rms_mm, 0.05, 0.004);
 }
 
 TEST(InnerPoints, KeepsTheCentralPartOfTheView) {

@@ -47,7 +47,8 @@ void InspectionCrops::Close(std::size_t i, const Done& done) {
   handed_out_[i] = true;
   cv::Mat3b both;
   cv::vconcat(c.texture, DisplacementView(c.displacement_mm, range_mm_), both);
-  const double scale = std::min(1.0, static_cast<double>(max_side_px_) / std::max(both.rows, both.cols));
+  const double scale =
+      std::min(1.0, static_cast<double>(max_side_px_) / std::max(both.rows, both.cols));
   if (scale < 1.0) cv::resize(both, both, cv::Size(), scale, scale, cv::INTER_AREA);
   done(i, both);
 }

@@ -33,10 +33,10 @@ TEST(InspectionCrops, EachCropIsHandedOutOnceWhenItsLastTileHasPassed) {
   ASSERT_EQ(grid.rows, 500);
   const PipeMaps whole = RowCodedMaps(grid);
   const std::vector<MapCrop> boxes = {
-      {10, 20, 5, 30},      // inside the first tile
-      {90, 60, 600, 100},   // across the first two tiles, wrapping around the clock
-      {400, 80, 0, 628},    // the whole turn
-      {600, 10, 0, 10}};    // beyond the run: clipped, no data
+      {10, 20, 5, 30},     // inside the first tile
+      {90, 60, 600, 100},  // across the first two tiles, wrapping around the clock
+      {400, 80, 0, 628},   // the whole turn
+      {600, 10, 0, 10}};   // beyond the run: clipped, no data
   InspectionCrops crops(boxes, grid, 2.0, 64);
   std::map<std::size_t, cv::Mat3b> images;
   std::map<std::size_t, int> after_tile;
@@ -54,8 +54,8 @@ TEST(InspectionCrops, EachCropIsHandedOutOnceWhenItsLastTileHasPassed) {
   EXPECT_EQ(after_tile[2], 4);
   // Texture (rows of the crop) above the displacement view, at most 64 px on a side.
   EXPECT_EQ(images[0].size(), cv::Size(30, 40));
-  EXPECT_EQ(images[0](0, 0)[0], 5);    // row 10
-  EXPECT_EQ(images[0](19, 0)[0], 14);  // row 29
+  EXPECT_EQ(images[0](0, 0)[0], 5);               // row 10
+  EXPECT_EQ(images[0](19, 0)[0], 14);             // row 29
   EXPECT_EQ(images[1].size(), cv::Size(53, 64));  // 120 × 100, area-resampled
   EXPECT_NEAR(images[1](31, 52)[0], 74, 1);       // rows 148, 149: blue 74
   EXPECT_EQ(images[2].size(), cv::Size(64, 16));

@@ -166,8 +166,11 @@ TEST_F(ReportTest, ViewerDataPutsTheBumpWhereItIs) {
   MapDownsampler relief(whole, grid_.cols, 2, 4), texture(whole, grid_.cols, 1, 1);
   relief.Add(maps_, 0);
   texture.Add(maps_, 0);
-  const nlohmann::json j = nlohmann::json::parse(
-      ViewerDataJson(PipeModelInfo{centreline_, grid_}, relief.Finish(), texture.Finish()));
+  PipeModelInfo info;
+  info.centreline = centreline_;
+  info.grid = grid_;
+  const nlohmann::json j =
+      nlohmann::json::parse(ViewerDataJson(info, relief.Finish(), texture.Finish()));
   ASSERT_EQ(j["rows"], 100);
   ASSERT_EQ(j["clocks"], 236);  // ceil(942 / 4)
   std::string bytes;            // decode the base64 int16 grid

@@ -1,0 +1,105 @@
+// `sewer3d evaluate plane|cylinder`: fits the surface to a cloud and prints the accuracy
+// figures of the paper's Tables 1 and 2, plus errors against the truth when it is known.
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sewer3d/cli/evaluate_commands.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/ply_io.hpp"
+#include "sewer3d/model/fit.hpp"
+#include "sewer3d/simio/scene_io.hpp"
+
+namespace sewer3d::cli {
+namespace {
+
+using Points = std::vector<Eigen::Vector3d>;
+
+void PrintPlane(const std::string& cloud, const Points& points) {
+  const auto fit = FitPlane(points);
+  if (!fit) throw FileError(cloud, "points do not span a plane");
+  std::vector<double> depths;
+  for (const auto& p : points) depths.push_back(p.norm());
+  std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+  fmt::print(
+      "plane      median distance to the camera {:.3f} mm, plane at {:.3f} mm on the optical "
+      "axis\n",
+      depths[depths.size() / 2], -fit->offset / fit->normal.z());
+  fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
+}
+
+void PrintCylinder(const std::string& cloud, const Points& points,
+                   const std::optional<Scene>& truth) {
+  const auto fit = FitCylinder(points, Eigen::Vector3d::UnitY());
+  if (!fit || !fit->converged) {
+    throw FileError(cloud,
+                    "no cylinder fits the points (identical or collinear points, or the fit did "
+                    "not converge)");
+  }
+  if (fit->flat) {
+    throw FileError(cloud, fmt::format("the points lie on a plane (plane RMS {:.4f} mm, cylinder "
+                                       "RMS {:.4f} mm): no curvature to measure a diameter "
+                                       "from; use evaluate plane",
+                                       fit->plane_rms_mm, fit->rms_mm));
+  }
+  const Eigen::Vector3d& a = fit->axis_direction;
+  const Eigen::Vector3d& c = fit->axis_point;
+  fmt::print(
+      "cylinder   diameter {:.3f} mm, axis ({:.4f}, {:.4f}, {:.4f}) through ({:.2f}, {:.2f}, "
+      "{:.2f}) mm\n",
+      2 * fit->radius_mm, a.x(), a.y(), a.z(), c.x(), c.y(), c.z());
+  fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
+  if (!truth) return;
+  const double error = 2 * fit->radius_mm - truth->diameter_mm;
+  fmt::print("truth      diameter {:.3f} mm: error {:+.3f} mm ({:+.3f} %)\n", truth->diameter_mm,
+             error, 100 * error / truth->diameter_mm);
+}
+
+void PrintTruthDistances(const Scene& scene, const Points& all) {
+  double sum2 = 0.0, worst = 0.0;
+  int beyond_1mm = 0;
+  for (const auto& p : all) {
+    const double d = DistanceToSurfaceMm(scene, p);
+    sum2 += d * d;
+    worst = std::max(worst, d);
+    beyond_1mm += d > 1.0;
+  }
+  fmt::print(
+      "truth      all {} points to the true surface: RMS {:.4f} mm, max {:.4f} mm, {} farther "
+      "than 1 mm\n",
+      all.size(), std::sqrt(sum2 / all.size()), worst, beyond_1mm);
+}
+
+}  // namespace
+
+int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
+                       const std::string& truth_file, double inner_fraction) {
+  // Every input read before any work: a bad --truth fails at once.
+  std::optional<Scene> truth;
+  if (!truth_file.empty()) truth = ReadScene(truth_file);
+  if (truth && surface == "cylinder" && truth->type == Scene::Type::kPlane) {
+    throw FileError(truth_file,
+                    "the true scene is a plane; evaluate cylinder needs a cylinder or pipe-wall "
+                    "scene");
+  }
+  const Points all = ReadPlyPoints(cloud);
+  const Points points = InnerPoints(all, inner_fraction);
+  if (points.size() < 10)
+    throw FileError(cloud, fmt::format("only {} points in the inner part", points.size()));
+  fmt::print("{}: {} points, {} in the inner {:.0f} %\n", cloud, all.size(), points.size(),
+             100 * inner_fraction);
+  if (surface == "plane") {
+    PrintPlane(cloud, points);
+  } else {
+    PrintCylinder(cloud, points, truth);
+  }
+  if (truth) PrintTruthDistances(*truth, all);
+  return 0;
+}
+
+}  // namespace sewer3d::cli
