@@ -285,3 +285,9 @@ json_with m/module.json m/cam_tiny.json 'camera.width=8' 'camera.height=6' 'came
   echo 'FIX 0'
   echo 'FIX 2'
 } >fixed_apart.g2o
+python3 -c "
+import math
+pts = [(0.15 * math.sin(a / 100), y / 1000, 0.15 * math.cos(a / 100)) for a in range(-40, 41) for y in range(-30, 31, 3)]
+with open('metres.ply', 'w') as f:
+    f.write('ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\nend_header\n' % len(pts))
+    f.writelines('%g %g %g\n' % p for p in pts)"

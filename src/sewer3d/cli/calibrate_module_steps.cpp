@@ -98,7 +98,7 @@ std::vector<std::string> AddCaptures(ModuleCalibrator& calibrator,
 }
 
 void PrintModuleCalibration(const ModuleCalibrationResult& r, const std::vector<std::string>& used,
-                      std::size_t poses) {
+                            std::size_t poses) {
   fmt::print(
       "calibrated module from {} of {} poses: camera RMS {:.4f} px, projector RMS {:.4f} px{}\n",
       used.size(), poses, r.camera_rms_px, r.projector_rms_px,

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
+#include <string>
 #include <vector>
 
 #include "sewer3d/calib/module_from_captures.hpp"
@@ -53,9 +54,12 @@ int RunModule(const ModuleArgs& a) {
   ModuleCalibrator calibrator(nominal.module, nominal.pattern, nominal.constraints, board_layout);
   const std::vector<std::string> used = AddCaptures(calibrator, poses, size, a.board, a.quiet);
   if (used.size() < 3) {
+    const std::string hint =
+        a.nominal.empty() ? std::string("each skipped pose is named above")
+                          : "were these captures made with the --nominal module " + a.nominal + "?";
     fmt::print(stderr,
-               "sewer3d: error: {} of {} poses usable; module calibration needs at least 3\n",
-               used.size(), poses.size());
+               "sewer3d: error: {} of {} poses usable; module calibration needs at least 3 ({})\n",
+               used.size(), poses.size(), hint);
     return 1;
   }
   ModuleFromCapturesResult calibrated;

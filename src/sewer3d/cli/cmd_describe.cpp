@@ -38,7 +38,7 @@ WorstOverlap PrintRigOverlap(const ModuleDescription& module) {
   fmt::print("(texture: camera fields; 3-D: where camera and projector both reach)\n");
   fmt::print("  {:<6} {:<22} {:>22} {:>22}\n", "pipe", "carrier offset (x, y)", "texture deg (mm)",
              "3-D deg (mm)");
-  const int step = std::max(1, module.camera.width / 320);
+  const int step = std::max(1, module.camera.width / 160);  // ~160 x 120 rays a module
   for (const double dn : {200.0, 300.0, 400.0}) {
     for (const Eigen::Vector2d& offset : {Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 25),
                                           Eigen::Vector2d(25, 0), Eigen::Vector2d(17.7, 17.7)}) {

@@ -54,10 +54,12 @@ Command AddEvaluateCommand(CLI::App& app) {
   return {sub, [args, sub] {
             const bool of_workspace = args->surface != "plane" && args->surface != "cylinder";
             // Options of the other kind of evaluation are refused, not ignored.
-            const std::vector<std::string> others =
+            std::vector<std::string> others =
                 of_workspace ? std::vector<std::string>{"--cloud", "--truth", "--inner-fraction"}
                              : std::vector<std::string>{"--run", "--workspace", "--out", "--stride",
                                                         "--smoothing-px"};
+            if (of_workspace && args->surface != "rgbd") others.emplace_back("--smoothing-px");
+            if (of_workspace && args->surface != "model") others.emplace_back("--stride");
             for (const std::string& name : others) {
               if (sub->get_option(name)->count() > 0) {
                 throw InvalidValue(name, "does not apply to evaluate " + args->surface);
@@ -65,6 +67,8 @@ Command AddEvaluateCommand(CLI::App& app) {
             }
             if (of_workspace && !args->run.empty() && !args->workspace.empty())
               CheckWorkspaceOfRun(args->workspace, args->run);
+            if (of_workspace && !args->run.empty() && !args->out.empty())
+              CheckOutsideTheRun(args->out, args->run, "the evaluation's folder (--out)");
             if (args->surface == "rgbd") {
               if (args->run.empty() || args->workspace.empty())
                 throw InvalidValue("--run, --workspace", "evaluate rgbd needs both");

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,20 @@ namespace sewer3d::cli {
 namespace {
 
 using Points = std::vector<Eigen::Vector3d>;
+
+// A wall seen by a module spans tens of millimetres; a cloud a few millimetres across was
+// most likely written in metres.
+void WarnOfUnits(const std::string& cloud, const Points& all) {
+  Eigen::Vector3d lo = all.front(), hi = all.front();
+  for (const auto& p : all) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double extent = (hi - lo).norm();
+  if (extent >= 5.0) return;
+  std::fflush(stdout);
+  fmt::print(stderr,
+             "sewer3d: warning: {}: the points span only {:.3g} mm: coordinates are read as "
+             "millimetres (is the cloud in metres?)\n",
+             cloud, extent);
+}
 
 void PrintPlane(const std::string& cloud, const Points& points) {
   const auto fit = FitPlane(points);
@@ -93,6 +108,7 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
     throw FileError(cloud, fmt::format("only {} points in the inner part", points.size()));
   fmt::print("{}: {} points, {} in the inner {:.0f} %\n", cloud, all.size(), points.size(),
              100 * inner_fraction);
+  WarnOfUnits(cloud, all);
   if (surface == "plane") {
     PrintPlane(cloud, points);
   } else {

@@ -99,6 +99,8 @@ Command AddModuleCommand(CLI::App& app) {
                               kWorkingDistanceMinMm, kWorkingDistanceMaxMm,
                               std::ceil(range.max_cols), pattern.cols));
             }
+            if (const std::string problem = DepthPrecisionProblem(module); !problem.empty())
+              throw InvalidValue("--hfov-deg, --stereo-angle-deg", problem);
             const SubmapSearchOptions search = DefaultPatternSearchOptions();
             if (const std::string problem = WindowFitProblem(module, search.constraints.window);
                 !problem.empty()) {

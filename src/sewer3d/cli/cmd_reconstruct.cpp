@@ -78,6 +78,10 @@ Command AddReconstructCommand(CLI::App& app) {
                      NotOfModuleReason(frame.report), out.string());
           return 1;
         }
+        if (const std::string doubt = FrameDoubt(frame.report, frame.points.size());
+            !doubt.empty() && !frame.points.empty()) {
+          fmt::print(stderr, "sewer3d: warning: {}: {}\n", args->image, doubt);
+        }
         if (frame.points.empty()) {
           fmt::print(stderr, "sewer3d: error: {}: no spot pattern decoded (see {}/report.json)\n",
                      args->image, out.string());

@@ -36,7 +36,6 @@ void CheckSceneOptions(const Scene& scene) {
   }
 }
 
-
 bool IsBuiltInScene(const std::string& name) {
   return name == "plane" || name == "cylinder" || name == "pipe-wall";
 }

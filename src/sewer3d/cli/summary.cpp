@@ -12,6 +12,27 @@
 
 namespace sewer3d::cli {
 
+double DepthErrorMm(const ModuleDescription& m, double z_mm) {
+  const Eigen::Vector3d c = m.projector_from_camera.Inverse().translation;
+  const double baseline = std::hypot(c.x(), c.y());  // across the view: what triangulates
+  const double f = std::min(m.camera.fx, m.camera.fy);
+  return baseline > 0.0 ? z_mm * z_mm * kDisparityErrorPx / (f * baseline) : HUGE_VAL;
+}
+
+std::string DepthPrecisionProblem(const ModuleDescription& m) {
+  constexpr double kMaxDepthErrorMm = 1.0;
+  const double error = DepthErrorMm(m, kWorkingDistanceMaxMm);
+  if (error <= kMaxDepthErrorMm) return "";
+  return fmt::format(
+      "depth error ±{:.1f} mm at {:g} mm for {:g} px of disparity error (baseline {:.1f} mm "
+      "across the view), more than {:g} mm: the wall would be measured too coarsely; choose a "
+      "larger stereo angle (a longer baseline)",
+      error, kWorkingDistanceMaxMm, kDisparityErrorPx,
+      std::hypot(m.projector_from_camera.Inverse().translation.x(),
+                 m.projector_from_camera.Inverse().translation.y()),
+      kMaxDepthErrorMm);
+}
+
 std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pattern) {
   const CameraModel camera(m.camera), projector(m.projector);
   fmt::print(
@@ -37,6 +58,10 @@ std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pa
       "({:.1f} columns of {:g} px), {:.1f} px along v ({:.2f} rows)\n",
       kWorkingDistanceMinMm, kWorkingDistanceMaxMm, range.max_du_px, range.max_cols,
       m.pattern.pitch_px, range.max_dv_px, range.max_rows);
+
+  fmt::print("depth      ±{:.2f} mm at {:g} mm for {:g} px of disparity error\n",
+             DepthErrorMm(m, kWorkingDistanceMaxMm), kWorkingDistanceMaxMm, kDisparityErrorPx);
+  if (std::string problem = DepthPrecisionProblem(m); !problem.empty()) return problem;
 
   PatternConstraints constraints;
   PatternReport report = VerifyPattern(pattern, constraints);

@@ -54,7 +54,22 @@ cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags, std::uint
   } catch (const cv::Exception& e) {
     throw FileError(path, std::string("cannot decode image: ") + e.err);
   }
-  if (image.empty()) throw FileError(path, "cannot decode image (not an image, or truncated)");
+  if (image.empty()) {
+    // Decodable as it is (a float TIFF, a depth map), only not in the way asked for?
+    cv::Mat as_is;
+    try {
+      as_is = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception&) {  // undecodable either way: the message below
+    }
+    if (!as_is.empty() && as_is.depth() != CV_8U && as_is.depth() != CV_16U) {
+      throw FileError(path, fmt::format("expected an 8-bit or 16-bit image, got {} samples "
+                                        "(a depth map?)",
+                                        as_is.depth() == CV_32F   ? "32-bit float"
+                                        : as_is.depth() == CV_64F ? "64-bit float"
+                                                                  : "other"));
+    }
+    throw FileError(path, "cannot decode image (not an image, or truncated)");
+  }
   return image;
 }
 

@@ -16,6 +16,7 @@ std::string WorkspaceToJson(const WorkspaceRecord& record) {
     json stage;
     stage["options"] = json::parse(s.options_json);
     stage["done"] = s.done;
+    if (s.stale) stage["stale"] = true;
     stage["started_utc"] = s.started_utc;
     stage["done_utc"] = s.done_utc.empty() ? json(nullptr) : json(s.done_utc);
     stage["software_version"] = s.software_version;
@@ -47,6 +48,7 @@ WorkspaceRecord WorkspaceFromJson(const std::string& text, const std::filesystem
     WorkspaceStage stage;
     stage.options_json = reader.RequiredObject(s, "options", prefix).dump();
     stage.done = reader.Bool(s, "done", prefix, false);
+    stage.stale = reader.Bool(s, "stale", prefix, false);
     stage.started_utc = reader.Text(s, "started_utc", prefix, "");
     if (s.contains("done_utc") && !s["done_utc"].is_null())
       stage.done_utc = reader.Text(s, "done_utc", prefix, "");

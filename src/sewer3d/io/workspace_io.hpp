@@ -16,7 +16,10 @@ struct WorkspaceStage {
   /// The options the stage's outputs were made with: a JSON object as compact text with sorted
   /// keys (nlohmann's dump()), compared as text.
   std::string options_json = "{}";
-  bool done = false;             ///< every acquisition (or item) finished without failure
+  bool done = false;  ///< every acquisition (or item) finished without failure
+  /// An earlier stage's outputs changed after this one was made: its outputs are out of date
+  /// (not done) and the next run of the stage starts it afresh.
+  bool stale = false;
   std::string started_utc;       ///< ISO 8601, when the outputs now present were begun
   std::string done_utc;          ///< ISO 8601; empty while not done
   std::string software_version;  ///< the version that last ran the stage

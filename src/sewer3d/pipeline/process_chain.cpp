@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/pipeline/rgbd_inputs.hpp"
 
 namespace sewer3d {
 namespace {
@@ -26,7 +27,10 @@ ProcessStage RgbdProcessStage() {
               const StageProgress& progress) {
             return RgbdOutcome(RunRgbdStage(run, ws, stage_options(o), progress), ws.folder());
           },
-          "rgbd/report.json"};
+          "rgbd/report.json",
+          [](const CaptureRun& run, const Workspace& ws) {
+            return RgbdUpToDate(run, ws.StageFolder("rgbd"));
+          }};
 }
 
 ProcessStage RegisterProcessStage() {
@@ -43,7 +47,7 @@ ProcessStage RegisterProcessStage() {
           const StageProgress& progress) {
         return RegisterOutcome(RunRegisterStage(run, ws, stage_options(o), progress), ws.folder());
       },
-      "registration/poses.csv"};
+      "registration/poses.csv", nullptr};
 }
 
 ProcessStage ModelProcessStage() {
@@ -60,7 +64,7 @@ ProcessStage ModelProcessStage() {
               const StageProgress& progress) {
             return ModelOutcome(RunModelStage(run, ws, stage_options(o), progress), ws.folder());
           },
-          "model/model.json"};
+          "model/model.json", nullptr};
 }
 
 ProcessStage InspectProcessStage() {
@@ -75,7 +79,7 @@ ProcessStage InspectProcessStage() {
             return InspectOutcome(RunInspectStage(run, ws, stage_options(o), progress),
                                   ws.folder());
           },
-          "inspection/observations.json"};
+          "inspection/observations.json", nullptr};
 }
 
 ProcessStage ReportProcessStage() {
@@ -83,17 +87,20 @@ ProcessStage ReportProcessStage() {
           [](const CaptureRun& run, Workspace& ws, const ProcessOptions& o, const StageProgress&) {
             return ReportOutcome(RunReportStage(run, ws, o.force));
           },
-          "report/index.html"};
+          "report/index.html", nullptr};
 }
 
-// Recorded done with the options it would run with now, nothing before it changed, and its
-// main output still on disk (a stage folder removed by hand is made again).
-bool CanSkip(const Workspace& workspace, const ProcessStage& stage, const std::string& options) {
+// Recorded done with the options it would run with now, nothing before it changed, its main
+// output still on disk (a stage folder removed by hand is made again) and its inputs as it
+// left them (up_to_date).
+bool CanSkip(const CaptureRun& run, const Workspace& workspace, const ProcessStage& stage,
+             const std::string& options) {
   const auto it = workspace.record().stages.find(stage.name);
   std::error_code ec;
   return it != workspace.record().stages.end() && it->second.done &&
          it->second.options_json == options &&
-         std::filesystem::is_regular_file(workspace.folder() / stage.output, ec);
+         std::filesystem::is_regular_file(workspace.folder() / stage.output, ec) &&
+         (!stage.up_to_date || stage.up_to_date(run, workspace));
 }
 
 std::string StageNames() {
@@ -158,7 +165,7 @@ ProcessReport RunProcess(const CaptureRun& run, Workspace& workspace, const Proc
     r.name = stage.name;
     const auto stage_start = Clock::now();
     if (!options.force && upstream_unchanged &&
-        CanSkip(workspace, stage, stage.options_json(options))) {
+        CanSkip(run, workspace, stage, stage.options_json(options))) {
       r.skipped = true;
       r.seconds = workspace.record().stages.at(stage.name).seconds;
       r.outcome.summary = stage.name + ": done before with these options (workspace.json); skipped";

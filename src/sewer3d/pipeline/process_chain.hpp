@@ -71,6 +71,9 @@ struct ProcessStage {
       run;
   /// Its main output, relative to the workspace: a stage recorded done without it is redone.
   std::string output;
+  /// When set, a stage recorded done is redone unless this says its inputs are as it left
+  /// them (rgbd: the run's images, added or replaced since).
+  std::function<bool(const CaptureRun&, const Workspace&)> up_to_date;
 };
 
 /// The chain in order: rgbd, register, model, inspect, report.

@@ -6,6 +6,15 @@
 #include "sewer3d/report/workspace_inputs.hpp"
 
 namespace sewer3d {
+namespace {
+
+// Recorded, but not done: its outputs (if any) are not those of the stages before it.
+bool NotDone(const Workspace& workspace, const char* stage) {
+  const auto it = workspace.record().stages.find(stage);
+  return it != workspace.record().stages.end() && !it->second.done;
+}
+
+}  // namespace
 
 ReportStageReport RunReportStage(const CaptureRun& run, Workspace& workspace, bool force) {
   const auto start = std::chrono::steady_clock::now();
@@ -15,9 +24,22 @@ ReportStageReport RunReportStage(const CaptureRun& run, Workspace& workspace, bo
   // This stage is under way: its own entry says nothing yet.
   std::erase_if(in.stages, [](const StageTime& s) { return s.stage == "report"; });
   const InspectionFiles files = InspectionFilesIn(ws);
-  if (std::filesystem::exists(files.profile_csv)) in.profile = ReadProfileCsv(files.profile_csv);
-  if (std::filesystem::exists(files.observations_json))
-    in.observations = ReadObservationsJson(files.observations_json);
+  if (NotDone(workspace, "inspect")) {
+    // Observations of an earlier model (or of an interrupted inspection) would be shown as
+    // this model's.
+    in.notes.push_back(
+        "Observations and profile left out: workspace.json records the inspect stage as not "
+        "done (failed, interrupted, or its model redone since); run `sewer3d inspect`.");
+  } else {
+    if (std::filesystem::exists(files.profile_csv)) in.profile = ReadProfileCsv(files.profile_csv);
+    if (std::filesystem::exists(files.observations_json))
+      in.observations = ReadObservationsJson(files.observations_json);
+  }
+  if (NotDone(workspace, "model")) {
+    in.notes.push_back(
+        "workspace.json records the model stage as not done (failed, interrupted, or its "
+        "registration redone since): the maps shown, if any, are an earlier model's.");
+  }
   ReportStageReport r;
   r.html = workspace.StageFolder("report") / "index.html";
   r.summary = WriteReport(in, r.html);

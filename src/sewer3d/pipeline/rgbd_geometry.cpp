@@ -63,6 +63,9 @@ RgbdAcquisitionResult RgbdGeometryPass(const CaptureRun& run, const Acquisition&
           "{}: no depth: {} spots found, none decoded into a point (a blank, blown-out or "
           "foreign pattern image?); its texture is placed by the pipe prior alone",
           pattern_file.string(), frame.report.spots_found));
+    } else if (const std::string doubt = FrameDoubt(frame.report, frame.points.size());
+               !doubt.empty()) {
+      result.warnings.push_back(pattern_file.string() + ": doubtful depth: " + doubt);
     }
     const nlohmann::json extra = {{"module", a.module},
                                   {"counter", a.counter},

@@ -4,7 +4,9 @@
 
 #include <nlohmann/json.hpp>
 #include <system_error>
+#include <unordered_map>
 
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_stamp.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -83,6 +85,15 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
   return lines;
 }
 
+bool RgbdUpToDate(const CaptureRun& run, const std::filesystem::path& rgbd_folder) {
+  for (const Acquisition& a : GroupAcquisitions(run.images)) {
+    const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter);
+    if (!RgbdGeometryDone(files) || !IsRegularFile(files.report)) return false;
+    if (!ChangedImage(run, RecordedStamps(files.geometry)).empty()) return false;
+  }
+  return true;
+}
+
 std::vector<std::string> PatternMatrixWarnings(const CaptureRun& run,
                                                const std::vector<PatternConstraints>& inferred) {
   const PatternConstraints wanted;
@@ -113,23 +124,32 @@ std::vector<std::string> RepeatedImageWarnings(const CaptureRun& run,
                                                const std::vector<Acquisition>& acquisitions,
                                                const std::filesystem::path& rgbd_folder) {
   std::vector<std::string> lines;
-  std::string previous_hash;
+  std::unordered_map<std::string, const Acquisition*> first_with;  // pattern hash → acquisition
   const Acquisition* previous = nullptr;
   for (const Acquisition& a : acquisitions) {  // ordered by (module, counter)
     const json stamps =
         RecordedStamps(RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter).geometry);
     const std::string hash =
         stamps.contains("pattern") ? stamps["pattern"].value("hash", std::string()) : "";
-    if (!hash.empty() && previous != nullptr && previous->module == a.module &&
-        hash == previous_hash) {
+    const Acquisition* before = previous;
+    previous = &a;
+    if (hash.empty()) continue;
+    const auto [seen, is_new] = first_with.try_emplace(hash, &a);
+    if (is_new) continue;
+    const Acquisition& other = *seen->second;
+    const std::string file = AcquisitionImageFile(run, a, ImageKind::kPattern).string();
+    if (other.module == a.module && before != nullptr && before->module == a.module &&
+        before->counter == other.counter) {
       lines.push_back(fmt::format(
           "{}: the pattern image of m{} counter {} is byte for byte that of counter {}: a camera "
           "that delivers the same frame again? The odometry places the two at different stations",
-          AcquisitionImageFile(run, a, ImageKind::kPattern).string(), a.module, a.counter,
-          previous->counter));
+          file, a.module, a.counter, other.counter));
+    } else {
+      lines.push_back(fmt::format(
+          "{}: the pattern image of m{} counter {} is byte for byte that of m{} counter {}: an "
+          "image copied or filed under the wrong module or counter?",
+          file, a.module, a.counter, other.module, other.counter));
     }
-    previous_hash = hash;
-    previous = &a;
   }
   return lines;
 }

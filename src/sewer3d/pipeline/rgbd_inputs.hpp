@@ -28,6 +28,11 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
                                                    const std::vector<Acquisition>& acquisitions,
                                                    const std::filesystem::path& rgbd_folder);
 
+/// True when every acquisition of the run is finished in `rgbd_folder` (both passes) from the
+/// images the run holds now (their stamps); false as soon as one is missing or changed. About
+/// the cost of a resumed stage with nothing to do: a report read and a stat per image.
+bool RgbdUpToDate(const CaptureRun& run, const std::filesystem::path& rgbd_folder);
+
 /// One line per module whose pattern matrix, by the constraints it satisfies (`inferred`, one
 /// per module, InferConstraints), breaks the pattern constraints a matrix is made with
 /// (PatternConstraints' defaults): touching spots, or windows that differ in too few spots or
@@ -35,9 +40,10 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
 std::vector<std::string> PatternMatrixWarnings(const CaptureRun& run,
                                                const std::vector<PatternConstraints>& inferred);
 
-/// One line per acquisition whose pattern image is byte for byte the one of the same module's
-/// previous counter (stamps of the geometry reports): a camera that delivers the same frame
-/// again, which the odometry places at two stations.
+/// One line per acquisition whose pattern image is byte for byte one seen before (stamps of
+/// the geometry reports): the same module's previous counter (a camera that delivers the same
+/// frame again, which the odometry places at two stations), or any other acquisition (an image
+/// copied or filed under the wrong module).
 std::vector<std::string> RepeatedImageWarnings(const CaptureRun& run,
                                                const std::vector<Acquisition>& acquisitions,
                                                const std::filesystem::path& rgbd_folder);

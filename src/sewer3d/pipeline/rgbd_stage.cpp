@@ -332,7 +332,8 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
   workspace.FinishStage(kStage, report.failed == 0,
                         {{"color", kRgbdColorSource},
                          {"acquisitions", std::to_string(report.acquisitions)},
-                         {"failed", std::to_string(report.failed)}});
+                         {"failed", std::to_string(report.failed)}},
+                        /*changed=*/report.done > 0 || report.failed > 0);
   return report;
 }
 

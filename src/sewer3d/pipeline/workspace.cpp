@@ -59,26 +59,39 @@ std::string OptionsChange(const std::string& before, const std::string& now) {
   return change.empty() ? before + ", now " + now : change;
 }
 
-// `folder`, unless it is the run's own folder, lies inside it, or holds another capture run:
-// the stages would write into a capture run.
+// `folder`, unless it is checked out by CheckOutsideTheRun or lies inside another workspace
+// (whose --force would delete it).
 const std::filesystem::path& NotTheRun(const std::filesystem::path& folder,
                                        const std::filesystem::path& run_folder) {
-  const std::filesystem::path run = RunName(run_folder), ws = RunName(folder);
-  const auto [end, at] = std::mismatch(run.begin(), run.end(), ws.begin(), ws.end());
-  if (end == run.end()) {
-    throw FileError(folder, std::string(at == ws.end() ? "is" : "lies inside") +
-                                " the capture run's own folder: the workspace (--out) must be "
-                                "another folder, so that the run stays as captured");
-  }
-  if (IsRegularFile(folder / "run.json")) {
-    throw FileError(folder,
-                    "holds a capture run (run.json): a workspace (--out) must be a "
-                    "folder of its own");
+  CheckOutsideTheRun(folder, run_folder, "the workspace (--out)");
+  const std::filesystem::path ws = RunName(folder);
+  for (std::filesystem::path up = ws.parent_path(); !up.empty() && up != up.parent_path();
+       up = up.parent_path()) {
+    if (IsRegularFile(up / "workspace.json")) {
+      throw FileError(folder, "lies inside the workspace " + up.string() +
+                                  ": a workspace (--out) must be a folder of its own (a --force "
+                                  "there would remove it)");
+    }
   }
   return folder;
 }
 
 }  // namespace
+
+void CheckOutsideTheRun(const std::filesystem::path& folder,
+                        const std::filesystem::path& run_folder, const std::string& role) {
+  const std::filesystem::path run = RunName(run_folder), out = RunName(folder);
+  const auto [end, at] = std::mismatch(run.begin(), run.end(), out.begin(), out.end());
+  if (end == run.end()) {
+    throw FileError(folder, std::string(at == out.end() ? "is" : "lies inside") +
+                                " the capture run's own folder: " + role +
+                                " must be another folder, so that the run stays as captured");
+  }
+  if (IsRegularFile(folder / "run.json")) {
+    throw FileError(folder,
+                    "holds a capture run (run.json): " + role + " must be a folder of its own");
+  }
+}
 
 void CheckWorkspaceOfRun(const std::filesystem::path& folder,
                          const std::filesystem::path& run_folder) {
@@ -89,6 +102,11 @@ void CheckWorkspaceOfRun(const std::filesystem::path& folder,
 }
 
 std::string SoftwareVersion() { return SEWER3D_VERSION; }
+
+const std::vector<std::string>& WorkspaceStageOrder() {
+  static const std::vector<std::string> order = {"rgbd", "register", "model", "inspect", "report"};
+  return order;
+}
 
 Workspace::Workspace(const std::filesystem::path& folder, const std::filesystem::path& run_folder)
     : folder_(NotTheRun(folder, run_folder)),
@@ -121,8 +139,13 @@ void Workspace::BeginStage(const std::string& stage, const std::string& options_
                             "); use --force to redo it (its outputs are removed)");
   }
   WorkspaceStage& s = record_.stages[stage];
-  if (force) RemoveFolder(StageFolder(stage));
-  if (force || !recorded || s.started_utc.empty()) s.started_utc = UtcNow();
+  const bool afresh = force || s.stale;
+  if (afresh) {
+    RemoveFolder(StageFolder(stage));
+    MarkLaterStagesStale(stage);  // what they were made from is gone
+  }
+  if (afresh || !recorded || s.started_utc.empty()) s.started_utc = UtcNow();
+  s.stale = false;
   s.options_json = options_json;
   s.done = false;
   s.done_utc.clear();
@@ -132,7 +155,7 @@ void Workspace::BeginStage(const std::string& stage, const std::string& options_
 }
 
 void Workspace::FinishStage(const std::string& stage, bool done,
-                            const std::map<std::string, std::string>& notes) {
+                            const std::map<std::string, std::string>& notes, bool changed) {
   const auto it = record_.stages.find(stage);
   SEWER3D_CHECK(it != record_.stages.end(), "FinishStage without BeginStage: " + stage);
   it->second.done = done;
@@ -142,7 +165,21 @@ void Workspace::FinishStage(const std::string& stage, bool done,
   SEWER3D_CHECK(begun != begun_.end(), "FinishStage without BeginStage: " + stage);
   it->second.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begun->second).count();
+  if (changed) MarkLaterStagesStale(stage);
   WriteWorkspaceRecord(RecordFile(), record_);
+}
+
+void Workspace::MarkLaterStagesStale(const std::string& stage) {
+  const std::vector<std::string>& order = WorkspaceStageOrder();
+  auto later = std::find(order.begin(), order.end(), stage);
+  if (later == order.end()) return;
+  for (++later; later != order.end(); ++later) {
+    const auto it = record_.stages.find(*later);
+    if (it == record_.stages.end()) continue;
+    it->second.done = false;
+    it->second.done_utc.clear();
+    it->second.stale = true;
+  }
 }
 
 void Workspace::RecordCommand(const std::string& name, const std::string& options_json, bool done,

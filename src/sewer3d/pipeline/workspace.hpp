@@ -15,6 +15,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
@@ -27,8 +28,18 @@ namespace sewer3d {
 void CheckWorkspaceOfRun(const std::filesystem::path& folder,
                          const std::filesystem::path& run_folder);
 
+/// Throws FileError naming `folder` when it is the capture run's folder, lies inside it, or
+/// holds a run.json: outputs there would mix with the run as captured. `role` names the
+/// folder in the message, e.g. "the workspace (--out)".
+void CheckOutsideTheRun(const std::filesystem::path& folder,
+                        const std::filesystem::path& run_folder, const std::string& role);
+
 /// The software version recorded in workspace.json: CMake's PROJECT_VERSION, e.g. "0.1.0".
 std::string SoftwareVersion();
+
+/// The stages in the order each uses the outputs of those before it: rgbd, register, model,
+/// inspect, report (the chain of `sewer3d process`).
+const std::vector<std::string>& WorkspaceStageOrder();
 
 /// A stage cannot run in this workspace as asked (another run, other options without force).
 /// The message is one line, naming workspace.json and what to do.
@@ -58,14 +69,18 @@ class Workspace {
   /// Records that `stage` starts with `options_json` (a JSON object as compact text, sorted
   /// keys) and marks it not done; writes workspace.json. When the stage was recorded with
   /// other options: WorkspaceConflict, unless `force`. With `force` (whatever the options)
-  /// the stage's folder is removed first, so nothing made before is kept.
+  /// the stage's folder is removed first, so nothing made before is kept; likewise when the
+  /// stage is recorded stale (an earlier stage's outputs changed since it ran), and every later
+  /// stage recorded is marked stale.
   void BeginStage(const std::string& stage, const std::string& options_json, bool force);
 
   /// Records the end of `stage` (begun before): `done` (every item finished without failure)
   /// with the time, the wall time since its BeginStage (`seconds`), and `notes` about its
-  /// outputs; writes workspace.json.
+  /// outputs; writes workspace.json. `changed`: this run changed the stage's outputs, so every
+  /// later stage recorded (WorkspaceStageOrder) is marked stale and not done — a resumed
+  /// stage that found nothing to do passes false.
   void FinishStage(const std::string& stage, bool done,
-                   const std::map<std::string, std::string>& notes);
+                   const std::map<std::string, std::string>& notes, bool changed = true);
 
   /// Records the entry `name` of a command that runs several stages (`process`): the options
   /// it was given, whether every stage ended done, its wall time and notes. Replaces what was
@@ -75,6 +90,8 @@ class Workspace {
                      double seconds, const std::map<std::string, std::string>& notes);
 
  private:
+  void MarkLaterStagesStale(const std::string& stage);
+
   std::filesystem::path folder_;
   FolderLock lock_;
   int stale_temporaries_removed_ = 0;

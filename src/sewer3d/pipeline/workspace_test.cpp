@@ -61,6 +61,35 @@ TEST_F(WorkspaceTest, SameOptionsResumeAndKeepOutputs) {
   EXPECT_TRUE(fs::exists(again.StageFolder("rgbd") / "kept.txt"));
 }
 
+TEST_F(WorkspaceTest, ChangedOutputsMakeTheLaterStagesStaleAndTheyStartAfresh) {
+  Workspace ws(dir_ / "ws", dir_ / "run");
+  for (const char* stage : {"rgbd", "register", "model"}) {
+    ws.BeginStage(stage, "{}", false);
+    WriteTextFile(ws.StageFolder(stage) / "made.txt", "x");
+    ws.FinishStage(stage, true, {});
+  }
+  // A resumed rgbd that found nothing to do leaves the later stages done.
+  ws.BeginStage("rgbd", "{}", false);
+  ws.FinishStage("rgbd", true, {}, /*changed=*/false);
+  EXPECT_TRUE(ws.record().stages.at("register").done);
+  EXPECT_TRUE(ws.record().stages.at("model").done);
+  // One that redid an acquisition: register and model are out of date, on disk too.
+  ws.BeginStage("rgbd", "{}", false);
+  ws.FinishStage("rgbd", true, {});
+  WorkspaceRecord r = ReadWorkspaceRecord(ws.RecordFile());
+  for (const char* stage : {"register", "model"}) {
+    EXPECT_FALSE(r.stages.at(stage).done) << stage;
+    EXPECT_TRUE(r.stages.at(stage).stale) << stage;
+  }
+  EXPECT_FALSE(r.stages.at("rgbd").stale);
+  EXPECT_TRUE(fs::exists(ws.StageFolder("rgbd") / "made.txt"));
+  // The stale register starts afresh (its pairs were made from the old acquisitions).
+  ws.BeginStage("register", "{}", false);
+  EXPECT_FALSE(fs::exists(ws.StageFolder("register") / "made.txt"));
+  EXPECT_FALSE(ws.record().stages.at("register").stale);
+  EXPECT_TRUE(ws.record().stages.at("model").stale);
+}
+
 TEST_F(WorkspaceTest, OtherOptionsAreRefusedUnlessForcedAndForcingRemovesOutputs) {
   Workspace ws(dir_ / "ws", dir_ / "run");
   ws.BeginStage("rgbd", R"({"a":1})", false);

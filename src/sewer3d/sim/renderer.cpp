@@ -176,7 +176,10 @@ void BlurAlongMotion(const CameraModel& camera, const cv::Mat1f& depth,
       const auto a = camera.Project(p + 0.5 * motion), b = camera.Project(p - 0.5 * motion);
       if (!a || !b) continue;
       const Eigen::Vector2d d = *b - *a;
-      const int steps = std::max(2, static_cast<int>(std::ceil(d.norm() / 0.25)));
+      // Quarter-pixel steps, at most as many as for a smear across the whole image.
+      const double longest = 4.0 * std::hypot(depth.cols, depth.rows);
+      const int steps =
+          std::max(2, static_cast<int>(std::ceil(std::min(d.norm() / 0.25, longest))));
       double sum_pattern = 0.0;
       cv::Vec3d sum_texture(0, 0, 0);
       for (int i = 0; i < steps; ++i) {
@@ -235,6 +238,13 @@ void RenderOptions::Check() const {
                    "white_balance", "gains must be in (0, 4]");
   within("speed_mm_s", speed_mm_s, 0.0, 10000.0);
   within("exposure_ms", exposure_ms, 0.0, 1000.0);
+  // Beyond, a pixel averages a smear longer than the view (and the blur's samples grow with
+  // it: 10 m took over 5 minutes for one frame).
+  constexpr double kMaxMotionMm = 50.0;
+  SEWER3D_VALIDATE(speed_mm_s * exposure_ms * 1e-3 <= kMaxMotionMm, "speed_mm_s",
+                   "times exposure_ms: the rig would move " << speed_mm_s * exposure_ms * 1e-3
+                                                            << " mm during the exposure; at most "
+                                                            << kMaxMotionMm << " mm");
   SEWER3D_VALIDATE(motion_direction.allFinite() && motion_direction.norm() > 0.0 &&
                        std::isfinite(motion_direction.norm()),
                    "motion_direction", "must be a finite, non-zero direction");

@@ -221,6 +221,11 @@ void Scenario::Check() const {
                                                                     << capture.nominal_diameter_mm);
   CheckWithin("odometry.", [&] { odometry.Check(); });
   CheckWithin("render.", [&] { render.Check(); });
+  // The frames are rendered with the carrier's speed over the capture's exposure.
+  RenderOptions moving = render;
+  moving.speed_mm_s = motion.speed_mm_s;
+  moving.exposure_ms = capture.exposure_ms;
+  CheckWithin("motion.", [&] { moving.Check(); });
   SEWER3D_VALIDATE(white_balance_error >= 0.0 && white_balance_error <= 0.5, "white_balance_error",
                    "must be 0..0.5, got " << white_balance_error);
   const double length = world.LengthMm();

@@ -46,6 +46,20 @@ std::string NotOfModuleReason(const FrameReport& r) {
          " windows decode: the image is mirrored or flipped, or not of this module's pattern";
 }
 
+std::string FrameDoubt(const FrameReport& r, std::size_t points) {
+  if (r.spots_found >= 50 && 2 * r.spots_decoded < r.spots_found) {
+    return std::to_string(r.spots_decoded) + " of " + std::to_string(r.spots_found) +
+           " spots decoded: the spots may be too small or too close together for the camera "
+           "(sewer3d describe checks a module)";
+  }
+  if (r.spots_decoded > 0 && static_cast<double>(points) < 0.8 * r.spots_decoded) {
+    return std::to_string(points) + " of " + std::to_string(r.spots_decoded) +
+           " decoded spots gave a point (the others' disparities lie outside the module's "
+           "working range): is the image of this module?";
+  }
+  return {};
+}
+
 FrameReconstructor::FrameReconstructor(const ModuleDescription& module, const BinaryArray& pattern,
                                        const PatternConstraints& constraints,
                                        const FrameReconstructionOptions& options)

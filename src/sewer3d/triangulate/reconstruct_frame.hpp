@@ -92,6 +92,12 @@ struct FrameReconstruction {
 /// Why a frame with FrameReport::not_of_module was refused, in words.
 std::string NotOfModuleReason(const FrameReport& report);
 
+/// What makes a frame's points doubtful though some were made, in words (empty: nothing):
+/// fewer than half of 50 or more spots decoded (spots too small or too close for the camera),
+/// or fewer than 80 % of the decoded spots triangulated (their disparities outside the
+/// module's working range: an image of another module). A good frame has over 90 % of both.
+std::string FrameDoubt(const FrameReport& report, std::size_t points);
+
 /// The single-frame chain for one module, with everything that depends only on the module
 /// (decoder lattice prediction and buffers, projector element centres) built once: a run
 /// reconstructs thousands of frames per module.
