@@ -108,12 +108,12 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
     throw FileError(cloud, fmt::format("only {} points in the inner part", points.size()));
   fmt::print("{}: {} points, {} in the inner {:.0f} %\n", cloud, all.size(), points.size(),
              100 * inner_fraction);
-  WarnOfUnits(cloud, all);
   if (surface == "plane") {
     PrintPlane(cloud, points);
   } else {
     PrintCylinder(cloud, points, truth);
   }
+  WarnOfUnits(cloud, all);  // after the fit: a cloud no surface fits gets its one error line
   if (truth) PrintTruthDistances(*truth, all);
   return 0;
 }
