@@ -36,6 +36,12 @@ int RunModule(const ModuleArgs& a) {
     throw InvalidValue("--out", "names the module file (JSON), got " + a.out +
                                     ": pattern.png is written beside it");
   CheckOutputFile(fs::path(a.out).parent_path() / "pattern.png");
+  if (IsRegularFile(fs::path(a.out).parent_path() / "texture.png")) {
+    throw InvalidValue("--out", a.out +
+                                    " lies in a pose folder (it holds texture.png): the "
+                                    "pattern.png written beside the module would replace "
+                                    "its capture; choose another folder");
+  }
   const std::vector<fs::path> poses = PoseFolders(a.captures);
   if (poses.size() < 3) {
     throw FileError(

@@ -15,6 +15,7 @@
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/model_stage.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
+#include "sewer3d/pipeline/rgbd_inputs.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 
 namespace sewer3d::cli {
@@ -89,8 +90,10 @@ Command AddModelCommand(CLI::App& app) {
               bar.Update("model " + pass, done, total, pass == "tiles" ? "tiles" : "items");
             };
             ModelStageReport r;
+            std::string behind;  // rgbd outputs older than the run's images
             try {
               Workspace workspace(args->out, run.folder);
+              behind = RgbdBehindWarning(run, workspace.StageFolder("rgbd"));
               r = RunModelStage(run, workspace, args->options, progress);
             } catch (const WorkspaceConflict& e) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());
@@ -108,6 +111,7 @@ Command AddModelCommand(CLI::App& app) {
             fmt::print("wrote {}, look at {}\n",
                        (std::filesystem::path(args->out) / "model" / "model.json").string(),
                        outcome.output.string());
+            if (!behind.empty()) fmt::print(stderr, "sewer3d: warning: {}\n", behind);
             return 0;
           }};
 }

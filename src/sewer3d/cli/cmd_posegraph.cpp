@@ -10,7 +10,9 @@
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/g2o_io.hpp"
+#include "sewer3d/io/input_file.hpp"
 #include "sewer3d/posegraph/solver.hpp"
 
 namespace sewer3d::cli {
@@ -103,6 +105,8 @@ Command AddPoseGraphCommand(CLI::App& app) {
                            : args->init == "chordal" ? PoseGraphInit::kChordal
                                                      : PoseGraphInit::kAuto;
             if (!args->robust.empty()) options.huber_delta = *ParseRobust(args->robust);
+            CheckOutputFile(args->out);
+            CheckNotAnInput(args->out, args->in, "--in");
             PoseGraph graph = ReadG2o(args->in);
             // The certificate's time grows with about the cube of the poses (2 cores: 1 s at
             // 2 000, 12 s at 5 000, 160 s at 10 000): beyond, it would run for hours.

@@ -16,6 +16,7 @@
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
+#include "sewer3d/pipeline/rgbd_inputs.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 
 namespace sewer3d::cli {
@@ -68,8 +69,10 @@ Command AddRegisterCommand(CLI::App& app) {
               bar.Update("register " + pass, done, total, pass == "pairs" ? "pairs" : "steps");
             };
             RegisterStageReport report;
+            std::string behind;  // rgbd outputs older than the run's images
             try {
               Workspace workspace(args->out, run.folder);
+              behind = RgbdBehindWarning(run, workspace.StageFolder("rgbd"));
               report = RunRegisterStage(run, workspace, options, progress);
             } catch (const WorkspaceConflict& e) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());
@@ -82,6 +85,7 @@ Command AddRegisterCommand(CLI::App& app) {
               fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);
               return 1;
             }
+            if (!behind.empty()) fmt::print(stderr, "sewer3d: warning: {}\n", behind);
             return 0;
           }};
 }

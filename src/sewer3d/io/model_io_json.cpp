@@ -127,10 +127,16 @@ PipeModelInfo ReadModelJson(const std::filesystem::path& path) {
   PipeModelInfo info;
   const json& map = in.RequiredObject(j, "map", "");
   info.grid.resolution_mm = in.Positive(map, "resolution_mm", "map.");
+  // As the model stage makes them: a station far beyond any pipe would make every row's
+  // station the same number (and loops over stations endless).
+  if (info.grid.resolution_mm < 0.01 || info.grid.resolution_mm > 50.0)
+    in.Fail("map.resolution_mm", "must be 0.01 … 50 mm");
   info.grid.station0_mm = in.Number(map, "station0_mm", "map.");
+  if (std::abs(info.grid.station0_mm) > 1e9) in.Fail("map.station0_mm", "must be within ±1e9 mm");
   info.grid.rows = in.PositiveSize(map, "rows", "map.");
   info.grid.cols = in.PositiveSize(map, "cols", "map.");
   info.start_station_mm = in.Number(j, "start_station_mm", "");
+  if (std::abs(info.start_station_mm) > 1e9) in.Fail("start_station_mm", "must be within ±1e9 mm");
   info.centreline =
       ReadCentreline(in, in.RequiredObject(j, "centreline", ""), in.Positive(j, "radius_mm", ""));
   const json& png = in.RequiredObject(j, "displacement_png", "");

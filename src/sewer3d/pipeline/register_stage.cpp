@@ -170,9 +170,8 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   options.Check();
   const auto start = Clock::now();
   workspace.BeginStage(kStage, RegisterOptionsJson(options), options.force);
-  // BeginStage's force clears WS/register; the files live in WS/registration.
+  // BeginStage has cleared WS/registration when forced or stale.
   const std::filesystem::path folder = workspace.StageFolder(kFolder);
-  if (options.force) RemoveFolder(folder);
   const std::filesystem::path rgbd_folder = workspace.StageFolder("rgbd");
 
   RegisterStageReport report;

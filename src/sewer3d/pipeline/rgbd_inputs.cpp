@@ -94,6 +94,14 @@ bool RgbdUpToDate(const CaptureRun& run, const std::filesystem::path& rgbd_folde
   return true;
 }
 
+std::string RgbdBehindWarning(const CaptureRun& run, const std::filesystem::path& rgbd_folder) {
+  if (RgbdUpToDate(run, rgbd_folder)) return {};
+  return rgbd_folder.string() +
+         ": does not hold every acquisition of the run as it is now (rgbd unfinished, or "
+         "images added or replaced since): this stage uses what is there; run `sewer3d rgbd` "
+         "first";
+}
+
 std::vector<std::string> PatternMatrixWarnings(const CaptureRun& run,
                                                const std::vector<PatternConstraints>& inferred) {
   const PatternConstraints wanted;

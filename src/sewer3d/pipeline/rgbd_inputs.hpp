@@ -33,6 +33,11 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
 /// the cost of a resumed stage with nothing to do: a report read and a stat per image.
 bool RgbdUpToDate(const CaptureRun& run, const std::filesystem::path& rgbd_folder);
 
+/// "" when RgbdUpToDate, else one line for a later stage run on its own (register, model):
+/// the rgbd outputs in `rgbd_folder` are not those of the run as it is now (rgbd unfinished,
+/// or images added or replaced since), so the stage works from what is there.
+std::string RgbdBehindWarning(const CaptureRun& run, const std::filesystem::path& rgbd_folder);
+
 /// One line per module whose pattern matrix, by the constraints it satisfies (`inferred`, one
 /// per module, InferConstraints), breaks the pattern constraints a matrix is made with
 /// (PatternConstraints' defaults): touching spots, or windows that differ in too few spots or

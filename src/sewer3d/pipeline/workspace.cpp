@@ -103,6 +103,12 @@ void CheckWorkspaceOfRun(const std::filesystem::path& folder,
 
 std::string SoftwareVersion() { return SEWER3D_VERSION; }
 
+std::string OutputFolderName(const std::string& stage) {
+  if (stage == "register") return "registration";
+  if (stage == "inspect") return "inspection";
+  return stage;
+}
+
 const std::vector<std::string>& WorkspaceStageOrder() {
   static const std::vector<std::string> order = {"rgbd", "register", "model", "inspect", "report"};
   return order;
@@ -141,7 +147,7 @@ void Workspace::BeginStage(const std::string& stage, const std::string& options_
   WorkspaceStage& s = record_.stages[stage];
   const bool afresh = force || s.stale;
   if (afresh) {
-    RemoveFolder(StageFolder(stage));
+    RemoveFolder(StageFolder(OutputFolderName(stage)));
     MarkLaterStagesStale(stage);  // what they were made from is gone
   }
   if (afresh || !recorded || s.started_utc.empty()) s.started_utc = UtcNow();

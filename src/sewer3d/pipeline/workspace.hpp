@@ -41,6 +41,10 @@ std::string SoftwareVersion();
 /// inspect, report (the chain of `sewer3d process`).
 const std::vector<std::string>& WorkspaceStageOrder();
 
+/// The folder under WS a stage writes: its name, but "registration" for register and
+/// "inspection" for inspect.
+std::string OutputFolderName(const std::string& stage);
+
 /// A stage cannot run in this workspace as asked (another run, other options without force).
 /// The message is one line, naming workspace.json and what to do.
 class WorkspaceConflict : public std::runtime_error {

@@ -65,7 +65,7 @@ TEST_F(WorkspaceTest, ChangedOutputsMakeTheLaterStagesStaleAndTheyStartAfresh) {
   Workspace ws(dir_ / "ws", dir_ / "run");
   for (const char* stage : {"rgbd", "register", "model"}) {
     ws.BeginStage(stage, "{}", false);
-    WriteTextFile(ws.StageFolder(stage) / "made.txt", "x");
+    WriteTextFile(ws.StageFolder(OutputFolderName(stage)) / "made.txt", "x");
     ws.FinishStage(stage, true, {});
   }
   // A resumed rgbd that found nothing to do leaves the later stages done.
@@ -85,7 +85,8 @@ TEST_F(WorkspaceTest, ChangedOutputsMakeTheLaterStagesStaleAndTheyStartAfresh) {
   EXPECT_TRUE(fs::exists(ws.StageFolder("rgbd") / "made.txt"));
   // The stale register starts afresh (its pairs were made from the old acquisitions).
   ws.BeginStage("register", "{}", false);
-  EXPECT_FALSE(fs::exists(ws.StageFolder("register") / "made.txt"));
+  EXPECT_FALSE(fs::exists(ws.StageFolder("registration") / "made.txt"));
+  EXPECT_TRUE(fs::exists(ws.StageFolder("model") / "made.txt"));  // until it runs
   EXPECT_FALSE(ws.record().stages.at("register").stale);
   EXPECT_TRUE(ws.record().stages.at("model").stale);
 }
