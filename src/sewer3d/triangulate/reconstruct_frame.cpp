@@ -52,7 +52,7 @@ std::string FrameDoubt(const FrameReport& r, std::size_t points) {
            " spots decoded: the spots may be too small or too close together for the camera "
            "(sewer3d describe checks a module)";
   }
-  if (r.spots_decoded > 0 && static_cast<double>(points) < 0.8 * r.spots_decoded) {
+  if (r.spots_decoded > 0 && 2 * points < static_cast<std::size_t>(r.spots_decoded)) {
     return std::to_string(points) + " of " + std::to_string(r.spots_decoded) +
            " decoded spots gave a point (the others' disparities lie outside the module's "
            "working range): is the image of this module?";
