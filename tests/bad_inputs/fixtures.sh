@@ -291,3 +291,18 @@ pts = [(0.15 * math.sin(a / 100), y / 1000, 0.15 * math.cos(a / 100)) for a in r
 with open('metres.ply', 'w') as f:
     f.write('ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\nend_header\n' % len(pts))
     f.writelines('%g %g %g\n' % p for p in pts)"
+# Session 29 (probe 10 leftovers): a square whose start is far from what its edges say, so one
+# iteration does not converge.
+{
+  echo 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1'
+  echo 'VERTEX_SE3:QUAT 1 3 0.5 0 0 0 0 1'
+  echo 'VERTEX_SE3:QUAT 2 2 4 0 0 0 0.3 0.954'
+  echo 'VERTEX_SE3:QUAT 3 -1 2 0 0 0 0 1'
+  for e in '0 1 1 0' '1 2 0 1' '2 3 -1 0' '3 0 0 -1'; do
+    set -- $e
+    echo "EDGE_SE3:QUAT $1 $2 $3 $4 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1"
+  done
+  echo 'FIX 0'
+} >square_far.g2o
+python3 -c "import json; s = json.load(open('scenario_two.json')); s['module'] = 'm/module.json'; \
+json.dump(s, open('module_and_width.json', 'w'))"

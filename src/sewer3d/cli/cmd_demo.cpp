@@ -108,7 +108,7 @@ int RunDemo(const DemoArgs& a) {
   const double evaluate_s = SecondsSince(evaluate_start);
   // The report again, now with the accuracy section the evaluations wrote.
   const CaptureRun loaded = LoadRun(run);
-  Workspace workspace(ws, loaded.folder);
+  Workspace workspace(ws, loaded);
   const ReportStageReport page = RunReportStage(loaded, workspace, false);
 
   std::string times = fmt::format("simulate {:.1f} s{}", simulate_s, simulated ? "" : " (reused)");

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/run_io.hpp"
@@ -69,7 +70,8 @@ Command AddInspectCommand(CLI::App& app) {
             };
             InspectStageReport r;
             try {
-              Workspace workspace(args->out, run.folder);
+              Workspace workspace(args->out, run);
+              PrintRunFileChanges(workspace);
               r = RunInspectStage(run, workspace, args->options, progress);
             } catch (const WorkspaceConflict& e) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/run_io.hpp"
@@ -92,8 +93,9 @@ Command AddModelCommand(CLI::App& app) {
             ModelStageReport r;
             std::string behind;  // rgbd outputs older than the run's images
             try {
-              Workspace workspace(args->out, run.folder);
-              behind = RgbdBehindWarning(run, workspace.StageFolder("rgbd"));
+              Workspace workspace(args->out, run);
+              PrintRunFileChanges(workspace);
+              behind = RgbdBehind(run, workspace);
               r = RunModelStage(run, workspace, args->options, progress);
             } catch (const WorkspaceConflict& e) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());
@@ -111,7 +113,12 @@ Command AddModelCommand(CLI::App& app) {
             fmt::print("wrote {}, look at {}\n",
                        (std::filesystem::path(args->out) / "model" / "model.json").string(),
                        outcome.output.string());
-            if (!behind.empty()) fmt::print(stderr, "sewer3d: warning: {}\n", behind);
+            if (!behind.empty()) {
+              fmt::print(stderr,
+                         "sewer3d: warning: {}: the model used what is there; run `sewer3d "
+                         "process` to bring every stage up to date\n",
+                         behind);
+            }
             return 0;
           }};
 }

@@ -145,6 +145,13 @@ Command AddPoseGraphCommand(CLI::App& app) {
                          args->in, r.unanchored_nodes, r.nodes, args->out);
               return 1;
             }
+            if (r.termination.rfind("NO_CONVERGENCE", 0) == 0) {  // usable, not the optimum
+              std::fflush(stdout);
+              fmt::print(stderr,
+                         "sewer3d: warning: {}: stopped at --max-iterations {} before converging: "
+                         "the poses written are better than the start, not the optimum\n",
+                         args->in, options.max_iterations);
+            }
             WarnOfDisagreement(args->in, r.final_cost, graph.edges().size());
             WriteG2o(args->out, graph);
             fmt::print("wrote {}\n", args->out);

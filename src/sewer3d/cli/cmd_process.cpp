@@ -48,6 +48,11 @@ void PrintStageOutcome(const StageOutcome& outcome) {
   }
 }
 
+void PrintRunFileChanges(const Workspace& workspace) {
+  for (const std::string& line : workspace.run_file_changes()) fmt::print("{}\n", line);
+  std::fflush(stdout);
+}
+
 int RunProcessCommand(const ProcessArgs& args, ProcessReport* report_out) {
   ProcessOptions options;
   options.start_station_mm = args.start_station_mm;
@@ -69,7 +74,8 @@ int RunProcessCommand(const ProcessArgs& args, ProcessReport* report_out) {
   };
   ProcessReport report;
   try {
-    Workspace workspace(args.out, run.folder);
+    Workspace workspace(args.out, run);
+    PrintRunFileChanges(workspace);
     report = RunProcess(run, workspace, options, progress, PrintStage);
   } catch (const WorkspaceConflict& e) {
     fmt::print(stderr, "sewer3d: error: {}\n", e.what());

@@ -69,10 +69,18 @@ Command AddRegisterCommand(CLI::App& app) {
               bar.Update("register " + pass, done, total, pass == "pairs" ? "pairs" : "steps");
             };
             RegisterStageReport report;
-            std::string behind;  // rgbd outputs older than the run's images
             try {
-              Workspace workspace(args->out, run.folder);
-              behind = RgbdBehindWarning(run, workspace.StageFolder("rgbd"));
+              Workspace workspace(args->out, run);
+              PrintRunFileChanges(workspace);
+              // rgbd outputs not of the run as it is now: registering them gives a model with
+              // gaps, or one from another calibration.
+              if (const std::string behind = RgbdBehind(run, workspace); !behind.empty()) {
+                fmt::print(stderr,
+                           "sewer3d: error: register: {}: run `sewer3d rgbd {} --out {}` first "
+                           "(or `sewer3d process`)\n",
+                           behind, args->run, args->out);
+                return 1;
+              }
               report = RunRegisterStage(run, workspace, options, progress);
             } catch (const WorkspaceConflict& e) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());
@@ -85,7 +93,6 @@ Command AddRegisterCommand(CLI::App& app) {
               fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);
               return 1;
             }
-            if (!behind.empty()) fmt::print(stderr, "sewer3d: warning: {}\n", behind);
             return 0;
           }};
 }

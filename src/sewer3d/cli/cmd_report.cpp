@@ -7,6 +7,7 @@
 #include <string>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
@@ -33,7 +34,8 @@ Command AddReportCommand(CLI::App& app) {
             const CaptureRun run = LoadRun(args->run);
             ReportStageReport r;
             try {
-              Workspace workspace(args->out, run.folder);
+              Workspace workspace(args->out, run);
+              PrintRunFileChanges(workspace);
               r = RunReportStage(run, workspace, false);
             } catch (const WorkspaceConflict& e) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());

@@ -74,7 +74,8 @@ Command AddRgbdCommand(CLI::App& app) {
             };
             RgbdStageReport report;
             try {
-              Workspace workspace(args->out, run.folder);
+              Workspace workspace(args->out, run);
+              PrintRunFileChanges(workspace);
               report = RunRgbdStage(run, workspace, options, progress);
             } catch (const WorkspaceConflict& e) {
               fmt::print(stderr, "sewer3d: error: {}\n", e.what());

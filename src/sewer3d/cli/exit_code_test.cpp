@@ -79,6 +79,11 @@ TEST(ExitCode, OutOfMemory) {
   EXPECT_EQ(e.message, "out of memory");
 }
 
+TEST(ExitCode, AFileNameWithANewlineIsShownEscaped) {
+  const ErrorExit e = ExitFor(FileError("runs/a\nb\x01.png", "cannot be read"));
+  EXPECT_EQ(e.message, "runs/a\\nb\\x01.png: cannot be read");
+}
+
 TEST(ExitCode, MessagesAreOneLine) {
   const ErrorExit e = ExitFor(std::runtime_error("OpenCV(4.6) error:\nsomething\n"));
   EXPECT_EQ(e.message.find('\n'), std::string::npos) << e.message;

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/exit_code.hpp"
 #include "sewer3d/cli/library_logs.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 
 namespace {
@@ -92,6 +94,19 @@ std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
   return {};
 }
 
+// Commands whose outputs belong together, so that a failure part-way (a full disk) leaves none
+// of them (NewOutputs). The stages, `process`, `demo` and `simulate run` keep what they wrote,
+// to resume from it.
+bool WritesOneSet(const CLI::App& command) {
+  const std::string name = command.get_name();
+  if (name == "simulate") {
+    const auto subs = command.get_subcommands();
+    return !subs.empty() && subs.front()->get_name() != "run";
+  }
+  return name == "module" || name == "pattern" || name == "reconstruct" || name == "evaluate" ||
+         name == "calibrate";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -164,7 +179,12 @@ int main(int argc, char** argv) {
   }
   try {
     for (const auto& c : commands) {
-      if (c.app->parsed()) return c.run();
+      if (!c.app->parsed()) continue;
+      std::optional<sewer3d::NewOutputs> outputs;
+      if (WritesOneSet(*c.app)) outputs.emplace();
+      const int code = c.run();
+      if (code == 0 && outputs) outputs->Keep();
+      return code;
     }
     fmt::print(stderr, "sewer3d: error: no subcommand\n");
     return sewer3d::cli::kExitUsage;

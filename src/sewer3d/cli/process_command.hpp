@@ -28,4 +28,8 @@ int RunProcessCommand(const ProcessArgs& args, ProcessReport* report = nullptr);
 /// ("warning: …") go to stderr as `sewer3d: warning: …`, the others to stdout.
 void PrintStageOutcome(const StageOutcome& outcome);
 
+/// Prints on stdout what the workspace found changed in the run's own files since its stages
+/// used them (Workspace::run_file_changes: which stages start afresh).
+void PrintRunFileChanges(const Workspace& workspace);
+
 }  // namespace sewer3d::cli

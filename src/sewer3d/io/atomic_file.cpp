@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <mutex>
+#include <stdexcept>
 #include <system_error>
 #include <vector>
 
@@ -12,6 +14,52 @@
 #include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
+
+namespace {
+
+std::mutex new_outputs_mutex;
+bool new_outputs_active = false;
+std::vector<std::filesystem::path> new_outputs;
+
+void NoteNewOutput(const std::filesystem::path& path) {
+  const std::lock_guard<std::mutex> lock(new_outputs_mutex);
+  if (new_outputs_active) new_outputs.push_back(path);
+}
+
+}  // namespace
+
+NewOutputs::NewOutputs() {
+  const std::lock_guard<std::mutex> lock(new_outputs_mutex);
+  if (new_outputs_active) throw std::logic_error("NewOutputs: one at a time");
+  new_outputs_active = true;
+  new_outputs.clear();
+}
+
+NewOutputs::~NewOutputs() {
+  const std::lock_guard<std::mutex> lock(new_outputs_mutex);
+  if (!keep_) {
+    std::error_code ignored;  // best effort: the command is failing already
+    // Newest first, so that a folder it created is empty when its turn comes (a folder that
+    // holds something else stays).
+    for (auto p = new_outputs.rbegin(); p != new_outputs.rend(); ++p)
+      std::filesystem::remove(*p, ignored);
+  }
+  new_outputs.clear();
+  new_outputs_active = false;
+}
+
+void CreateOutputFolder(const std::filesystem::path& folder) {
+  std::error_code ec;
+  std::vector<std::filesystem::path> missing;
+  for (std::filesystem::path up = folder; !up.empty() && !std::filesystem::exists(up, ec);
+       up = up.parent_path()) {
+    missing.push_back(up);
+    if (up == up.parent_path()) break;
+  }
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw FileError(folder, "cannot create folder: " + ec.message());
+  for (auto f = missing.rbegin(); f != missing.rend(); ++f) NoteNewOutput(*f);
+}
 
 // Unique within the process (threads write different files at once) and across processes
 // (the pid): two writers never share a temporary.
@@ -34,8 +82,7 @@ void WriteFileAtomically(const std::filesystem::path& path,
   if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
     throw FileError(path, "not a regular file (a FIFO, socket or device); not replaced");
   ec.clear();
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  if (ec) throw FileError(path.parent_path(), "cannot create folder: " + ec.message());
+  if (path.has_parent_path()) CreateOutputFolder(path.parent_path());
   const std::filesystem::path temporary = TemporaryPathFor(path);
   try {
     write(temporary);
@@ -43,12 +90,14 @@ void WriteFileAtomically(const std::filesystem::path& path,
     std::filesystem::remove(temporary, ec);
     throw;
   }
+  const bool existed = std::filesystem::exists(status);
   std::filesystem::rename(temporary, path, ec);  // POSIX rename: atomic within one file system
   if (ec) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
     throw FileError(path, "cannot rename the finished temporary file over it: " + ec.message());
   }
+  if (!existed) NoteNewOutput(path);
 }
 
 void WriteTextFileAtomically(const std::filesystem::path& path, const std::string& text) {

@@ -19,6 +19,28 @@ namespace sewer3d {
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path&)>& write);
 
+/// While one exists, the files WriteFileAtomically creates (those that did not exist before)
+/// are noted, and removed again when it goes without Keep(): a command whose outputs belong
+/// together (a module's JSON and pattern, a reconstruction's depth map and cloud) leaves none
+/// of them when it fails part-way (a full disk). Files it replaced stay replaced. One at a time
+/// per process; thread-safe.
+class NewOutputs {
+ public:
+  NewOutputs();
+  ~NewOutputs();
+  NewOutputs(const NewOutputs&) = delete;
+  NewOutputs& operator=(const NewOutputs&) = delete;
+  /// The command finished: its files stay.
+  void Keep() { keep_ = true; }
+
+ private:
+  bool keep_ = false;
+};
+
+/// create_directories for an output folder, FileError naming it when that fails; the folders
+/// it creates are new outputs (NewOutputs).
+void CreateOutputFolder(const std::filesystem::path& folder);
+
 /// A fresh name beside `path` for a temporary file or folder: `.<file name>.tmp-<pid>-<n>` +
 /// `path`'s extension; unique within and across processes. Nothing is created.
 std::filesystem::path TemporaryPathFor(const std::filesystem::path& path);

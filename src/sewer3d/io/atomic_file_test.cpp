@@ -62,6 +62,31 @@ TEST_F(AtomicFile, AFailingWriterLeavesTheOldFileAndNoTemporary) {
   EXPECT_EQ(FilesIn(dir_), 1);
 }
 
+TEST_F(AtomicFile, NewOutputsOfAFailedCommandAreRemovedAndReplacedOnesStay) {
+  WriteTextFile(dir_ / "old.json", "before");
+  {
+    NewOutputs outputs;
+    EXPECT_THROW(NewOutputs(), std::logic_error);  // one at a time
+    WriteTextFile(dir_ / "old.json", "replaced");
+    WriteTextFile(dir_ / "module.json", "new");
+    WriteTextFile(dir_ / "pattern.png", "new");
+    WriteTextFile(dir_ / "out" / "deeper" / "cloud.ply", "new");
+  }                                        // not kept: the command failed
+  EXPECT_FALSE(fs::exists(dir_ / "out"));  // the folders it made too
+  EXPECT_FALSE(fs::exists(dir_ / "module.json"));
+  EXPECT_FALSE(fs::exists(dir_ / "pattern.png"));
+  EXPECT_EQ(ReadTextFile(dir_ / "old.json"), "replaced");
+  {
+    NewOutputs outputs;
+    WriteTextFile(dir_ / "module.json", "new");
+    outputs.Keep();
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "module.json"));
+  WriteTextFile(dir_ / "later.json", "no NewOutputs: nothing noted");
+  { const NewOutputs outputs; }
+  EXPECT_TRUE(fs::exists(dir_ / "later.json"));
+}
+
 TEST_F(AtomicFile, ReplacesAnExistingFile) {
   const fs::path path = dir_ / "workspace.json";
   WriteTextFileAtomically(path, "first");

@@ -9,10 +9,30 @@
 
 namespace sewer3d {
 
+/// `path` as a message shows it: control characters (a newline in a file name) written as
+/// C escapes (\n, \t, \x01), so that the one-line message names the real file.
+inline std::string ShownPath(const std::filesystem::path& path) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string shown;
+  for (const char c : path.string()) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) {
+      shown += c;
+    } else if (c == '\n') {
+      shown += "\\n";
+    } else if (c == '\t') {
+      shown += "\\t";
+    } else {
+      shown += std::string("\\x") + kHex[u >> 4] + kHex[u & 15];
+    }
+  }
+  return shown;
+}
+
 class FileError : public std::runtime_error {
  public:
   FileError(const std::filesystem::path& path, const std::string& problem)
-      : std::runtime_error(path.string() + ": " + problem), path_(path) {}
+      : std::runtime_error(ShownPath(path) + ": " + problem), path_(path) {}
   const std::filesystem::path& path() const { return path_; }
 
  private:

@@ -12,18 +12,20 @@
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/input_file.hpp"
 #include "sewer3d/io/png_check.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d {
 void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
-  WriteFileAtomically(path, [&](const std::filesystem::path& temporary) {
-    bool ok = false;
-    try {
-      ok = cv::imwrite(temporary.string(), image);
-    } catch (const cv::Exception& e) {
-      throw FileError(path, std::string("cannot write image: ") + e.err);
-    }
-    if (!ok) throw FileError(path, "cannot write image");
-  });
+  // Encoded in memory and written by us: a full disk is then one FileError naming `path`,
+  // without libpng's or libtiff's own lines on stderr or the temporary file's name.
+  std::vector<std::uint8_t> bytes;
+  try {
+    if (!cv::imencode(path.extension().string(), image, bytes))
+      throw FileError(path, "cannot encode the image");
+  } catch (const cv::Exception& e) {
+    throw FileError(path, std::string("cannot write image: ") + e.err);
+  }
+  WriteTextFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 cv::Mat ReadImage(const std::filesystem::path& path, int imread_flags, std::uint64_t max_pixels) {

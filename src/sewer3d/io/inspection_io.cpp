@@ -136,6 +136,14 @@ int NotNegativeInteger(const JsonReader& in, const json& j, const char* key,
   return x;
 }
 
+// EN 13508-2's main codes: BAA…BAP (the pipe's structure), BBA…BBH (operation), BCA…BCE
+// (inventory), BDA…BDG (other).
+bool IsMainCode(const std::string& code) {
+  if (code.size() != 3 || code[0] != 'B' || code[1] < 'A' || code[1] > 'D') return false;
+  const char last[] = {'P', 'H', 'E', 'G'};
+  return code[2] >= 'A' && code[2] <= last[code[1] - 'A'];
+}
+
 Observation ReadObservation(const JsonReader& in, const json& j, const std::string& p) {
   if (!j.is_object()) in.Fail(p.substr(0, p.size() - 1), "must be an object");
   in.OnlyKnown(
@@ -145,6 +153,10 @@ Observation ReadObservation(const JsonReader& in, const json& j, const std::stri
   Observation o;
   o.id = in.Text(j, "id", p);
   o.code = in.Text(j, "code", p);
+  if (!IsMainCode(o.code)) {
+    in.Fail(p + "code",
+            "'" + o.code + "' is not an EN 13508-2 main code (BAA-BAP, BBA-BBH, BCA-BCE, BDA-BDG)");
+  }
   o.characterisation = in.Text(j, "characterisation", p, "");
   o.station_mm = in.Number(j, "station_mm", p);
   o.length_mm = InRange(in, j, "length_mm", p, 0.0, 1e9);

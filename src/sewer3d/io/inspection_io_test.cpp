@@ -210,6 +210,7 @@ TEST_F(InspectionIoTest, BadObservationsJsonNamesTheField) {
   expect_error("\"unit\": \"mm\"", "\"units\": \"mm\"", "observations[0].quantities[0].units");
   expect_error("\"rows\": 750", "\"rows\": -750", "observations[1].crop.rows");
   expect_error("\"code\": \"BBC\"", "\"code\": \"\"", "observations[1].code");
+  expect_error("\"code\": \"BBC\"", "\"code\": \"BBX\"", "observations[1].code");
   expect_error("\"version\": 1", "\"version\": 2", "version");
   expect_error("sewer3d-observations", "sewer3d-features", "format");
 }

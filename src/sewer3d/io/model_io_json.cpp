@@ -1,9 +1,12 @@
 // model.json of the pipe model (model_io.hpp): written for people and programs alike, so
 // besides the numbers it spells out the conventions that turn a pixel into a 3D point.
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/json_reader.hpp"
@@ -139,6 +142,15 @@ PipeModelInfo ReadModelJson(const std::filesystem::path& path) {
   if (std::abs(info.start_station_mm) > 1e9) in.Fail("start_station_mm", "must be within ±1e9 mm");
   info.centreline =
       ReadCentreline(in, in.RequiredObject(j, "centreline", ""), in.Positive(j, "radius_mm", ""));
+  // The model stage makes cols = round(2 pi radius / resolution): a resolution edited by hand
+  // would scale every measurement along the pipe wrongly while the maps stay as they are.
+  const double cols = 2.0 * std::numbers::pi * info.centreline.radius_mm / info.grid.resolution_mm;
+  if (std::abs(cols - info.grid.cols) > 1.0) {
+    in.Fail("map.cols",
+            fmt::format("{} columns, but radius_mm {} at resolution_mm {} makes {:.0f}: "
+                        "the map's size, radius and resolution disagree",
+                        info.grid.cols, info.centreline.radius_mm, info.grid.resolution_mm, cols));
+  }
   const json& png = in.RequiredObject(j, "displacement_png", "");
   info.encoding.scale_mm = in.Positive(png, "scale_mm", "displacement_png.");
   info.encoding.offset_mm = in.Number(png, "offset_mm", "displacement_png.");

@@ -215,6 +215,8 @@ TEST_F(ModelIoTest, BadModelJsonNamesTheField) {
   expect_error("\"version\": 1", "\"version\": 7", "version");
   expect_error("\"station0_mm\": 5.0", "\"station0_mm\": 1e300", "map.station0_mm");
   expect_error("\"resolution_mm\": 1.0", "\"resolution_mm\": 500", "map.resolution_mm");
+  // Edited by hand: measurements along the pipe would be scaled by 2 while the maps stay.
+  expect_error("\"resolution_mm\": 1.0", "\"resolution_mm\": 2.0", "map.cols");
 }
 
 }  // namespace

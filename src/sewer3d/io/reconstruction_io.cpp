@@ -21,9 +21,7 @@ void WriteFrameReconstruction(const std::filesystem::path& folder, const FrameRe
   }
   for (const char* name : {"cloud.ply", "depth.tiff", "depth.png", "report.json"})
     CheckOutputFile(folder / name);  // all before any: a refusal leaves none written
-  std::error_code ec;
-  std::filesystem::create_directories(folder, ec);
-  if (ec) throw FileError(folder, "cannot create folder: " + ec.message());
+  CreateOutputFolder(folder);
   WritePly(folder / "cloud.ply", xyz, colours);
   WriteImage(folder / "depth.tiff", frame.depth_mm);
   WriteDepthPreview(folder / "depth.png", frame.depth_mm);

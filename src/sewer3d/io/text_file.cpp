@@ -14,11 +14,11 @@ std::string ReadTextFile(const std::filesystem::path& path) {
   return {bytes.begin(), bytes.end()};
 }
 
-void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
+void WriteTextFile(const std::filesystem::path& path, std::string_view text) {
   WriteFileAtomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream file(temporary, std::ios::binary);
     if (!file) throw FileError(path, "cannot open for writing");
-    file << text;
+    file.write(text.data(), static_cast<std::streamsize>(text.size()));
     if (!file.flush()) throw FileError(path, "write failed (disk full?)");
   });
 }

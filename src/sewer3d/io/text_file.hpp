@@ -13,7 +13,7 @@ namespace sewer3d {
 std::string ReadTextFile(const std::filesystem::path& path);
 /// Writes the text atomically (temporary + rename, atomic_file.hpp), creating the file's
 /// folder; FileError on failure, and then `path` is left as it was.
-void WriteTextFile(const std::filesystem::path& path, const std::string& text);
+void WriteTextFile(const std::filesystem::path& path, std::string_view text);
 
 /// `text` as XML / HTML character data or attribute value: & < > " ' as entities.
 std::string EscapeMarkup(std::string_view text);

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_stamp_json.hpp"
 #include "sewer3d/io/json_reader.hpp"
 #include "sewer3d/io/text_file.hpp"
 
@@ -24,11 +25,16 @@ std::string WorkspaceToJson(const WorkspaceRecord& record) {
     stage["notes"] = s.notes;
     stages[name] = stage;
   }
-  const json j = {{"format", "sewer3d-workspace"},
-                  {"version", 1},
-                  {"run", record.run},
-                  {"software_version", record.software_version},
-                  {"stages", stages}};
+  json j = {{"format", "sewer3d-workspace"},
+            {"version", 1},
+            {"run", record.run},
+            {"software_version", record.software_version},
+            {"stages", stages}};
+  if (!record.run_files.empty()) {
+    json files = json::object();
+    for (const auto& [name, stamp] : record.run_files) files[name] = StampToJson(stamp);
+    j["run_files"] = files;
+  }
   return j.dump(2) + "\n";
 }
 
@@ -59,6 +65,16 @@ WorkspaceRecord WorkspaceFromJson(const std::string& text, const std::filesystem
       stage.notes[key] = value.get<std::string>();
     }
     record.stages[name] = stage;
+  }
+  if (j.contains("run_files")) {
+    for (const auto& [name, stamp] : reader.Object(j, "run_files", "").items()) {
+      try {
+        record.run_files[name] = StampFromJson(stamp);
+      } catch (const std::exception&) {
+        reader.Fail("run_files." + std::string(name),
+                    "must be {\"bytes\": N, \"mtime_ns\": N, \"hash\": \"hex\"}");
+      }
+    }
   }
   return record;
 }

@@ -9,6 +9,8 @@
 #include <map>
 #include <string>
 
+#include "sewer3d/io/file_stamp.hpp"
+
 namespace sewer3d {
 
 /// One stage's record ("rgbd", later "register", "model", "inspect").
@@ -33,6 +35,11 @@ struct WorkspaceRecord {
   std::string run;               ///< the capture run's folder, absolute
   std::string software_version;  ///< the version that last wrote the file
   std::map<std::string, WorkspaceStage> stages;
+  /// The run's own files the stages were made from (rig.json, its pattern matrices,
+  /// acquisitions.csv, odometry.csv), by their path relative to the run folder: a file changed
+  /// since makes the stages that use it stale (pipeline/workspace.hpp). Absent in workspaces
+  /// written before version 0.1 recorded them.
+  std::map<std::string, FileStamp> run_files;
 };
 
 /// The JSON text of workspace.json (format "sewer3d-workspace", version 1).

@@ -3,11 +3,13 @@
 #include <fmt/core.h>
 
 #include <nlohmann/json.hpp>
+#include <set>
 #include <system_error>
 #include <unordered_map>
 
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_stamp.hpp"
+#include "sewer3d/io/file_stamp_json.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pipeline/acquisition_images.hpp"
@@ -28,14 +30,6 @@ json RecordedStamps(const std::filesystem::path& geometry_report) {
   return json::object();
 }
 
-FileStamp StampFromJson(const json& j) {
-  FileStamp s;
-  s.bytes = j.at("bytes").get<std::uintmax_t>();
-  s.mtime_ns = j.at("mtime_ns").get<std::int64_t>();
-  s.hash = std::stoull(j.at("hash").get<std::string>(), nullptr, 16);
-  return s;
-}
-
 // The first image of `recorded` the run no longer holds as stamped; empty when all match.
 std::string ChangedImage(const CaptureRun& run, const json& recorded) {
   for (const auto& [kind, entry] : recorded.items()) {
@@ -49,6 +43,18 @@ std::string ChangedImage(const CaptureRun& run, const json& recorded) {
   return {};
 }
 
+// The acquisitions (module, counter) the last finished rgbd run left out as failed, by its
+// report; none when there is no readable report.
+std::set<std::pair<int, int>> LeftOut(const std::filesystem::path& stage_report) {
+  std::set<std::pair<int, int>> left_out;
+  try {
+    for (const json& f : json::parse(ReadTextFile(stage_report)).at("failures"))
+      left_out.emplace(f.at("module").get<int>(), f.at("counter").get<int>());
+  } catch (const std::exception&) {  // missing or damaged: nothing counts as left out
+  }
+  return left_out;
+}
+
 }  // namespace
 
 json InputStamps(const CaptureRun& run, const Acquisition& a) {
@@ -56,11 +62,9 @@ json InputStamps(const CaptureRun& run, const Acquisition& a) {
   for (const ImageKind kind : kImageKinds) {
     if (a.Image(kind) < 0 || run.images[a.Image(kind)].missing) continue;
     const RunImage& image = run.images[a.Image(kind)];
-    const FileStamp s = StampFile(run.folder / image.file);
-    stamps[ImageKindName(kind)] = {{"file", image.file},
-                                   {"bytes", s.bytes},
-                                   {"mtime_ns", s.mtime_ns},
-                                   {"hash", fmt::format("{:016x}", s.hash)}};
+    json stamp = StampToJson(StampFile(run.folder / image.file));
+    stamp["file"] = image.file;
+    stamps[ImageKindName(kind)] = stamp;
   }
   return stamps;
 }
@@ -94,12 +98,26 @@ bool RgbdUpToDate(const CaptureRun& run, const std::filesystem::path& rgbd_folde
   return true;
 }
 
-std::string RgbdBehindWarning(const CaptureRun& run, const std::filesystem::path& rgbd_folder) {
-  if (RgbdUpToDate(run, rgbd_folder)) return {};
-  return rgbd_folder.string() +
-         ": does not hold every acquisition of the run as it is now (rgbd unfinished, or "
-         "images added or replaced since): this stage uses what is there; run `sewer3d rgbd` "
-         "first";
+std::string RgbdBehind(const CaptureRun& run, const Workspace& workspace) {
+  const auto rgbd = workspace.record().stages.find("rgbd");
+  if (rgbd != workspace.record().stages.end() && rgbd->second.stale) {
+    return workspace.RecordFile().string() +
+           ": the rgbd stage is stale (the run's rig.json, a pattern matrix or acquisitions.csv "
+           "changed since it ran)";
+  }
+  const std::filesystem::path folder = workspace.StageFolder("rgbd");
+  const std::set<std::pair<int, int>> left_out = LeftOut(folder / "report.json");
+  for (const Acquisition& a : GroupAcquisitions(run.images)) {
+    const RgbdFiles files = RgbdAcquisitionFiles(folder, a.module, a.counter);
+    const bool current = RgbdGeometryDone(files) && IsRegularFile(files.report) &&
+                         ChangedImage(run, RecordedStamps(files.geometry)).empty();
+    if (current || left_out.count({a.module, a.counter}) > 0) continue;
+    return fmt::format(
+        "{}: does not hold m{} counter {} as the run has it now (rgbd unfinished, or images "
+        "added or replaced since)",
+        folder.string(), a.module, a.counter);
+  }
+  return {};
 }
 
 std::vector<std::string> PatternMatrixWarnings(const CaptureRun& run,

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sewer3d/pattern/constraints.hpp"
+#include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/run/capture_run.hpp"
 
 namespace sewer3d {
@@ -33,10 +34,12 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
 /// the cost of a resumed stage with nothing to do: a report read and a stat per image.
 bool RgbdUpToDate(const CaptureRun& run, const std::filesystem::path& rgbd_folder);
 
-/// "" when RgbdUpToDate, else one line for a later stage run on its own (register, model):
-/// the rgbd outputs in `rgbd_folder` are not those of the run as it is now (rgbd unfinished,
-/// or images added or replaced since), so the stage works from what is there.
-std::string RgbdBehindWarning(const CaptureRun& run, const std::filesystem::path& rgbd_folder);
+/// "" when the rgbd outputs in `workspace` are those of the run as it is now, else why not, in
+/// words naming the folder or workspace.json, for a later stage run on its own (register
+/// refuses, model warns): the stage is recorded stale (the run's rig.json, pattern matrices or
+/// acquisitions.csv changed since it ran), or not RgbdUpToDate (rgbd unfinished, or images added
+/// or replaced since).
+std::string RgbdBehind(const CaptureRun& run, const Workspace& workspace);
 
 /// One line per module whose pattern matrix, by the constraints it satisfies (`inferred`, one
 /// per module, InferConstraints), breaks the pattern constraints a matrix is made with

@@ -8,6 +8,8 @@
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/file_stamp.hpp"
+#include "sewer3d/run/capture_run.hpp"
 
 #ifndef SEWER3D_VERSION
 #error "SEWER3D_VERSION (CMake's PROJECT_VERSION) must be defined by the build"
@@ -76,6 +78,22 @@ const std::filesystem::path& NotTheRun(const std::filesystem::path& folder,
   return folder;
 }
 
+// The run's files besides its images (rgbd stamps those per acquisition), each with the first
+// stage that reads it: the rig and pattern matrices (decoding, triangulation) and the image
+// index (the texture's instants) feed rgbd; the odometry feeds register. Paths relative to the
+// run folder, as rig.json names the matrices; a matrix shared by modules is listed once.
+std::vector<std::pair<std::string, std::string>> RunFilesOf(const CaptureRun& run) {
+  std::vector<std::pair<std::string, std::string>> files = {{"rig.json", "rgbd"},
+                                                            {"acquisitions.csv", "rgbd"}};
+  for (const RigModule& m : run.rig.modules) {
+    const std::string matrix = m.module.pattern.matrix_path;
+    const auto same = [&](const auto& f) { return f.first == matrix; };
+    if (std::none_of(files.begin(), files.end(), same)) files.emplace_back(matrix, "rgbd");
+  }
+  files.emplace_back("odometry.csv", "register");
+  return files;
+}
+
 }  // namespace
 
 void CheckOutsideTheRun(const std::filesystem::path& folder,
@@ -130,6 +148,11 @@ Workspace::Workspace(const std::filesystem::path& folder, const std::filesystem:
   record_.software_version = SoftwareVersion();
 }
 
+Workspace::Workspace(const std::filesystem::path& folder, const CaptureRun& run)
+    : Workspace(folder, run.folder) {
+  CheckRunFiles(run);
+}
+
 void Workspace::BeginStage(const std::string& stage, const std::string& options_json, bool force) {
   const auto it = record_.stages.find(stage);
   const bool recorded = it != record_.stages.end();
@@ -177,14 +200,44 @@ void Workspace::FinishStage(const std::string& stage, bool done,
 
 void Workspace::MarkLaterStagesStale(const std::string& stage) {
   const std::vector<std::string>& order = WorkspaceStageOrder();
-  auto later = std::find(order.begin(), order.end(), stage);
-  if (later == order.end()) return;
-  for (++later; later != order.end(); ++later) {
-    const auto it = record_.stages.find(*later);
+  const auto at = std::find(order.begin(), order.end(), stage);
+  if (at != order.end() && at + 1 != order.end()) MarkStaleFrom(*(at + 1));
+}
+
+std::vector<std::string> Workspace::MarkStaleFrom(const std::string& stage) {
+  const std::vector<std::string>& order = WorkspaceStageOrder();
+  std::vector<std::string> marked;
+  for (auto s = std::find(order.begin(), order.end(), stage); s != order.end(); ++s) {
+    const auto it = record_.stages.find(*s);
     if (it == record_.stages.end()) continue;
     it->second.done = false;
     it->second.done_utc.clear();
     it->second.stale = true;
+    marked.push_back(*s);
+  }
+  return marked;
+}
+
+void Workspace::CheckRunFiles(const CaptureRun& run) {
+  for (const auto& [name, first_stage] : RunFilesOf(run)) {
+    const std::filesystem::path file = run.folder / name;
+    const auto recorded = record_.run_files.find(name);
+    if (recorded != record_.run_files.end() && StillStamped(recorded->second, file)) continue;
+    FileStamp stamp;
+    try {
+      stamp = StampFile(file);
+    } catch (const FileError&) {
+      continue;  // LoadRun read it a moment ago; a file gone since fails where it is used
+    }
+    const bool changed = recorded != record_.run_files.end();
+    record_.run_files[name] = stamp;
+    if (!changed) continue;  // first stamped now: workspaces written before stamps existed
+    const std::vector<std::string> marked = MarkStaleFrom(first_stage);
+    if (marked.empty()) continue;
+    std::string stages;
+    for (const std::string& m : marked) stages += (stages.empty() ? "" : ", ") + m;
+    run_file_changes_.push_back(file.string() + ": changed since the workspace's stages used it: " +
+                                stages + " start afresh");
   }
 }
 

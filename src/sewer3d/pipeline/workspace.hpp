@@ -22,6 +22,8 @@
 
 namespace sewer3d {
 
+struct CaptureRun;
+
 /// Throws FileError naming `folder`/workspace.json when that workspace records another run
 /// than `run_folder` (an evaluation compares a workspace with its own run's truth only);
 /// nothing when it has no record.
@@ -61,6 +63,12 @@ class Workspace {
   /// `folder/workspace.json` when it exists (FileError when it is malformed; WorkspaceConflict
   /// when it records another run), else starts a new record, written by the first BeginStage.
   Workspace(const std::filesystem::path& folder, const std::filesystem::path& run_folder);
+  /// As above for the loaded `run`, and then checks the run's own files the stages were made
+  /// from against the stamps workspace.json records (rig.json, its pattern matrices and
+  /// acquisitions.csv feed rgbd, odometry.csv feeds register): a file changed since marks the
+  /// stage it feeds and every later one stale, so that they start afresh, and says so in
+  /// run_file_changes(). The new stamps are recorded with the next write of workspace.json.
+  Workspace(const std::filesystem::path& folder, const CaptureRun& run);
 
   const std::filesystem::path& folder() const { return folder_; }
   /// `WS/<stage>`, where the stage writes its files.
@@ -69,6 +77,9 @@ class Workspace {
   const WorkspaceRecord& record() const { return record_; }
   /// Temporaries of killed runs removed on opening.
   int stale_temporaries_removed() const { return stale_temporaries_removed_; }
+  /// One line per run file changed since the stages used it (constructor for a run), naming
+  /// the file and the stages that start afresh; empty when nothing changed.
+  const std::vector<std::string>& run_file_changes() const { return run_file_changes_; }
 
   /// Records that `stage` starts with `options_json` (a JSON object as compact text, sorted
   /// keys) and marks it not done; writes workspace.json. When the stage was recorded with
@@ -95,10 +106,15 @@ class Workspace {
 
  private:
   void MarkLaterStagesStale(const std::string& stage);
+  /// Marks `stage` (if recorded) and every later recorded stage stale and not done; returns the
+  /// names of those marked.
+  std::vector<std::string> MarkStaleFrom(const std::string& stage);
+  void CheckRunFiles(const CaptureRun& run);
 
   std::filesystem::path folder_;
   FolderLock lock_;
   int stale_temporaries_removed_ = 0;
+  std::vector<std::string> run_file_changes_;
   WorkspaceRecord record_;
   std::map<std::string, std::chrono::steady_clock::time_point> begun_;  ///< by BeginStage
 };

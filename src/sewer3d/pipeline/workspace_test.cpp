@@ -14,6 +14,7 @@
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
+#include "sewer3d/run/capture_run.hpp"
 
 namespace sewer3d {
 namespace {
@@ -89,6 +90,54 @@ TEST_F(WorkspaceTest, ChangedOutputsMakeTheLaterStagesStaleAndTheyStartAfresh) {
   EXPECT_TRUE(fs::exists(ws.StageFolder("model") / "made.txt"));  // until it runs
   EXPECT_FALSE(ws.record().stages.at("register").stale);
   EXPECT_TRUE(ws.record().stages.at("model").stale);
+}
+
+// A run whose own files exist (their content only matters for the stamps).
+CaptureRun FakeRun(const fs::path& folder) {
+  CaptureRun run;
+  run.folder = folder;
+  run.rig.modules.resize(2);
+  for (RigModule& m : run.rig.modules) m.module.pattern.matrix_path = "pattern.png";  // shared
+  for (const char* name : {"rig.json", "acquisitions.csv", "odometry.csv", "pattern.png"})
+    WriteTextFile(folder / name, std::string(name) + " as captured\n");
+  return run;
+}
+
+TEST_F(WorkspaceTest, AChangedRunFileMakesTheStagesThatUseItStale) {
+  const CaptureRun run = FakeRun(dir_ / "run");
+  {
+    Workspace ws(dir_ / "ws", run);
+    EXPECT_TRUE(ws.run_file_changes().empty());
+    for (const char* stage : {"rgbd", "register", "model"}) {
+      ws.BeginStage(stage, "{}", false);
+      WriteTextFile(ws.StageFolder(OutputFolderName(stage)) / "made.txt", "x");
+      ws.FinishStage(stage, true, {});
+    }
+    EXPECT_EQ(ReadWorkspaceRecord(ws.RecordFile()).run_files.size(), 4u);
+  }
+  EXPECT_TRUE(Workspace(dir_ / "ws", run).run_file_changes().empty());  // nothing changed
+
+  WriteTextFile(run.folder / "odometry.csv", "odometry.csv corrected by hand\n");
+  {
+    Workspace ws(dir_ / "ws", run);
+    ASSERT_EQ(ws.run_file_changes().size(), 1u);
+    EXPECT_NE(ws.run_file_changes()[0].find("odometry.csv: changed"), std::string::npos);
+    EXPECT_NE(ws.run_file_changes()[0].find("register, model start afresh"), std::string::npos)
+        << ws.run_file_changes()[0];
+    EXPECT_TRUE(ws.record().stages.at("rgbd").done);
+    EXPECT_TRUE(ws.record().stages.at("register").stale);
+    EXPECT_FALSE(ws.record().stages.at("model").done);
+    ws.BeginStage("register", "{}", false);  // afresh, and the new stamps are recorded
+    EXPECT_FALSE(fs::exists(ws.StageFolder("registration") / "made.txt"));
+    EXPECT_TRUE(fs::exists(ws.StageFolder("rgbd") / "made.txt"));
+  }
+  EXPECT_TRUE(Workspace(dir_ / "ws", run).run_file_changes().empty());
+
+  WriteTextFile(run.folder / "pattern.png", "another matrix\n");  // feeds rgbd: all afresh
+  Workspace ws(dir_ / "ws", run);
+  ASSERT_EQ(ws.run_file_changes().size(), 1u);
+  EXPECT_NE(ws.run_file_changes()[0].find("rgbd, register, model"), std::string::npos);
+  EXPECT_TRUE(ws.record().stages.at("rgbd").stale);
 }
 
 TEST_F(WorkspaceTest, OtherOptionsAreRefusedUnlessForcedAndForcingRemovesOutputs) {

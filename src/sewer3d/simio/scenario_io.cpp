@@ -161,8 +161,10 @@ std::string ScenarioToJson(const Scenario& s) {
   json j;
   j["name"] = s.name;
   j["seed"] = s.seed;
-  if (!s.module_file.empty()) j["module"] = s.module_file;
-  j["camera_width"] = s.camera_width;
+  if (s.module_file.empty())
+    j["camera_width"] = s.camera_width;  // sizes the built-in module only
+  else
+    j["module"] = s.module_file;
   j["rig"] = {{"modules", s.rig.modules},
               {"first_clock_h", s.rig.first_clock_h},
               {"stagger_mm", s.rig.stagger_mm},
@@ -216,6 +218,10 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
   s.seed = in.Seed(j, "seed", "", 1);
   s.module_file = in.Text(j, "module", "", "");
   s.camera_width = in.Integer(j, "camera_width", "", s.camera_width);
+  if (j.contains("module") && j.contains("camera_width")) {
+    in.Fail("camera_width", "sizes the built-in module only: the module file \"" + s.module_file +
+                                "\" has its own camera; remove one of the two");
+  }
   const json& rig = in.Object(j, "rig", "");
   in.OnlyKnown(
       rig, "rig.",

@@ -98,6 +98,9 @@ TEST(ScenarioIo, ErrorsNameTheFileAndTheField) {
   EXPECT_NE(ErrorOf(R"({"pipe": {"sections": [{"diameter_mm": 160}]}})").find("does not fit"),
             std::string::npos);
   EXPECT_NE(ErrorOf(R"({"pipe": )").find("invalid JSON"), std::string::npos);
+  EXPECT_NE(ErrorOf(R"({"pipe": {"sections": [{}]}, "module": "m.json", "camera_width": 1296})")
+                .find("field 'camera_width' sizes the built-in module only"),
+            std::string::npos);
   EXPECT_EQ(
       ErrorOf(R"({"pipe": {"sections": [{}]}, "truth_depth": "some"})").rfind("scenario.json: ", 0),
       0u);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/json_reader.hpp"
@@ -172,9 +173,7 @@ void WriteTextureImage(const std::filesystem::path& path, const RenderedFrame& f
 void WriteRenderedFrame(const std::filesystem::path& dir, const RenderedFrame& frame,
                         const Scene& scene, const RenderOptions& o,
                         const std::filesystem::path& module_path) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw FileError(dir, "cannot create folder: " + ec.message());
+  CreateOutputFolder(dir);
   WritePatternImage(dir / "pattern.png", frame, o.sensor.bits);
   WriteTextureImage(dir / "texture.png", frame, o.sensor.bits);
   WriteImage(dir / "truth_depth.tiff", frame.truth_depth);
