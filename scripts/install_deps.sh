@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libopencv-dev libopencv-contrib-dev libceres-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev libspectra-dev zlib1g-dev
+  libtinyobjloader-dev
   clang-format clang-tidy python3
   clang libclang-rt-14-dev
   chromium

@@ -6,8 +6,10 @@
 #include "sewer3d/io/mesh_io.hpp"
 
 #include <gtest/gtest.h>
+#include <tiny_obj_loader.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -111,6 +113,22 @@ TEST_F(MeshIoTest, GlbReadsBackAsWritten) {
   EXPECT_EQ(gltf["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"], 0);
 }
 
+// The Khronos glTF-Validator (tests/gltf_validate.js) finds no error: what a glTF viewer checks
+// before it loads the file. CTest sets the variables when the validator was fetched.
+TEST_F(MeshIoTest, GlbPassesTheKhronosValidator) {
+  const char* node = std::getenv("SEWER3D_NODE");
+  const char* script = std::getenv("SEWER3D_GLTF_VALIDATE");
+  if (node == nullptr || script == nullptr) GTEST_SKIP() << "no glTF validator (npm, node)";
+  WriteGlb(dir_ / "mesh.glb", mesh_, cv::Mat3b(50, 942, cv::Vec3b(40, 80, 120)));
+  const std::string command = std::string("'") + node + "' '" + script + "' '" +
+                              (dir_ / "mesh.glb").string() + "' > '" +
+                              (dir_ / "validation.txt").string() + "' 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string said = ReadTextFile(dir_ / "validation.txt");
+  EXPECT_EQ(status, 0) << said;
+  EXPECT_NE(said.find(" 0 errors"), std::string::npos) << said;
+}
+
 TEST_F(MeshIoTest, GlbShrinksAnOversizedTexture) {
   WriteGlb(dir_ / "mesh.glb", mesh_, cv::Mat3b(100, 1000, cv::Vec3b(1, 2, 3)), 250);
   const std::string bytes = ReadTextFile(dir_ / "mesh.glb");
@@ -151,6 +169,41 @@ TEST_F(MeshIoTest, ObjHasOneLinePerVertexAndTriangle) {
   EXPECT_EQ(first_vt_v, 1.0f);  // row 0 is the top of the image: OBJ's v = 1
   EXPECT_EQ(mtllib, "mesh.mtl");
   EXPECT_NE(ReadTextFile(dir_ / "mesh.mtl").find("map_Kd texture.png\n"), std::string::npos);
+}
+
+TEST_F(MeshIoTest, ObjOpensWithItsTextureInAMeshLibrary) {
+  WriteObj(dir_ / "mesh.obj", mesh_, "texture.png");
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;
+  tinyobj::ObjReader reader;
+  ASSERT_TRUE(reader.ParseFromFile((dir_ / "mesh.obj").string(), config)) << reader.Error();
+  EXPECT_TRUE(reader.Warning().empty()) << reader.Warning();
+  ASSERT_EQ(reader.GetMaterials().size(), 1u);
+  EXPECT_EQ(reader.GetMaterials()[0].diffuse_texname, "texture.png");
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  ASSERT_EQ(attrib.vertices.size(), 3 * mesh_.VertexCount());
+  ASSERT_EQ(attrib.texcoords.size(), 2 * mesh_.VertexCount());
+  ASSERT_EQ(attrib.normals.size(), 3 * mesh_.VertexCount());
+  ASSERT_EQ(reader.GetShapes().size(), 1u);
+  const tinyobj::mesh_t& read = reader.GetShapes()[0].mesh;
+  ASSERT_EQ(read.num_face_vertices.size(), mesh_.triangles.size());
+  for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
+    ASSERT_EQ(read.num_face_vertices[t], 3);
+    ASSERT_EQ(read.material_ids[t], 0);
+    for (int c = 0; c < 3; ++c) {
+      const tinyobj::index_t& corner = read.indices[3 * t + c];
+      const std::uint32_t v = mesh_.triangles[t][c];
+      ASSERT_EQ(corner.vertex_index, static_cast<int>(v));
+      ASSERT_EQ(corner.texcoord_index, static_cast<int>(v));
+    }
+  }
+  // Positions to float precision; the texture's v flipped (OBJ's origin is the bottom row).
+  for (std::size_t i = 0; i < mesh_.VertexCount(); ++i) {
+    for (int k = 0; k < 3; ++k)
+      ASSERT_NEAR(attrib.vertices[3 * i + k], mesh_.positions[i][k], 1e-4f) << i;
+    ASSERT_NEAR(attrib.texcoords[2 * i], mesh_.uvs[i].x(), 1e-6f);
+    ASSERT_NEAR(attrib.texcoords[2 * i + 1], 1.0f - mesh_.uvs[i].y(), 1e-6f);
+  }
 }
 
 }  // namespace
