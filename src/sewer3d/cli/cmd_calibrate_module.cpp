@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
@@ -15,7 +16,9 @@
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/json_reader.hpp"
 #include "sewer3d/io/module_io.hpp"
+#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -27,6 +30,29 @@ struct ModuleArgs {
   double square_mm = 10.0;
   bool quiet = false;
 };
+
+// The captures' board.json (`simulate calibration` writes one) must agree with --board and
+// --square-mm: another square size would scale every length of the module without a word.
+void CheckBoardFile(const fs::path& captures, const BoardLayout& layout) {
+  const fs::path file = captures / "board.json";
+  if (!IsRegularFile(file)) return;
+  const JsonReader in(file);
+  const auto j = in.ParseObject(ReadTextFile(file));
+  const double square_mm = in.Number(j, "square_mm", "", layout.square_mm);
+  if (std::abs(square_mm - layout.square_mm) > 1e-6 * square_mm) {
+    throw InvalidValue("--square-mm",
+                       fmt::format("{} mm, but {} says {} mm: every length of the module would "
+                                   "be scaled by {:.3g}",
+                                   layout.square_mm, file.string(), square_mm,
+                                   layout.square_mm / square_mm));
+  }
+  const auto cols = in.Integer(j, "cols", "", layout.cols);
+  const auto rows = in.Integer(j, "rows", "", layout.rows);
+  if (cols != layout.cols || rows != layout.rows) {
+    throw InvalidValue("--board", fmt::format("{}x{}, but {} says {}x{}", layout.cols,
+                                              layout.rows, file.string(), cols, rows));
+  }
+}
 
 int RunModule(const ModuleArgs& a) {
   const auto board_size = ParseSize(a.board);
@@ -57,6 +83,7 @@ int RunModule(const ModuleArgs& a) {
   board_layout.cols = board_size->first;
   board_layout.rows = board_size->second;
   board_layout.square_mm = a.square_mm;
+  CheckBoardFile(a.captures, board_layout);
   ModuleCalibrator calibrator(nominal.module, nominal.pattern, nominal.constraints, board_layout);
   const std::vector<std::string> used = AddCaptures(calibrator, poses, size, a.board, a.quiet);
   if (used.size() < 3) {

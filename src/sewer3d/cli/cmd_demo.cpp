@@ -16,6 +16,7 @@
 #include "sewer3d/cli/evaluate_commands.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/pipeline/parallel_items.hpp"
@@ -76,9 +77,26 @@ double PeakMemoryGb() {
   return usage.ru_maxrss / 1e6;  // kB on Linux
 }
 
+// The demo's folder holds a run and a workspace of its own: not inside a capture run (whose
+// folder must stay as captured) nor inside a workspace (whose --force would remove it).
+void CheckDemoFolder(const fs::path& dir) {
+  std::error_code ec;
+  const fs::path absolute = fs::weakly_canonical(fs::absolute(dir, ec), ec);
+  for (fs::path up = absolute; !up.empty(); up = up.parent_path()) {
+    for (const char* owner : {"run.json", "workspace.json"}) {
+      if (IsRegularFile(up / owner)) {
+        throw InvalidValue("--out", dir.string() + " lies in " + (up / owner).string() +
+                                        "'s folder; the demo needs a folder of its own");
+      }
+    }
+    if (up == up.parent_path()) break;
+  }
+}
+
 int RunDemo(const DemoArgs& a) {
   const auto start = Clock::now();
   const fs::path dir = a.out, run = dir / "run", ws = dir / "ws";
+  CheckDemoFolder(dir);
   fmt::print("== simulate: the '{}' run (0.56 m of DN300, 648 x 486 images) into {}\n", kPreset,
              run.string());
   std::fflush(stdout);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sewer3d/cli/evaluate_commands.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/model/fit.hpp"
@@ -102,10 +103,20 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
                     "the true scene is a plane; evaluate cylinder needs a cylinder or pipe-wall "
                     "scene");
   }
+  if (truth && surface == "plane" && truth->type != Scene::Type::kPlane) {
+    throw FileError(truth_file,
+                    "the true scene is a cylinder or pipe wall; evaluate plane needs a plane "
+                    "scene (evaluate cylinder fits this one)");
+  }
   const Points all = ReadPlyPoints(cloud);
   const Points points = InnerPoints(all, inner_fraction);
+  if (points.size() < 10 && all.size() >= 10) {  // the option leaves too few, not the file
+    throw InvalidValue("--inner-fraction",
+                       fmt::format("{} keeps {} of the {} points of {}; at least 10 are needed",
+                                   inner_fraction, points.size(), all.size(), cloud));
+  }
   if (points.size() < 10)
-    throw FileError(cloud, fmt::format("only {} points in the inner part", points.size()));
+    throw FileError(cloud, fmt::format("only {} points: at least 10 are needed", all.size()));
   fmt::print("{}: {} points, {} in the inner {:.0f} %\n", cloud, all.size(), points.size(),
              100 * inner_fraction);
   if (surface == "plane") {

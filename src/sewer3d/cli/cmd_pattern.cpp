@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/pattern_io.hpp"
@@ -15,6 +16,24 @@
 #include "sewer3d/pattern/submap_search.hpp"
 
 namespace sewer3d::cli {
+
+namespace {
+
+// A module's (or a capture run's) pattern.png is its pattern matrix: a new search written over
+// it would make the module another one, its calibration no longer true.
+void CheckNotAModulesMatrix(const std::filesystem::path& out) {
+  if (out.filename() != "pattern.png") return;
+  const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
+  for (const char* owner : {"module.json", "rig.json"}) {
+    if (IsRegularFile(folder / owner)) {
+      throw InvalidValue("--out", out.string() + " is the pattern matrix of the " +
+                                      (folder / owner).string() +
+                                      " beside it; write the new pattern elsewhere");
+    }
+  }
+}
+
+}  // namespace
 
 Command AddPatternCommand(CLI::App& app) {
   struct Args {
@@ -93,6 +112,7 @@ Command AddPatternCommand(CLI::App& app) {
             }
             options.Check();
             // Both outputs checked before the search: a refusal leaves neither written.
+            CheckNotAModulesMatrix(args->out);
             CheckOutputFile(args->out);
             CheckOutputFile(PatternSidecarPath(args->out));
             const char* kind = options.constraints.torus ? "torus" : "plain";

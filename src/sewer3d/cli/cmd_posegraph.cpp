@@ -46,8 +46,9 @@ void PrintCertificate(const PoseGraphReport& r) {
       r.dominated_relaxation ? fmt::format(", information lowered on {} edges", r.dominated_edges)
                              : "",
       r.certificate_seconds, r.certificate_improved ? "; its solution was lower and is taken" : "");
-  fmt::print("            final cost is within {:.2g} of the global optimum{}\n",
-             std::max(0.0, r.RelativeGap()), r.RelativeGap() <= 1e-4 ? ": certified" : "");
+  fmt::print(
+      "            final cost is within {:.2g} % of the global optimum (relative gap){}\n",
+      100.0 * std::max(0.0, r.RelativeGap()), r.RelativeGap() <= 1e-4 ? ": certified" : "");
 }
 
 // Edges whose information matches their noise give a χ² (2 × cost) of about 6 each; the
@@ -127,7 +128,8 @@ Command AddPoseGraphCommand(CLI::App& app) {
             fmt::print("final cost  {:.7g} after {} iterations, {:.3f} s, {} thread(s)\n",
                        r.final_cost, r.iterations, r.solve_seconds, options.num_threads);
             fmt::print("termination {}\n", r.termination);
-            fmt::print("usable      {}\n", r.usable ? "yes" : "no");
+            // Poses without a chain of edges to a fixed node are whatever the file said.
+            fmt::print("usable      {}\n", r.usable && r.unanchored_nodes == 0 ? "yes" : "no");
             if (options.certify) PrintCertificate(r);
             if (!r.usable) {  // nothing written: a file at --out would pass for a result
               std::fflush(stdout);

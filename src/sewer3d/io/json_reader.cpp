@@ -3,7 +3,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <set>
 #include <sstream>
+#include <vector>
 
 namespace sewer3d {
 namespace {
@@ -25,8 +27,35 @@ JsonReader::json JsonReader::ParseObject(const std::string& text) const {
   if (const auto nul = text.find('\0'); nul != std::string::npos)
     throw FileError(path_, "a NUL byte at offset " + std::to_string(nul) + ": not a text file");
   json j;
+  // A member given twice is an error: nlohmann would keep the last one without a word. One set
+  // of keys per object being read, innermost last; the path names the member.
+  std::vector<std::set<std::string>> keys;
+  std::vector<std::string> path;
+  std::string duplicate;
+  const json::parser_callback_t check = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        keys.emplace_back();
+        path.emplace_back();
+        break;
+      case json::parse_event_t::key:
+        if (!keys.back().insert(parsed.get<std::string>()).second && duplicate.empty()) {
+          for (std::size_t k = 0; k + 1 < path.size(); ++k) duplicate += path[k] + ".";
+          duplicate += parsed.get<std::string>();
+        }
+        path.back() = parsed.get<std::string>();
+        break;
+      case json::parse_event_t::object_end:
+        keys.pop_back();
+        path.pop_back();
+        break;
+      default:
+        break;
+    }
+    return true;
+  };
   try {
-    j = json::parse(text);
+    j = json::parse(text, check);
   } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
     // Without nlohmann's "[json.exception...] " prefix (through "parse error at ...: ").
     const std::string what = e.what();
@@ -35,6 +64,8 @@ JsonReader::json JsonReader::ParseObject(const std::string& text) const {
     throw FileError(path_,
                     "invalid JSON: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
   }
+  if (!duplicate.empty())
+    throw FileError(path_, "field '" + duplicate + "' is given twice (which one is meant?)");
   if (!j.is_object()) throw FileError(path_, "must hold a JSON object");
   return j;
 }

@@ -58,6 +58,12 @@ Centreline ReadCentreline(const JsonReader& in, const json& j, double radius_mm)
     if (std::abs(station - expected) > 1e-6 * std::max(1.0, std::abs(expected)))
       in.Fail(at + "station_mm", "must be " + std::to_string(expected) + " (evenly spaced)");
     line.points.push_back(Vector3(in, samples[k], "point_mm", at));
+    // Evenly spaced along the pipe: a point far from its neighbour (1e308) is no centreline.
+    if (line.points.back().cwiseAbs().maxCoeff() > 1e9 ||
+        (k > 0 && (line.points[k] - line.points[k - 1]).norm() > 10.0 * line.step_mm)) {
+      in.Fail(at + "point_mm", "lies more than 10 steps (" + std::to_string(line.step_mm) +
+                                   " mm each) from the sample before: not a centreline");
+    }
     const Eigen::Vector3d crown = Vector3(in, samples[k], "crown", at);
     if (std::abs(crown.norm() - 1.0) > 1e-4) in.Fail(at + "crown", "must be a unit vector");
     line.crowns.push_back(crown);

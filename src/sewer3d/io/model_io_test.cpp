@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -215,6 +216,14 @@ TEST_F(ModelIoTest, BadModelJsonNamesTheField) {
   expect_error("\"version\": 1", "\"version\": 7", "version");
   expect_error("\"station0_mm\": 5.0", "\"station0_mm\": 1e300", "map.station0_mm");
   expect_error("\"resolution_mm\": 1.0", "\"resolution_mm\": 500", "map.resolution_mm");
+  {  // a centreline sample at 1e308 mm: no centreline (inspect ran on it without a word)
+    nlohmann::json j = nlohmann::json::parse(good);
+    j["centreline"]["samples"][1]["point_mm"][0] = 1e308;
+    const std::string text = j.dump(1);
+    const auto at = text.find("1e+308");
+    ASSERT_NE(at, std::string::npos);
+    expect_error(good, text, "centreline.samples[1].point_mm");
+  }
   // Edited by hand: measurements along the pipe would be scaled by 2 while the maps stay.
   expect_error("\"resolution_mm\": 1.0", "\"resolution_mm\": 2.0", "map.cols");
 }

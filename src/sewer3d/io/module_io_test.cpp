@@ -125,6 +125,10 @@ TEST_F(ModuleIoTest, RejectsBadFieldsWithOneLineNamingTheField) {
   ExpectError(d, "'pattern.matrix' names an unusable file");
   ExpectErrorText("{\"camera\": {\"width\": 2592,", "invalid JSON");
   ExpectErrorText("[1, 2, 3]", "must hold a JSON object");
+  // nlohmann keeps the last of two: a value given twice is refused, by its path.
+  std::string twice = good_.dump();
+  twice.insert(twice.find("\"fx\":"), "\"fx\": 100.0, ");
+  ExpectErrorText(twice, "field 'camera.fx' is given twice");
 }
 
 TEST_F(ModuleIoTest, RejectsTruncatedOrMissingPatternAndModule) {

@@ -101,6 +101,10 @@ PlyHeader ReadPlyHeader(std::istream& file, const std::filesystem::path& path) {
       } else if ((property.bytes = TypeBytes(property.type)) == 0) {
         throw FileError(path, "unknown PLY property type '" + property.type + "'");
       }
+      for (const PlyProperty& other : header.elements.back().properties) {
+        if (other.name == property.name && property.type != "list")
+          throw FileError(path, "PLY property '" + property.name + "' declared twice");
+      }
       header.elements.back().properties.push_back(property);
     } else if (word != "comment" && word != "obj_info" && !word.empty()) {
       throw FileError(path, "unknown PLY header line: " + line.substr(0, 60));

@@ -11,6 +11,7 @@
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/model_io.hpp"
 #include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -25,6 +26,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr const char* kStage = "model";
+
+/// How many acquisitions the registration registered (registration/report.json "nodes"); 0
+/// when the report cannot be read.
+int RegisteredNodes(const std::filesystem::path& ws) {
+  try {
+    return nlohmann::json::parse(ReadTextFile(ws / "registration" / "report.json"))
+        .at("nodes")
+        .get<int>();
+  } catch (const std::exception&) {
+    return 0;
+  }
+}
 
 /// The registered acquisitions, each with its fit samples (model frame).
 std::vector<ModelAcquisition> RegisteredAcquisitions(
@@ -41,6 +54,12 @@ std::vector<ModelAcquisition> RegisteredAcquisitions(
     acquisitions.push_back({row.module, row.counter, row.world_from_camera});
   }
   if (acquisitions.empty()) throw FileError(poses_file, "no registered acquisition");
+  if (const int nodes = RegisteredNodes(ws);
+      nodes > static_cast<int>(acquisitions.size())) {  // rows removed by hand
+    throw FileError(poses_file, fmt::format("holds {} poses, but the registration registered {} "
+                                            "(registration/report.json): run register again",
+                                            acquisitions.size(), nodes));
+  }
   samples.assign(acquisitions.size(), {});
   ForEachItem<int>(
       acquisitions.size(), threads, [] { return 0; },
@@ -252,6 +271,28 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
                          {"cols", std::to_string(info.grid.cols)},
                          {"tiles", std::to_string(report.tiles)}});
   return report;
+}
+
+bool ModelFilesPresent(const std::filesystem::path& model_dir) {
+  PipeModelInfo info;
+  try {
+    info = ReadModelJson(model_dir / "model.json");
+  } catch (const FileError&) {
+    return false;
+  }
+  std::vector<ModelMapFiles> maps;
+  if (info.whole_maps) maps.push_back(WholeMapFiles(model_dir));
+  for (const ModelTile& t : info.tiles) maps.push_back(TileMapFiles(model_dir, t.index));
+  std::vector<std::filesystem::path> files = {model_dir / "mesh.obj", model_dir / "mesh.mtl",
+                                              model_dir / "preview.png",
+                                              model_dir / "report.json"};
+  if (!info.whole_maps) files.push_back(model_dir / "mesh_texture.png");
+  for (const ModelMapFiles& m : maps) {
+    files.insert(files.end(), {m.texture, m.displacement_png, m.displacement_tiff, m.coverage,
+                               m.samples, m.displacement_view, m.surface});
+  }
+  return std::all_of(files.begin(), files.end(),
+                     [](const std::filesystem::path& f) { return IsRegularFile(f); });
 }
 
 }  // namespace sewer3d

@@ -88,4 +88,9 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
                                const ModelStageOptions& options,
                                const ModelProgress& progress = {});
 
+/// Whether `model_dir` still holds every file the model stage wrote there: model.json, the
+/// maps it names (whole or tiles), mesh.obj / .mtl (and mesh_texture.png for a tiled model),
+/// preview.png and report.json. `process` redoes a model recorded done when one is gone.
+bool ModelFilesPresent(const std::filesystem::path& model_dir);
+
 }  // namespace sewer3d

@@ -96,6 +96,11 @@ TEST_F(ModelStageTiny, CentrelineAndFilesOfTheContract) {
         "surface.ply", "mesh.obj", "mesh.mtl", "mesh.glb", "preview.png", "report.json"})
     EXPECT_TRUE(fs::exists(m / f)) << f;
   EXPECT_GT(report_.displaced_vertices, 1000u);
+  // A file removed by hand makes `process` redo the stage.
+  EXPECT_TRUE(ModelFilesPresent(m));
+  fs::rename(m / "surface.ply", m / "surface.ply.away");
+  EXPECT_FALSE(ModelFilesPresent(m));
+  fs::rename(m / "surface.ply.away", m / "surface.ply");
 }
 
 TEST_F(ModelStageTiny, DisplacementIsRoundWallAndTheJointStep) {

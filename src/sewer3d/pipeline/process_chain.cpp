@@ -64,7 +64,10 @@ ProcessStage ModelProcessStage() {
               const StageProgress& progress) {
             return ModelOutcome(RunModelStage(run, ws, stage_options(o), progress), ws.folder());
           },
-          "model/model.json", nullptr};
+          "model/model.json",
+          [](const CaptureRun&, const Workspace& ws) {
+            return ModelFilesPresent(ws.StageFolder("model"));
+          }};
 }
 
 ProcessStage InspectProcessStage() {

@@ -195,7 +195,11 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   if (progress) progress("walls", 1, 1);
   if (report.carrier_offset.valid)
     neighbours.axis_in_model_mm = report.carrier_offset.axis_in_carrier_mm;
-  const NeighbourResult pairs = FindNeighbours(nodes, run.rig, neighbours);
+  // Without feature and projection registration (`--edges` naming neither) no pair is
+  // registered, so none is searched for (they would count as failed).
+  NeighbourResult pairs;
+  if (options.pairs.feature_registration || options.pairs.projection_fallback)
+    pairs = FindNeighbours(nodes, run.rig, neighbours);
   report.neighbours = pairs.report;
   report.pairs = static_cast<int>(pairs.pairs.size());
 

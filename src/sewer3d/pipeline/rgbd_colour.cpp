@@ -223,7 +223,7 @@ RgbdAcquisitionResult RgbdColourPass(const CaptureRun& run, const Acquisition& a
     report["texture"] = AcquisitionImageFile(run, a, ImageKind::kTextureBefore)
                             .lexically_relative(run.folder)
                             .string();
-    report["color"] = kRgbdColorSource;
+    report["color"] = RgbdColorSource(options);
     report["color_steps"] = texture;
     for (const std::string& w : result.warnings) report["warnings"].push_back(w);
     report["seconds"]["color"] = std::chrono::duration<double>(Clock::now() - start).count();
@@ -235,6 +235,12 @@ RgbdAcquisitionResult RgbdColourPass(const CaptureRun& run, const Acquisition& a
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
+}
+
+std::string RgbdColorSource(const RgbdColourOptions& options) {
+  return std::string("texture triplet: ") + (options.deblur ? "deblurred" : "not deblurred") +
+         ", mapped to the pattern instant, shading and colour corrected" +
+         (options.correction.space == CorrectionSpace::kLab ? " (in Lab)" : "");
 }
 
 }  // namespace sewer3d

@@ -26,11 +26,6 @@
 
 namespace sewer3d {
 
-/// Where the colour of the RGB-D outputs comes from, as recorded in workspace.json and the
-/// reports.
-inline constexpr const char* kRgbdColorSource =
-    "texture triplet: deblurred, mapped to the pattern instant, shading and colour corrected";
-
 struct RgbdColourOptions {
   int reference_frames = 40;  ///< acquisitions per module the reference light is estimated from
   ReferenceLightOptions reference;
@@ -50,6 +45,11 @@ struct RgbdColourOptions {
   bool debug_images = false;
   void Check() const;
 };
+
+/// Where the colour of the RGB-D outputs comes from, in words, as workspace.json and the
+/// reports record it; by default "texture triplet: deblurred, mapped to the pattern instant,
+/// shading and colour corrected" ("not deblurred" with --no-deblur, "(in Lab)" for Lab).
+std::string RgbdColorSource(const RgbdColourOptions& options);
 
 /// The colour options as recorded in workspace.json (a JSON object).
 std::string RgbdColourOptionsJson(const RgbdColourOptions& options);

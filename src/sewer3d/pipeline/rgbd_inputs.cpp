@@ -55,6 +55,16 @@ std::set<std::pair<int, int>> LeftOut(const std::filesystem::path& stage_report)
   return left_out;
 }
 
+// Why an acquisition the geometry pass finished must be redone, in words ("RUN/…png changed",
+// "WS/rgbd/m0/000001_depth.tiff removed"); empty when it stands.
+std::string WhyRedo(const CaptureRun& run, const RgbdFiles& files) {
+  const std::string changed = ChangedImage(run, RecordedStamps(files.geometry));
+  if (!changed.empty()) return changed + " changed";
+  for (const std::filesystem::path& output : {files.depth, files.cloud})
+    if (!IsRegularFile(output)) return output.string() + " removed";
+  return {};
+}
+
 }  // namespace
 
 json InputStamps(const CaptureRun& run, const Acquisition& a) {
@@ -76,13 +86,13 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
   for (const Acquisition& a : acquisitions) {
     const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter);
     if (!RgbdGeometryDone(files)) continue;
-    const std::string changed = ChangedImage(run, RecordedStamps(files.geometry));
+    const std::string changed = WhyRedo(run, files);
     if (changed.empty()) continue;
     std::error_code ec;
     std::filesystem::remove(files.report, ec);
     std::filesystem::remove(files.geometry, ec);
     lines.push_back(
-        fmt::format("m{} counter {}: {} changed since an earlier run processed it: "
+        fmt::format("m{} counter {}: {} since an earlier run processed it: "
                     "the acquisition is redone",
                     a.module, a.counter, changed));
   }
@@ -93,7 +103,7 @@ bool RgbdUpToDate(const CaptureRun& run, const std::filesystem::path& rgbd_folde
   for (const Acquisition& a : GroupAcquisitions(run.images)) {
     const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter);
     if (!RgbdGeometryDone(files) || !IsRegularFile(files.report)) return false;
-    if (!ChangedImage(run, RecordedStamps(files.geometry)).empty()) return false;
+    if (!WhyRedo(run, files).empty()) return false;
   }
   return true;
 }
@@ -110,7 +120,7 @@ std::string RgbdBehind(const CaptureRun& run, const Workspace& workspace) {
   for (const Acquisition& a : GroupAcquisitions(run.images)) {
     const RgbdFiles files = RgbdAcquisitionFiles(folder, a.module, a.counter);
     const bool current = RgbdGeometryDone(files) && IsRegularFile(files.report) &&
-                         ChangedImage(run, RecordedStamps(files.geometry)).empty();
+                         WhyRedo(run, files).empty();
     if (current || left_out.count({a.module, a.counter}) > 0) continue;
     return fmt::format(
         "{}: does not hold m{} counter {} as the run has it now (rgbd unfinished, or images "

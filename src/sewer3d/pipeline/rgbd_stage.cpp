@@ -142,7 +142,7 @@ std::string RgbdOptionsJson(const RgbdStageOptions& options) {
                    {{"radius_px", r.outliers.radius_px},
                     {"min_step_mm", r.outliers.min_step_mm},
                     {"fraction", r.outliers.fraction}}},
-                  {"color", kRgbdColorSource},
+                  {"color", RgbdColorSource(options.colour)},
                   {"colour", json::parse(RgbdColourOptionsJson(options.colour))}};
   return j.dump();
 }
@@ -193,7 +193,7 @@ std::string RgbdStageReportToJson(const RgbdStageReport& report) {
   }
   const json j = {
       {"stage", kStage},
-      {"color", kRgbdColorSource},
+      {"color", report.color_source},
       {"references", references},
       {"module_gains",
        {{"seams", report.module_gains.seams},
@@ -237,6 +237,7 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
     report.warnings.push_back(std::move(line));
   report.acquisitions = total;
   report.threads = options.threads;
+  report.color_source = RgbdColorSource(options.colour);
   report.results.resize(acquisitions.size());
   auto progress_of = [&](const std::string& pass) {
     return [&progress, pass, total](int finished) {
@@ -330,7 +331,7 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
   report.seconds = SecondsSince(start);
   WriteTextFileAtomically(folder / "report.json", RgbdStageReportToJson(report));
   workspace.FinishStage(kStage, report.failed == 0,
-                        {{"color", kRgbdColorSource},
+                        {{"color", report.color_source},
                          {"acquisitions", std::to_string(report.acquisitions)},
                          {"failed", std::to_string(report.failed)}},
                         /*changed=*/report.done > 0 || report.failed > 0);

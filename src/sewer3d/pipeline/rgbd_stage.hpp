@@ -60,7 +60,8 @@ struct RgbdAcquisitionSummary {
 /// The stage's report (`WS/rgbd/report.json`, RgbdStageReportToJson): every acquisition of the
 /// run, whether processed now or by an earlier run.
 struct RgbdStageReport {
-  int acquisitions = 0;  ///< in the run
+  std::string color_source;  ///< RgbdColorSource of the options it ran with
+  int acquisitions = 0;      ///< in the run
   int done = 0;          ///< completed now
   int skipped = 0;       ///< completed by an earlier run (report present)
   int failed = 0;

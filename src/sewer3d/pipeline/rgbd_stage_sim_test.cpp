@@ -94,7 +94,9 @@ TEST_F(RgbdStageTiny, EveryAcquisitionIsDoneWithTheContractFiles) {
   const WorkspaceRecord record = ReadWorkspaceRecord(dir_ / "ws" / "workspace.json");
   ASSERT_EQ(record.stages.count("rgbd"), 1u);
   EXPECT_TRUE(record.stages.at("rgbd").done);
-  EXPECT_EQ(record.stages.at("rgbd").notes.at("color"), kRgbdColorSource);
+  EXPECT_EQ(record.stages.at("rgbd").notes.at("color"),
+            "texture triplet: deblurred, mapped to the pattern instant, shading and colour "
+            "corrected");
   EXPECT_EQ(record.stages.at("rgbd").options_json, RgbdOptionsJson({}));
 }
 

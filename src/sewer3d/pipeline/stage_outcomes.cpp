@@ -13,7 +13,7 @@ StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::p
       "rgbd: {} acquisitions: {} done, {} skipped (done before), {} failed; {} points; "
       "{:.2f} s per acquisition, {:.1f} s in all ({} threads); colour: {}",
       report.acquisitions, report.done, report.skipped, report.failed, report.points,
-      report.seconds_per_acquisition, report.seconds, report.threads, kRgbdColorSource);
+      report.seconds_per_acquisition, report.seconds, report.threads, report.color_source);
   // A bad acquisition is left out and named; the stage fails only when nothing is left.
   constexpr int kListed = 10;
   for (size_t i = 0; i < report.warnings.size() && i < kListed; ++i)
