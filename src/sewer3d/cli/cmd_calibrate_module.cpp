@@ -40,17 +40,17 @@ void CheckBoardFile(const fs::path& captures, const BoardLayout& layout) {
   const auto j = in.ParseObject(ReadTextFile(file));
   const double square_mm = in.Number(j, "square_mm", "", layout.square_mm);
   if (std::abs(square_mm - layout.square_mm) > 1e-6 * square_mm) {
-    throw InvalidValue("--square-mm",
-                       fmt::format("{} mm, but {} says {} mm: every length of the module would "
-                                   "be scaled by {:.3g}",
-                                   layout.square_mm, file.string(), square_mm,
-                                   layout.square_mm / square_mm));
+    throw InvalidValue(
+        "--square-mm",
+        fmt::format("{} mm, but {} says {} mm: every length of the module would "
+                    "be scaled by {:.3g}",
+                    layout.square_mm, file.string(), square_mm, layout.square_mm / square_mm));
   }
   const auto cols = in.Integer(j, "cols", "", layout.cols);
   const auto rows = in.Integer(j, "rows", "", layout.rows);
   if (cols != layout.cols || rows != layout.rows) {
-    throw InvalidValue("--board", fmt::format("{}x{}, but {} says {}x{}", layout.cols,
-                                              layout.rows, file.string(), cols, rows));
+    throw InvalidValue("--board", fmt::format("{}x{}, but {} says {}x{}", layout.cols, layout.rows,
+                                              file.string(), cols, rows));
   }
 }
 

@@ -46,9 +46,8 @@ void PrintCertificate(const PoseGraphReport& r) {
       r.dominated_relaxation ? fmt::format(", information lowered on {} edges", r.dominated_edges)
                              : "",
       r.certificate_seconds, r.certificate_improved ? "; its solution was lower and is taken" : "");
-  fmt::print(
-      "            final cost is within {:.2g} % of the global optimum (relative gap){}\n",
-      100.0 * std::max(0.0, r.RelativeGap()), r.RelativeGap() <= 1e-4 ? ": certified" : "");
+  fmt::print("            final cost is within {:.2g} % of the global optimum (relative gap){}\n",
+             100.0 * std::max(0.0, r.RelativeGap()), r.RelativeGap() <= 1e-4 ? ": certified" : "");
 }
 
 // Edges whose information matches their noise give a χ² (2 × cost) of about 6 each; the

@@ -284,8 +284,7 @@ bool ModelFilesPresent(const std::filesystem::path& model_dir) {
   if (info.whole_maps) maps.push_back(WholeMapFiles(model_dir));
   for (const ModelTile& t : info.tiles) maps.push_back(TileMapFiles(model_dir, t.index));
   std::vector<std::filesystem::path> files = {model_dir / "mesh.obj", model_dir / "mesh.mtl",
-                                              model_dir / "preview.png",
-                                              model_dir / "report.json"};
+                                              model_dir / "preview.png", model_dir / "report.json"};
   if (!info.whole_maps) files.push_back(model_dir / "mesh_texture.png");
   for (const ModelMapFiles& m : maps) {
     files.insert(files.end(), {m.texture, m.displacement_png, m.displacement_tiff, m.coverage,

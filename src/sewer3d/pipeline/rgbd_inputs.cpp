@@ -119,8 +119,8 @@ std::string RgbdBehind(const CaptureRun& run, const Workspace& workspace) {
   const std::set<std::pair<int, int>> left_out = LeftOut(folder / "report.json");
   for (const Acquisition& a : GroupAcquisitions(run.images)) {
     const RgbdFiles files = RgbdAcquisitionFiles(folder, a.module, a.counter);
-    const bool current = RgbdGeometryDone(files) && IsRegularFile(files.report) &&
-                         WhyRedo(run, files).empty();
+    const bool current =
+        RgbdGeometryDone(files) && IsRegularFile(files.report) && WhyRedo(run, files).empty();
     if (current || left_out.count({a.module, a.counter}) > 0) continue;
     return fmt::format(
         "{}: does not hold m{} counter {} as the run has it now (rgbd unfinished, or images "

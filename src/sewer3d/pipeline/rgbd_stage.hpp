@@ -62,8 +62,8 @@ struct RgbdAcquisitionSummary {
 struct RgbdStageReport {
   std::string color_source;  ///< RgbdColorSource of the options it ran with
   int acquisitions = 0;      ///< in the run
-  int done = 0;          ///< completed now
-  int skipped = 0;       ///< completed by an earlier run (report present)
+  int done = 0;              ///< completed now
+  int skipped = 0;           ///< completed by an earlier run (report present)
   int failed = 0;
   std::vector<RgbdAcquisitionSummary> results;  ///< ordered by (module, counter)
   std::vector<RgbdReferenceResult> references;  ///< one per module
