@@ -98,7 +98,7 @@ std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
 // of them (NewOutputs). The stages, `process`, `demo` and `simulate run` keep what they wrote,
 // to resume from it.
 bool WritesOneSet(const CLI::App& command) {
-  const std::string name = command.get_name();
+  const std::string& name = command.get_name();
   if (name == "simulate") {
     const auto subs = command.get_subcommands();
     return !subs.empty() && subs.front()->get_name() != "run";
