@@ -48,7 +48,8 @@ std::string ChangedImage(const CaptureRun& run, const json& recorded) {
 std::set<std::pair<int, int>> LeftOut(const std::filesystem::path& stage_report) {
   std::set<std::pair<int, int>> left_out;
   try {
-    for (const json& f : json::parse(ReadTextFile(stage_report)).at("failures"))
+    const json report = json::parse(ReadTextFile(stage_report));  // outlives the loop
+    for (const json& f : report.at("failures"))
       left_out.emplace(f.at("module").get<int>(), f.at("counter").get<int>());
   } catch (const std::exception&) {  // missing or damaged: nothing counts as left out
   }
