@@ -37,7 +37,7 @@ if [ "$mode" = "--ci" ]; then
     grep -E '^(test_(core|camera|pattern|posegraph|run|io)_|fuzz_|test_cli_exit_code$)' |
     grep -v -e '_sim$' -e '^test_io_posegraph_benchmarks$')
   build_targets=(--target sewer3d "${build_targets[@]}")
-  test_select=(-R '^((core|camera|pattern|posegraph|run|io|fuzz)/|cli/(bad_inputs|exit_code)$)'
+  test_select=(-R '^((core|camera|pattern|posegraph|run|io|fuzz)/|cli/(bad_inputs_[0-9]+of[0-9]+|exit_code)$)'
     -E '^io/posegraph_benchmarks$|_sim$')
 fi
 if ! cmake --build "$build_dir" --parallel "$jobs" "${build_targets[@]}"; then

@@ -4,11 +4,20 @@
 # Each case runs under a time limit and an address-space limit, so a hang or a memory blow-up
 # fails its case instead of the machine.
 #   SEWER3D=build/sewer3d bash tests/bad_inputs/run.sh [NAME_REGEX]
+# With SEWER3D_SHARD=K/N only every N-th case from the K-th on runs (its own fixtures), so CTest
+# runs the table as N tests side by side.
 set -u
 S=${SEWER3D:?set SEWER3D to the sewer3d binary}
 S=$(cd "$(dirname "$S")" && pwd)/$(basename "$S")
 here=$(cd "$(dirname "$0")" && pwd)
 only=${1:-}
+shard=${SEWER3D_SHARD:-1/1}
+shard_k=${shard%/*}
+shard_n=${shard#*/}
+if ! [[ "$shard_k" =~ ^[1-9][0-9]*$ && "$shard_n" =~ ^[1-9][0-9]*$ ]] || ((shard_k > shard_n)); then
+  echo "FAIL: SEWER3D_SHARD must be K/N with 1 <= K <= N, not '$shard'"
+  exit 1
+fi
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 export S T
@@ -28,8 +37,11 @@ bash "$here/fixtures.sh" "$T" || { echo "FAIL: fixtures"; exit 1; }
 
 failures=0
 cases=0
+index=0
 while IFS='|' read -r name want needle cmd; do
   case "$name" in '' | '#'*) continue ;; esac
+  index=$((index + 1))
+  (((index - 1) % shard_n == shard_k - 1)) || continue
   [[ -n "$only" && ! "$name" =~ $only ]] && continue
   cases=$((cases + 1))
   want=${want// /}
