@@ -87,6 +87,9 @@ def main(out):
     # Identical and collinear points.
     ply(j("identical.ply"), "float", [(1.0, 2.0, 100.0)] * 50)
     ply(j("collinear.ply"), "float", [(float(i), 2.0 * i, 100.0 + i) for i in range(50)])
+    # A good cylinder patch with one point at 1e30 (a corrupt value, not a shape).
+    ply(j("far_point.ply"), "double", [(float(x), float(y), float(z)) for x, y, z in ring]
+        + [(1e30, 0.0, 150.0)])
 
 
 if __name__ == "__main__":

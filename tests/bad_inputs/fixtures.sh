@@ -124,6 +124,7 @@ broken_run acq_neg run.json 'acquisitions=-2'
 broken_run counter_huge acquisitions.csv '2s/^0,0,/0,1000000000000,/'
 broken_run crlf acquisitions.csv 's/$/\r/'
 broken_run rig_v2 rig.json 'version=2'
+broken_run clock_typo rig.json 'modules.0.clock_hh=3'
 scenario_with slip_beyond.json 'odometry={"slips": [{"station_mm": 1e6, "length_mm": 10, "fraction": 0.5}]}'
 # Scene files: a frame's scene.json with its render options or features broken.
 "$S" simulate frame --module m/module.json --scene pipe-wall --supersampling 1 --out fpw >/dev/null
@@ -142,6 +143,8 @@ mkdir -p foreign_cal/pose_00
 # Session 26 (fifth probe).
 json_with m/module.json m/offset_huge.json 'pattern.offset_px=[-1e9,0]'
 json_with m/module.json m/k_huge.json 'camera.k=[1e10,0,0]'
+# The projector above the camera, not beside it: the disparity runs along the 6-row side.
+json_with m/module.json m/baseline_y.json "projector_from_camera.translation_mm=[0,-77.6,0]"
 python3 -c "import sys; t = open('m/module.json').read(); open('m/nul.json', 'w').write(t[:100] + chr(0) + t[100:])"
 json_with frame8/scene.json scene_psf_huge.json 'render.projector_psf_px=1e6'
 json_with fpw/scene.json scene_joint_offset.json 'scene.features.0.offset_mm=1000'

@@ -10,6 +10,7 @@
 #include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/flag_names.hpp"
 #include "sewer3d/cli/summary.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
@@ -74,7 +75,15 @@ Command AddModuleCommand(CLI::App& app) {
             const auto size = *ParseSize(args->camera_size);
             args->options.camera_width = size.first;
             args->options.camera_height = size.second;
-            args->options.Check();  // the options' own refusals name their fields
+            try {
+              args->options.Check();
+            } catch (const InvalidValue& e) {
+              throw WithFlagNames(e, {{"spot_diameter_px", "--spot-px"},
+                                      {"pitch_px", "--pitch-px"},
+                                      {"horizontal_fov_deg", "--hfov-deg"},
+                                      {"stereo_angle_deg", "--stereo-angle-deg"},
+                                      {"camera_size", "--camera-size"}});
+            }
             ModuleDescription module;
             try {
               module = MakeDefaultModule(args->options);

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/flag_names.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/image_io.hpp"
@@ -110,7 +111,16 @@ Command AddPatternCommand(CLI::App& app) {
                 return true;
               };
             }
-            options.Check();
+            try {
+              options.Check();
+            } catch (const InvalidValue& e) {
+              throw WithFlagNames(e, {{"min_weight", "--min-weight"},
+                                      {"min_hamming", "--min-hamming"},
+                                      {"window", "--window"},
+                                      {"rows", "--rows"},
+                                      {"cols", "--cols"},
+                                      {"max_moves", "--max-moves"}});
+            }
             // Both outputs checked before the search: a refusal leaves neither written.
             CheckNotAModulesMatrix(args->out);
             CheckOutputFile(args->out);

@@ -80,12 +80,25 @@ std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pa
   const int needed = static_cast<int>(std::ceil(range.max_cols));
   fmt::print("           {} columns {} the {} the disparity range needs\n", pattern.cols,
              spans ? "cover" : "do NOT cover", needed);
+  // The tile repeats every `rows` along v: a disparity as long in v meets a tile again.
+  const bool rows_cover = pattern.rows > range.max_rows;
+  if (!rows_cover) {
+    fmt::print("           {} rows do NOT cover the {:.0f} the disparity along v needs\n",
+               pattern.rows, std::ceil(range.max_rows));
+  }
   if (std::string problem = WindowFitProblem(m, constraints.window); !problem.empty())
     return problem;
   if (!report.valid) return "the pattern matrix violates its constraints: " + Describe(report);
   if (!spans)
     return fmt::format("the pattern's {} columns do not cover the {} the disparity range needs",
                        pattern.cols, needed);
+  if (!rows_cover) {
+    return fmt::format(
+        "the disparity runs {:.1f} rows along the projector's v, and the pattern repeats every {} "
+        "rows: a window meets its twin on the same epipolar line (the baseline must lie along the "
+        "pattern's rows, projector u)",
+        range.max_rows, pattern.rows);
+  }
   return "";
 }
 

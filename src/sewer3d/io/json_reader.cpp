@@ -1,5 +1,7 @@
 #include "sewer3d/io/json_reader.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -14,6 +16,24 @@ std::string Format(double x) {
   std::ostringstream out;
   out << x;
   return out.str();
+}
+
+// Edits (insert, delete, replace a character; case ignored) from a to b.
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      const size_t next = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = row[j];
+      row[j] = next;
+    }
+  }
+  return row[b.size()];
 }
 
 }  // namespace
@@ -76,6 +96,25 @@ void JsonReader::OnlyKnown(const json& j, const std::string& prefix,
     bool found = false;
     for (const char* k : known) found = found || it.key() == k;
     if (!found) Fail(prefix + it.key(), "is not a known field");
+  }
+}
+
+void JsonReader::NoNearMisses(const json& j, const std::string& prefix,
+                              std::initializer_list<const char*> known) const {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& key = it.key();
+    bool found = false;
+    for (const char* k : known) found = found || key == k;
+    if (found) continue;
+    for (const char* k : known) {
+      const std::string name(k);
+      // One edit in a short name, two in a longer one: "clock_hh", "Clock_h", "pitch_pc".
+      const size_t allowed = std::min(key.size(), name.size()) <= 4 ? 1 : 2;
+      if (EditDistance(key, name) <= allowed) {
+        Fail(prefix + key, "is not a field sewer3d reads; did you mean '" + prefix + name +
+                               "'? (fields far from every known name are kept as they are)");
+      }
+    }
   }
 }
 

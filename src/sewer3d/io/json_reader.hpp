@@ -33,6 +33,11 @@ class JsonReader {
   /// Rejects members not in `known` (typos must not be silently ignored).
   void OnlyKnown(const json& j, const std::string& prefix,
                  std::initializer_list<const char*> known) const;
+  /// For files other tools extend (module, rig, run): members not in `known` are kept, but one
+  /// within an edit or two of a known name is a typo (an optional member silently defaulted)
+  /// and refused with the name it resembles.
+  void NoNearMisses(const json& j, const std::string& prefix,
+                    std::initializer_list<const char*> known) const;
 
   // Optional members: the fallback when missing, an error when of the wrong type.
   const json& Object(const json& j, const char* key, const std::string& prefix) const;

@@ -18,6 +18,7 @@ using nlohmann::json;
 CameraIntrinsics ReadIntrinsics(const JsonReader& in, const json& root, const char* name) {
   const json& j = in.RequiredObject(root, name, "");
   const std::string p = std::string(name) + ".";
+  in.NoNearMisses(j, p, {"width", "height", "fx", "fy", "cx", "cy", "k"});
   CameraIntrinsics c;
   c.width = in.PositiveSize(j, "width", p);
   c.height = in.PositiveSize(j, "height", p);
@@ -40,11 +41,13 @@ json ObjectOr(const json& doc, const char* key) {
 ModuleDescription ParseModule(const std::string& text, const std::filesystem::path& path) {
   const JsonReader in(path);
   const json root = in.ParseObject(text);
+  in.NoNearMisses(root, "", {"camera", "projector", "projector_from_camera", "pattern"});
   ModuleDescription m;
   m.camera = ReadIntrinsics(in, root, "camera");
   m.projector = ReadIntrinsics(in, root, "projector");
   m.projector_from_camera = in.Pose(root, "projector_from_camera", "");
   const json& pattern = in.RequiredObject(root, "pattern", "");
+  in.NoNearMisses(pattern, "pattern.", {"matrix", "pitch_px", "spot_diameter_px", "offset_px"});
   m.pattern.matrix_path = in.Text(pattern, "matrix", "pattern.");
   m.pattern.pitch_px = in.Positive(pattern, "pitch_px", "pattern.");
   m.pattern.spot_diameter_px = in.Positive(pattern, "spot_diameter_px", "pattern.");

@@ -83,6 +83,17 @@ TEST_F(ModuleIoTest, RoundTripKeepsValuesAndUnknownFields) {
   EXPECT_EQ(rewritten["pattern"]["wavelength_nm"], 850);
 }
 
+TEST_F(ModuleIoTest, RefusesANameOneOrTwoEditsFromAKnownOne) {
+  json d = good_;
+  d["pattern"]["offset_pxx"] = {1.0, 2.0};
+  ExpectError(d,
+              "'pattern.offset_pxx' is not a field sewer3d reads; did you mean "
+              "'pattern.offset_px'?");
+  d = good_;
+  d["Camera"] = d["camera"];
+  ExpectError(d, "did you mean 'camera'?");
+}
+
 TEST_F(ModuleIoTest, RejectsBadFieldsWithOneLineNamingTheField) {
   json d = good_;
   d["camera"].erase("fx");

@@ -36,17 +36,19 @@ void WritePatternSidecar(const std::filesystem::path& path, const PatternProvena
                      {"moves", r.moves},
                      {"seconds", r.elapsed_s}};
   }
-  doc["verified"] = {{"valid", report.valid},
-                     {"rows", report.rows},
-                     {"cols", report.cols},
-                     {"windows", report.windows},
-                     {"unique", report.duplicate_pairs == 0},
-                     {"min_hamming", report.min_hamming_found},
-                     {"pairs_below_min_hamming", report.close_pairs},
-                     {"min_weight", report.min_weight_found},
-                     {"max_weight", report.max_weight_found},
-                     {"adjacent_spot_pairs", report.adjacent_spot_pairs},
-                     {"density", report.density}};
+  doc["verified"] = {
+      {"valid", report.valid},
+      {"rows", report.rows},
+      {"cols", report.cols},
+      {"windows", report.windows},
+      {"unique", report.duplicate_pairs == 0},
+      {"min_hamming", report.windows >= 2 ? nlohmann::json(report.min_hamming_found)
+                                          : nlohmann::json(nullptr)},  // no pair to measure
+      {"pairs_below_min_hamming", report.close_pairs},
+      {"min_weight", report.min_weight_found},
+      {"max_weight", report.max_weight_found},
+      {"adjacent_spot_pairs", report.adjacent_spot_pairs},
+      {"density", report.density}};
   WriteTextFile(path, doc.dump(2) + "\n");
 }
 

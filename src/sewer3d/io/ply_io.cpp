@@ -1,5 +1,7 @@
 #include "sewer3d/io/ply_io.hpp"
 
+#include <fmt/core.h>
+
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -203,6 +205,12 @@ std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
     points[n] = {values[xyz[0]], values[xyz[1]], values[xyz[2]]};
     if (!points[n].allFinite())
       throw FileError(path, "vertex " + std::to_string(n) + ": a coordinate is not finite");
+    // A thousand kilometres in millimetres: beyond it the cloud is in other units or corrupt,
+    // and fits would lose every millimetre to rounding.
+    if (points[n].cwiseAbs().maxCoeff() > 1e9) {
+      throw FileError(path, fmt::format("vertex {}: coordinate {:g} is beyond ±1e9 mm", n,
+                                        points[n].cwiseAbs().maxCoeff()));
+    }
   }
   // With only vertices declared, anything after them means the count is wrong.
   if (header.elements.size() == 1) {

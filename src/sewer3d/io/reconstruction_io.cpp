@@ -47,6 +47,7 @@ void WriteFrameReport(const std::filesystem::path& path, const FrameReport& r,
                         {"not_of_module", r.rejected.not_of_module}};
   report["not_of_module"] = r.not_of_module;
   report["points"] = r.points;
+  report["depth_pixels"] = r.depth_pixels;
   report["seconds"] = {{"binarise", r.seconds.binarise},       {"spots", r.seconds.spots},
                        {"lattice", r.seconds.lattice},         {"codewords", r.seconds.codewords},
                        {"triangulate", r.seconds.triangulate}, {"depth_map", r.seconds.depth_map}};

@@ -75,10 +75,12 @@ void WriteRig(const fs::path& path, const Rig& rig) { WriteTextFile(path, RigToJ
 LoadedRig ReadRig(const fs::path& path) {
   const JsonReader in(path);
   const json j = in.ParseObject(ReadTextFile(path));
+  in.NoNearMisses(j, "", {"format", "version", "carrier", "modules"});
   if (in.Text(j, "format", "", "") != "sewer3d-rig") in.Fail("format", "must be \"sewer3d-rig\"");
   if (in.Integer(j, "version", "", 1) != 1) in.Fail("version", "must be 1");
   LoadedRig out;
   const json& carrier = in.Object(j, "carrier", "");
+  in.NoNearMisses(carrier, "carrier.", {"diameter_mm", "length_mm"});
   out.rig.carrier_diameter_mm = in.Number(carrier, "diameter_mm", "carrier.", 150.0);
   out.rig.carrier_length_mm = in.Number(carrier, "length_mm", "carrier.", 600.0);
   const json& modules = in.Array(j, "modules", "");
@@ -87,6 +89,7 @@ LoadedRig ReadRig(const fs::path& path) {
     const std::string p = "modules[" + std::to_string(i) + "].";
     const json& m = modules[i];
     if (!m.is_object()) in.Fail(p, "must be an object with module and carrier_from_camera");
+    in.NoNearMisses(m, p, {"name", "clock_h", "module", "carrier_from_camera"});
     RigModule rm;
     rm.name = in.Text(m, "name", p, fmt::format("m{}", i));
     rm.clock_h = in.Number(m, "clock_h", p, 12.0);
@@ -132,6 +135,10 @@ void WriteRunInfo(const fs::path& path, const RunInfo& info, const RunCounts& co
 namespace {
 
 RunInfo InfoOf(const JsonReader& in, const json& j) {
+  in.NoNearMisses(j, "",
+                  {"format", "version", "complete", "created_by", "scenario", "seed", "rig",
+                   "index", "odometry", "modules", "acquisitions", "images", "acquisition_period_s",
+                   "color_filter", "simulation_seconds"});
   if (in.Text(j, "format", "", "") != "sewer3d-run") in.Fail("format", "must be \"sewer3d-run\"");
   if (in.Integer(j, "version", "", 1) != 1) in.Fail("version", "must be 1");
   for (const char* key : {"rig", "index", "odometry"}) {

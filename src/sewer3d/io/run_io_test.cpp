@@ -212,6 +212,27 @@ TEST_F(RunIoTest, RefusesInconsistentRuns) {
   EXPECT_NE(ErrorOf().find("rig.json: modules[0].module"), std::string::npos);
 }
 
+TEST_F(RunIoTest, RefusesATypoOfAnOptionalRigFieldAndKeepsOtherTools) {
+  // "clock_hh" would leave the module at the default 12 o'clock without a word.
+  WriteRun();
+  const std::string rig = ReadTextFile(dir_ / "rig.json");
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = rig;
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    WriteTextFile(dir_ / "rig.json", text);
+  };
+  with("\"clock_h\":", "\"clock_hh\":");
+  EXPECT_NE(ErrorOf().find("'modules[0].clock_hh' is not a field sewer3d reads; did you mean "
+                           "'modules[0].clock_h'?"),
+            std::string::npos)
+      << ErrorOf();
+  // A member of another tool, far from every name sewer3d reads, is kept.
+  with("\"clock_h\":", "\"serial_number\": \"SL-7\", \"clock_h\":");
+  EXPECT_NO_THROW(LoadRun(dir_));
+}
+
 TEST_F(RunIoTest, IncompleteRunOnlyWhenAskedAndWithoutMissingImages) {
   WriteRun();
   RunInfo info;

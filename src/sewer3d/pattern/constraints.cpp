@@ -84,7 +84,7 @@ PatternConstraints InferConstraints(const BinaryArray& array, int window) {
   }
   SEWER3D_VALIDATE(report.windows > 0 && report.duplicate_pairs == 0, "",
                    "the pattern's " << window << "x" << window << " windows are not unique");
-  c.min_hamming = report.min_hamming_found;
+  c.min_hamming = std::min(report.min_hamming_found, window * window);  // one window: no pair
   c.min_weight = report.min_weight_found;
   c.isolated = report.adjacent_spot_pairs == 0;
   return c;
@@ -92,9 +92,14 @@ PatternConstraints InferConstraints(const BinaryArray& array, int window) {
 
 std::string Describe(const PatternReport& r) {
   std::ostringstream out;
-  out << r.rows << "x" << r.cols << ", " << r.windows << " windows, min Hamming "
-      << r.min_hamming_found << ", weight " << r.min_weight_found << ".." << r.max_weight_found
-      << ", adjacent spot pairs " << r.adjacent_spot_pairs << ", density " << r.density
+  out << r.rows << "x" << r.cols << ", " << r.windows << " windows, min Hamming ";
+  if (r.windows < 2) {
+    out << "- (no pair)";
+  } else {
+    out << r.min_hamming_found;
+  }
+  out << ", weight " << r.min_weight_found << ".." << r.max_weight_found << ", adjacent spot pairs "
+      << r.adjacent_spot_pairs << ", density " << r.density
       << (r.valid ? " (valid)" : " (INVALID)");
   return out.str();
 }

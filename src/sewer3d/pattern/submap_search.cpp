@@ -264,6 +264,38 @@ double BinomialCoefficient(int n, int k) {
   return c;
 }
 
+// How many n x n windows hold at least min_weight spots, with no two spots 8-adjacent when
+// isolated: row by row, each row a bit mask, counting by spot count.
+double DistinctWindows(int n, int min_weight, bool isolated) {
+  if (!isolated) {
+    double distinct = 0.0;
+    for (int k = min_weight; k <= n * n; ++k) distinct += std::round(BinomialCoefficient(n * n, k));
+    return distinct;
+  }
+  const int masks = 1 << n;
+  auto alone = [](int m) { return (m & (m << 1)) == 0; };
+  // by[mask][w]: windows of the rows so far whose last row is mask, holding w spots.
+  std::vector<std::vector<double>> by(masks, std::vector<double>(n * n + 1, 0.0));
+  for (int m = 0; m < masks; ++m)
+    if (alone(m)) by[m][std::popcount(static_cast<unsigned>(m))] = 1.0;
+  for (int row = 1; row < n; ++row) {
+    std::vector<std::vector<double>> next(masks, std::vector<double>(n * n + 1, 0.0));
+    for (int m = 0; m < masks; ++m) {
+      if (!alone(m)) continue;
+      const int add = std::popcount(static_cast<unsigned>(m));
+      for (int prev = 0; prev < masks; ++prev) {
+        if ((m & (prev | prev << 1 | prev >> 1)) != 0) continue;
+        for (int w = 0; w + add <= n * n; ++w) next[m][w + add] += by[prev][w];
+      }
+    }
+    by = std::move(next);
+  }
+  double distinct = 0.0;
+  for (int m = 0; m < masks; ++m)
+    for (int w = min_weight; w <= n * n; ++w) distinct += by[m][w];
+  return distinct;
+}
+
 }  // namespace
 
 void SubmapSearchOptions::Check() const {
@@ -277,21 +309,27 @@ void SubmapSearchOptions::Check() const {
                                  << kMaxPatternElements << " elements");
   // Every window must differ from every other: there must be as many distinct windows of
   // at least min_weight spots as the array has windows (the isolated rule allows even fewer).
-  double distinct = 0.0;
-  for (int k = constraints.min_weight; k <= n * n; ++k)
-    distinct += std::round(BinomialCoefficient(n * n, k));
+  const double distinct = DistinctWindows(n, constraints.min_weight, constraints.isolated);
   const int needed = WindowCount(rows, cols, constraints);
+  SEWER3D_VALIDATE(needed >= 2, "rows",
+                   "the " << rows << "x" << cols << " array holds one " << n << "x" << n
+                          << " window: a perfect submap needs at least 2 (a larger array, or a "
+                             "torus)");
   SEWER3D_VALIDATE(distinct >= needed, "min_weight",
                    "only " << distinct << " distinct " << n << "x" << n << " windows have at least "
-                           << constraints.min_weight << " spots, and the " << rows << "x" << cols
-                           << " array needs " << needed);
+                           << constraints.min_weight << " spots"
+                           << (constraints.isolated ? " with none 8-adjacent" : "") << ", and the "
+                           << rows << "x" << cols << " array needs " << needed);
   // Codes of n*n bits at least d apart: no more than the Hamming (sphere-packing) bound,
   // 2^(n*n) / (the number of codes within (d - 1) / 2 of one).
   const int bits = n * n, radius = (constraints.min_hamming - 1) / 2;
   double ball = 0.0;
   for (int k = 0; k <= std::min(radius, bits); ++k) ball += BinomialCoefficient(bits, k);
-  const double most =
-      constraints.min_hamming > bits ? 1.0 : std::floor(std::ldexp(1.0, bits) / ball);
+  // Two windows of isolated spots differ in at most twice the most such spots one can hold.
+  const int most_isolated = ((n + 1) / 2) * ((n + 1) / 2);
+  const bool too_far = constraints.min_hamming > bits ||
+                       (constraints.isolated && constraints.min_hamming > 2 * most_isolated);
+  const double most = too_far ? 1.0 : std::floor(std::ldexp(1.0, bits) / ball);
   SEWER3D_VALIDATE(most >= needed, "min_hamming",
                    "at most " << most << " " << n << "x" << n << " windows can differ pairwise in "
                               << constraints.min_hamming << " spots, and the " << rows << "x"

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "sewer3d/pattern/default_pattern.hpp"
 
 namespace sewer3d {
@@ -89,6 +91,42 @@ TEST(SubmapSearch, RejectsBadOptions) {
   options = {};
   options.constraints.window = 9;
   EXPECT_THROW(SearchPerfectSubmap(options), std::invalid_argument);
+}
+
+// The refusal's text, or "" when the options pass.
+std::string Refusal(const SubmapSearchOptions& options) {
+  try {
+    options.Check();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SubmapSearch, RefusesArraysNoPatternCanFill) {
+  // 3x3 windows of isolated spots with at least 2 spots: 25 exist (counted by hand, brute
+  // force over all 512 windows), so a 3x8 torus (24 windows) may exist and a 3x9 (27) cannot.
+  SubmapSearchOptions options;
+  options.constraints.window = 3;
+  options.constraints.min_weight = 2;
+  options.rows = 3;
+  options.cols = 8;
+  EXPECT_EQ(Refusal(options), "");
+  options.cols = 9;
+  EXPECT_NE(Refusal(options).find("only 25 distinct 3x3 windows"), std::string::npos)
+      << Refusal(options);
+  // A 2x2 window holds one isolated spot at most, so two windows differ in 2 spots at most.
+  options = {};
+  options.constraints.window = 2;
+  options.constraints.min_weight = 0;
+  options.constraints.min_hamming = 3;
+  options.rows = options.cols = 2;
+  EXPECT_NE(Refusal(options).find("at most 1 2x2 windows"), std::string::npos) << Refusal(options);
+  // One window has no pair to differ from.
+  options = {};
+  options.constraints.torus = false;
+  options.rows = options.cols = 6;
+  EXPECT_NE(Refusal(options).find("holds one 6x6 window"), std::string::npos) << Refusal(options);
 }
 
 }  // namespace

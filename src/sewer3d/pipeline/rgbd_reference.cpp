@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "sewer3d/io/atomic_file.hpp"
@@ -65,6 +66,7 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
   ReferenceLightEstimator estimator(camera, options.reference);
   const int n = std::min<int>(options.reference_frames, static_cast<int>(usable.size()));
   std::string unreadable;  // the first image that could not be read
+  int without_depth = 0;   // read, but no pixel of depth
   for (int k = 0; k < n; ++k) {
     const Acquisition& a = *usable[(2 * k + 1) * usable.size() / (2 * n)];
     try {
@@ -72,6 +74,7 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
       const RgbdGeometry geometry =
           ReadRgbdGeometry(RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter));
       estimator.Add(linear, geometry.depth_mm);
+      without_depth += cv::countNonZero(geometry.depth_mm == geometry.depth_mm) == 0;
     } catch (const FileError& e) {
       // Passed over here; the colour pass fails the acquisition with the file and reason.
       if (unreadable.empty()) unreadable = e.what();
@@ -82,12 +85,17 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
   result.reference = estimate.reference;
   if (!result.reference) {
     result.file = file.string();
-    result.reason =
-        !unreadable.empty()
-            ? "no reference light: a texture image could not be read (" + unreadable + ")"
-            : "no reference light: none of the module's " + std::to_string(usable.size()) +
-                  " acquisitions with depth gave enough samples of the wall (too "
-                  "few decoded points; see the geometry reports)";
+    if (!unreadable.empty()) {
+      result.reason = "no reference light: a texture image could not be read (" + unreadable + ")";
+    } else if (n > 0 && without_depth == n) {
+      result.reason = "no reference light: the depth maps of the module's " + std::to_string(n) +
+                      " acquisitions read are empty (every triangle between their points is "
+                      "longer than the longest edge allowed: max_edge_steps, --max-edge-steps)";
+    } else {
+      result.reason = "no reference light: none of the module's " + std::to_string(usable.size()) +
+                      " acquisitions with depth gave enough samples of the wall (too few decoded "
+                      "points; see the geometry reports)";
+    }
     return result;
   }
   WriteFileAtomically(ReferenceFile(rgbd_folder, module, ".png"),

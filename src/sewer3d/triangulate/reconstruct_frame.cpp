@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <opencv2/core.hpp>
 #include <string>
 #include <utility>
 
@@ -47,6 +48,11 @@ std::string NotOfModuleReason(const FrameReport& r) {
 }
 
 std::string FrameDoubt(const FrameReport& r, std::size_t points) {
+  if (points >= 3 && r.depth_pixels == 0) {
+    return std::to_string(points) +
+           " points but an empty depth map: every triangle between them is longer than the "
+           "longest edge allowed (max_edge_steps, --max-edge-steps)";
+  }
   if (r.spots_found >= 50 && 2 * r.spots_decoded < r.spots_found) {
     return std::to_string(r.spots_decoded) + " of " + std::to_string(r.spots_found) +
            " spots decoded: the spots may be too small or too close together for the camera "
@@ -115,6 +121,7 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
   frame.depth_mm = InterpolateDepth(pattern_image.size(), pixels_, depths_,
                                     options_.max_edge_steps * module_.pattern.pitch_px);
   report.seconds.depth_map = Since(t);
+  report.depth_pixels = cv::countNonZero(frame.depth_mm == frame.depth_mm);  // NaN is not equal
 
   report.spots_found = static_cast<int>(decoded.spots.size());
   report.lattice_groups = decoded.lattice.groups;

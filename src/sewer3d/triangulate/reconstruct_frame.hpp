@@ -70,7 +70,8 @@ struct FrameReport {
   } rejected;
   /// The frame does not fit the module (FrameReconstructionOptions::mismatch_*): no points.
   bool not_of_module = false;
-  int points = 0;  ///< triangulated points kept
+  int points = 0;        ///< triangulated points kept
+  int depth_pixels = 0;  ///< pixels of the depth map with a depth
   /// Wall-clock time of each stage.
   struct Seconds {
     double binarise = 0, spots = 0, lattice = 0, codewords = 0;
@@ -93,6 +94,7 @@ struct FrameReconstruction {
 std::string NotOfModuleReason(const FrameReport& report);
 
 /// What makes a frame's points doubtful though some were made, in words (empty: nothing):
+/// points but no pixel of depth (the longest triangle edge allowed is too short),
 /// fewer than half of 50 or more spots decoded (spots too small or too close for the camera),
 /// or fewer than half of the decoded spots triangulated (their disparities outside the
 /// module's working range: an image of another module). A frame of a plain wall has over 90 %
