@@ -50,8 +50,8 @@ expect_error "--window" "$bin" pattern --out "$tmp/p.png" --window 12
 expect_error "no_such.json" "$bin" describe --module "$tmp/no_such.json"
 printf '{"camera": 3}' >"$tmp/bad.json"
 expect_error "camera" "$bin" describe --module "$tmp/bad.json"
-expect_error "not reached" "$bin" pattern --out "$tmp/never.png" --rows 6 --cols 6 \
-  --min-hamming 20 --max-moves 500 --quiet
+expect_error "not reached" "$bin" pattern --out "$tmp/never.png" --rows 3 --cols 8 \
+  --window 3 --min-weight 2 --max-moves 500 --quiet
 [ ! -e "$tmp/never.png" ] || fail "an unreached pattern was written"
 
 expect_ok "$bin" module --out "$tmp/m" --camera-size 648x486

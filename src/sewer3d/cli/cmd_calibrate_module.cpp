@@ -14,11 +14,10 @@
 #include "sewer3d/cli/calibrate_commands.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/calibration_io.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
-#include "sewer3d/io/json_reader.hpp"
 #include "sewer3d/io/module_io.hpp"
-#include "sewer3d/io/text_file.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -36,9 +35,8 @@ struct ModuleArgs {
 void CheckBoardFile(const fs::path& captures, const BoardLayout& layout) {
   const fs::path file = captures / "board.json";
   if (!IsRegularFile(file)) return;
-  const JsonReader in(file);
-  const auto j = in.ParseObject(ReadTextFile(file));
-  const double square_mm = in.Number(j, "square_mm", "", layout.square_mm);
+  const BoardLayout written = ReadBoardLayout(file, layout);
+  const double square_mm = written.square_mm;
   if (std::abs(square_mm - layout.square_mm) > 1e-6 * square_mm) {
     throw InvalidValue(
         "--square-mm",
@@ -46,8 +44,7 @@ void CheckBoardFile(const fs::path& captures, const BoardLayout& layout) {
                     "be scaled by {:.3g}",
                     layout.square_mm, file.string(), square_mm, layout.square_mm / square_mm));
   }
-  const auto cols = in.Integer(j, "cols", "", layout.cols);
-  const auto rows = in.Integer(j, "rows", "", layout.rows);
+  const int cols = written.cols, rows = written.rows;
   if (cols != layout.cols || rows != layout.rows) {
     throw InvalidValue("--board", fmt::format("{}x{}, but {} says {}x{}", layout.cols, layout.rows,
                                               file.string(), cols, rows));

@@ -80,16 +80,10 @@ double PeakMemoryGb() {
 // The demo's folder holds a run and a workspace of its own: not inside a capture run (whose
 // folder must stay as captured) nor inside a workspace (whose --force would remove it).
 void CheckDemoFolder(const fs::path& dir) {
-  std::error_code ec;
-  const fs::path absolute = fs::weakly_canonical(fs::absolute(dir, ec), ec);
-  for (fs::path up = absolute; !up.empty(); up = up.parent_path()) {
-    for (const char* owner : {"run.json", "workspace.json"}) {
-      if (IsRegularFile(up / owner)) {
-        throw InvalidValue("--out", dir.string() + " lies in " + (up / owner).string() +
-                                        "'s folder; the demo needs a folder of its own");
-      }
-    }
-    if (up == up.parent_path()) break;
+  if (const fs::path owner = OwnerAbove(dir, {"run.json", "workspace.json"}, true);
+      !owner.empty()) {
+    throw InvalidValue("--out", dir.string() + " lies in " + owner.string() +
+                                    "'s folder; the demo needs a folder of its own");
   }
 }
 

@@ -136,14 +136,21 @@ Command AddPatternCommand(CLI::App& app) {
             std::fflush(stdout);
             const SubmapSearchResult result = SearchPerfectSubmap(options);
             if (options.progress) std::fprintf(stderr, "\n");
-            const PatternReport report = VerifyPattern(result.array, options.constraints);
+            // Verified only when reached: the check compares every pair of windows (seconds
+            // for a large array) and an unreached one fails anyway.
+            const PatternReport report =
+                result.reached ? VerifyPattern(result.array, options.constraints) : PatternReport{};
             if (!result.reached || !report.valid) {
+              const std::string best =
+                  result.final_cost >= 0
+                      ? fmt::format("best attempt: {} constraint violations", result.final_cost)
+                      : "the budget ended while the search was being set up";
               fmt::print(stderr,
                          "sewer3d: error: {}x{} {} array not reached ({} after {} moves, {:.1f} s; "
-                         "best attempt: {} constraint violations). Try fewer columns or rows, "
-                         "another seed, or a larger --max-moves.\n",
+                         "{}). Try fewer columns or rows, another seed, or a larger {}.\n",
                          options.rows, options.cols, kind, result.termination, result.moves,
-                         result.elapsed_s, result.final_cost);
+                         result.elapsed_s, best,
+                         result.termination == "time budget" ? "--max-seconds" : "--max-moves");
               return 1;
             }
             const std::filesystem::path out = args->out;

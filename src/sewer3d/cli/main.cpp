@@ -4,10 +4,7 @@
 #include <fmt/core.h>
 
 #include <CLI/CLI.hpp>
-#include <cctype>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <optional>
@@ -15,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/exit_code.hpp"
 #include "sewer3d/cli/library_logs.hpp"
@@ -27,71 +25,6 @@ int ReportError(const std::exception_ptr& error) {
   const sewer3d::cli::ErrorExit exit = sewer3d::cli::ExitForError(error);
   fmt::print(stderr, "sewer3d: error: {}\n", exit.message);
   return exit.code;
-}
-
-// Whether `value` reads as a floating-point NaN ("nan", "-NaN", "nan(1)"): ranges never refuse
-// it (every comparison with NaN is false).
-bool IsNan(const std::string& value) {
-  char* end = nullptr;
-  const double x = std::strtod(value.c_str(), &end);
-  return !value.empty() && end == value.c_str() + value.size() && std::isnan(x);
-}
-
-// The first option or argument of the chosen subcommands given as an empty string ("" names
-// no file and no value) or as NaN, with what is wrong; nullptr when none.
-std::pair<const CLI::Option*, const char*> BadValue(const CLI::App& app) {
-  for (const CLI::Option* option : app.get_options()) {
-    if (option->count() == 0) continue;
-    for (const std::string& value : option->results()) {
-      if (value.empty()) return {option, "must not be empty"};
-      if (IsNan(value)) return {option, "must be a number, got NaN"};
-    }
-  }
-  for (const CLI::App* sub : app.get_subcommands()) {
-    if (const auto bad = BadValue(*sub); bad.first != nullptr) return bad;
-  }
-  return {nullptr, nullptr};
-}
-
-// Whether the option that a CLI11 message starts with ("--rows: …") takes whole numbers, looked
-// up in the chosen subcommands.
-bool TakesWholeNumbers(const CLI::App& app, const std::string& message) {
-  static const std::string convert = "Could not convert: ";
-  const std::string name =
-      message.rfind(convert, 0) == 0
-          ? message.substr(convert.size(), message.find(' ', convert.size()) - convert.size())
-          : message.substr(0, message.find(':'));
-  for (const CLI::App* sub : app.get_subcommands()) {
-    if (const CLI::Option* option = sub->get_option_no_throw(name); option != nullptr) {
-      const std::string type = option->get_type_name();
-      return type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
-    }
-    if (TakesWholeNumbers(*sub, message)) return true;
-  }
-  return false;
-}
-
-// Whether some (sub)command of `app` has the long option `--name`.
-bool HasLongOption(const CLI::App& app, const std::string& name) {
-  if (app.get_option_no_throw("--" + name) != nullptr) return true;
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-    if (HasLongOption(*sub, name)) return true;
-  }
-  return false;
-}
-
-// The first argument written as a long option with one dash ("-out"), which CLI11 would read as
-// the short flags -o -u -t and then report --out as missing; empty when none.
-std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    std::string arg = argv[i];
-    if (arg == "--") break;
-    if (arg.size() < 3 || arg[0] != '-' || std::isalpha(static_cast<unsigned char>(arg[1])) == 0) {
-      continue;
-    }
-    if (HasLongOption(app, arg.substr(1, arg.find('=') - 1))) return arg;
-  }
-  return {};
 }
 
 // Commands whose outputs belong together, so that a failure part-way (a full disk) leaves none
@@ -137,7 +70,7 @@ int main(int argc, char** argv) {
                names);
     return sewer3d::cli::kExitUsage;
   }
-  if (const std::string arg = SingleDashLongOption(app, argc, argv); !arg.empty()) {
+  if (const std::string arg = sewer3d::cli::SingleDashLongOption(app, argc, argv); !arg.empty()) {
     fmt::print(stderr,
                "sewer3d: error: {}: long options take two dashes: -{} (see sewer3d --help)\n", arg,
                arg);
@@ -169,11 +102,12 @@ int main(int argc, char** argv) {
       return 0;
     }
     // Range and conversion refusals in the words of the other value errors.
-    fmt::print(stderr, "sewer3d: error: {} (see sewer3d --help)\n",
-               sewer3d::cli::ReadableRangeError(e.what(), TakesWholeNumbers(app, e.what())));
+    fmt::print(
+        stderr, "sewer3d: error: {} (see sewer3d --help)\n",
+        sewer3d::cli::ReadableRangeError(e.what(), sewer3d::cli::TakesWholeNumbers(app, e.what())));
     return sewer3d::cli::kExitUsage;
   }
-  if (const auto [option, problem] = BadValue(app); option != nullptr) {
+  if (const auto [option, problem] = sewer3d::cli::BadValue(app); option != nullptr) {
     fmt::print(stderr, "sewer3d: error: invalid value: {}: {}\n", option->get_name(), problem);
     return sewer3d::cli::kExitUsage;
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
 
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/json_reader.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -46,6 +47,17 @@ void WriteCornerErrorImage(const std::filesystem::path& path, const cv::Mat& gre
   cv::putText(picture, cv::format("RMS %.3f px (red: >= %.2f px)", rms_px, full), {8, 20},
               cv::FONT_HERSHEY_SIMPLEX, 0.6, {0, 255, 255}, 1, cv::LINE_AA);
   WriteImage(path, picture);
+}
+
+BoardLayout ReadBoardLayout(const std::filesystem::path& file, const BoardLayout& fallback) {
+  const JsonReader in(file);
+  const auto j = in.ParseObject(ReadTextFile(file));
+  BoardLayout layout;
+  layout.square_mm = in.Number(j, "square_mm", "", fallback.square_mm);
+  layout.cols = in.Integer(j, "cols", "", fallback.cols);
+  layout.rows = in.Integer(j, "rows", "", fallback.rows);
+  ValidateFileContents(file, [&] { layout.Check(); });
+  return layout;
 }
 
 }  // namespace sewer3d

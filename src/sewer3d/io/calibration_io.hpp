@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sewer3d/calib/camera_calibration.hpp"
+#include "sewer3d/calib/module_from_captures.hpp"
 
 namespace sewer3d {
 
@@ -30,5 +31,9 @@ void WriteCameraCalibration(const std::filesystem::path& path, const CameraCalib
 void WriteCornerErrorImage(const std::filesystem::path& path, const cv::Mat& grey,
                            const std::vector<Eigen::Vector2d>& corners,
                            const std::vector<Eigen::Vector2d>& residuals, double rms_px);
+
+/// A captures folder's board.json (`simulate calibration` writes one): cols, rows and
+/// square_mm, each member it lacks taken from `fallback`.
+BoardLayout ReadBoardLayout(const std::filesystem::path& file, const BoardLayout& fallback);
 
 }  // namespace sewer3d

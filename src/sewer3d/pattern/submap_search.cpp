@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <random>
 #include <utility>
@@ -114,7 +115,8 @@ class SearchState {
   const IndexedSet& violated() const { return violated_; }
 
   /// Random isolated start: elements in random order, each set with probability p if free.
-  void Initialise(std::mt19937_64& rng, double p) {
+  /// False when `stop` ended the set-up (the conflict counts are then incomplete).
+  bool Initialise(std::mt19937_64& rng, double p, const std::function<bool()>& stop) {
     std::vector<int> order(cells());
     for (int i = 0; i < cells(); ++i) order[i] = i;
     std::shuffle(order.begin(), order.end(), rng);
@@ -124,7 +126,7 @@ class SearchState {
                                                    [&](int o) { return cells_[o] != 0; });
       if (free && coin(rng)) cells_[c] = 1;
     }
-    Rebuild();
+    return Rebuild(stop);
   }
 
   const std::vector<std::uint8_t>& cells_vector() const { return cells_; }
@@ -192,7 +194,7 @@ class SearchState {
     violated_.Set(w, conflicts_[w] > 0 || std::popcount(codes_[w]) < min_weight_);
   }
 
-  void Rebuild() {
+  bool Rebuild(const std::function<bool()>& stop) {
     index_ = HammingIndex(n_ * n_, min_hamming_ - 1, windows_);
     conflict_pairs_ = 0;
     deficit_ = 0;
@@ -202,6 +204,8 @@ class SearchState {
       for (auto [w, bit] : cell_windows_[c]) codes_[w] |= std::uint64_t{1} << bit;
     }
     for (int w = 0; w < windows_; ++w) {
+      // Large arrays with a wide distance take seconds here: the time budget holds too.
+      if (w % 1024 == 0 && stop()) return false;
       conflicts_[w] = 0;
       index_.ForEachWithin(codes_[w], [&](int v) {
         ++conflicts_[v];
@@ -212,6 +216,7 @@ class SearchState {
       deficit_ += Deficit(codes_[w]);
     }
     for (int w = 0; w < windows_; ++w) UpdateViolated(w);
+    return true;
   }
 
   // Fills affected_ / new_codes_ with the windows that `changes` modify.
@@ -349,9 +354,19 @@ SubmapSearchResult SearchPerfectSubmap(const SubmapSearchOptions& options) {
   };
   std::mt19937_64 rng(options.seed);
   SearchState state(options);
-  state.Initialise(rng, 0.6);
-
   SubmapSearchResult result;
+  const auto out_of_time = [&] {
+    return options.max_seconds > 0.0 && elapsed() > options.max_seconds;
+  };
+  if (!state.Initialise(rng, 0.6, out_of_time)) {
+    result.array = BinaryArray(options.rows, options.cols);
+    result.array.bits = state.cells_vector();
+    result.final_cost = -1;
+    result.termination = "time budget";
+    result.elapsed_s = elapsed();
+    return result;
+  }
+
   std::vector<std::uint8_t> best_cells = state.cells_vector();
   int best_cost = state.cost();
   std::vector<std::int64_t> tabu_until(state.cells(), 0);
@@ -367,7 +382,7 @@ SubmapSearchResult SearchPerfectSubmap(const SubmapSearchOptions& options) {
       result.termination = "reached";
       break;
     }
-    if (options.max_seconds > 0.0 && elapsed() > options.max_seconds) {
+    if (out_of_time()) {
       result.termination = "time budget";
       break;
     }

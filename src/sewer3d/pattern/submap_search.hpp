@@ -52,7 +52,9 @@ struct SubmapSearchOptions {
 struct SubmapSearchResult {
   BinaryArray array;     ///< the best array found (valid only when `reached`)
   bool reached = false;  ///< all constraints hold
-  int final_cost = 0;    ///< cost of `array` (0 when reached)
+  /// Cost of `array` (0 when reached); −1 when the time budget ended during the set-up, before
+  /// the first cost was known.
+  int final_cost = 0;
   std::int64_t moves = 0;
   double elapsed_s = 0.0;
   std::string termination;  ///< "reached", "move budget", "time budget" or "stopped"

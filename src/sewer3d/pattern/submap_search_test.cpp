@@ -48,12 +48,14 @@ TEST(SubmapSearch, DeterministicForASeed) {
 }
 
 TEST(SubmapSearch, ReportsHonestlyWhenASizeIsNotReached) {
-  // Isolated spots allow at most 9 per 6 x 6 window, so two windows differ in at most 18 bits:
-  // a minimum distance of 20 is impossible. The search must say so and return its best attempt.
+  // A 3 x 8 torus of 3 x 3 windows with 2 isolated spots or more needs 24 of the 25 such
+  // windows: 2000 moves do not reach it (a distance no two windows can have is refused before
+  // the search, RefusesArraysNoPatternCanFill). The search must say so and return its best.
   SubmapSearchOptions options;
-  options.rows = 6;
-  options.cols = 6;
-  options.constraints.min_hamming = 20;
+  options.rows = 3;
+  options.cols = 8;
+  options.constraints.window = 3;
+  options.constraints.min_weight = 2;
   options.max_moves = 2000;
   const auto result = SearchPerfectSubmap(options);
   EXPECT_FALSE(result.reached);
@@ -64,9 +66,10 @@ TEST(SubmapSearch, ReportsHonestlyWhenASizeIsNotReached) {
 
 TEST(SubmapSearch, ProgressCallbackCanStop) {
   SubmapSearchOptions options;
-  options.rows = 6;
-  options.cols = 6;
-  options.constraints.min_hamming = 20;
+  options.rows = 3;
+  options.cols = 8;
+  options.constraints.window = 3;
+  options.constraints.min_weight = 2;
   options.progress_interval_moves = 10;
   int calls = 0;
   options.progress = [&](const SubmapSearchProgress& p) {

@@ -66,14 +66,10 @@ std::string OptionsChange(const std::string& before, const std::string& now) {
 const std::filesystem::path& NotTheRun(const std::filesystem::path& folder,
                                        const std::filesystem::path& run_folder) {
   CheckOutsideTheRun(folder, run_folder, "the workspace (--out)");
-  const std::filesystem::path ws = RunName(folder);
-  for (std::filesystem::path up = ws.parent_path(); !up.empty() && up != up.parent_path();
-       up = up.parent_path()) {
-    if (IsRegularFile(up / "workspace.json")) {
-      throw FileError(folder, "lies inside the workspace " + up.string() +
-                                  ": a workspace (--out) must be a folder of its own (a --force "
-                                  "there would remove it)");
-    }
+  if (const auto owner = OwnerAbove(folder, {"workspace.json"}, false); !owner.empty()) {
+    throw FileError(folder, "lies inside the workspace " + owner.parent_path().string() +
+                                ": a workspace (--out) must be a folder of its own (a --force "
+                                "there would remove it)");
   }
   return folder;
 }
@@ -117,6 +113,19 @@ void CheckWorkspaceOfRun(const std::filesystem::path& folder,
   if (!IsRegularFile(record)) return;
   const std::string recorded = ReadWorkspaceRecord(record).run, run = RunName(run_folder);
   if (recorded != run) throw FileError(record, "workspace of run " + recorded + ", not of " + run);
+}
+
+std::filesystem::path OwnerAbove(const std::filesystem::path& folder,
+                                 std::initializer_list<const char*> owners, bool including_folder) {
+  const std::filesystem::path absolute = RunName(folder);
+  std::filesystem::path up = including_folder ? absolute : absolute.parent_path();
+  for (; !up.empty(); up = up.parent_path()) {
+    for (const char* owner : owners) {
+      if (IsRegularFile(up / owner)) return up / owner;
+    }
+    if (up == up.parent_path()) break;
+  }
+  return {};
 }
 
 std::string SoftwareVersion() { return SEWER3D_VERSION; }

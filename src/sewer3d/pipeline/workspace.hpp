@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -35,6 +36,13 @@ void CheckWorkspaceOfRun(const std::filesystem::path& folder,
 /// folder in the message, e.g. "the workspace (--out)".
 void CheckOutsideTheRun(const std::filesystem::path& folder,
                         const std::filesystem::path& run_folder, const std::string& role);
+
+/// The first of `owners` (file names such as "run.json", "workspace.json") found as a regular
+/// file in a folder above `folder`, or in `folder` itself with `including_folder`, links
+/// resolved; empty when none. A workspace or a demo inside a run or another workspace would mix
+/// with it (and a --force there would remove it).
+std::filesystem::path OwnerAbove(const std::filesystem::path& folder,
+                                 std::initializer_list<const char*> owners, bool including_folder);
 
 /// The software version recorded in workspace.json: CMake's PROJECT_VERSION, e.g. "0.1.0".
 std::string SoftwareVersion();

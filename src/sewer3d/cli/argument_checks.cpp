@@ -1,0 +1,77 @@
+#include "sewer3d/cli/argument_checks.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+
+namespace sewer3d::cli {
+namespace {
+
+// Whether `value` reads as a floating-point NaN ("nan", "-NaN", "nan(1)"): ranges never refuse
+// it (every comparison with NaN is false).
+bool IsNan(const std::string& value) {
+  char* end = nullptr;
+  const double x = std::strtod(value.c_str(), &end);
+  return !value.empty() && end == value.c_str() + value.size() && std::isnan(x);
+}
+
+// Whether some (sub)command of `app` has the long option `--name`.
+bool HasLongOption(const CLI::App& app, const std::string& name) {
+  if (app.get_option_no_throw("--" + name) != nullptr) return true;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (HasLongOption(*sub, name)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+// The first option or argument of the chosen subcommands given as an empty string ("" names
+// no file and no value) or as NaN, with what is wrong; nullptr when none.
+std::pair<const CLI::Option*, const char*> BadValue(const CLI::App& app) {
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->count() == 0) continue;
+    for (const std::string& value : option->results()) {
+      if (value.empty()) return {option, "must not be empty"};
+      if (IsNan(value)) return {option, "must be a number, got NaN"};
+    }
+  }
+  for (const CLI::App* sub : app.get_subcommands()) {
+    if (const auto bad = BadValue(*sub); bad.first != nullptr) return bad;
+  }
+  return {nullptr, nullptr};
+}
+
+// Whether the option that a CLI11 message starts with ("--rows: …") takes whole numbers, looked
+// up in the chosen subcommands.
+bool TakesWholeNumbers(const CLI::App& app, const std::string& message) {
+  static const std::string convert = "Could not convert: ";
+  const std::string name =
+      message.rfind(convert, 0) == 0
+          ? message.substr(convert.size(), message.find(' ', convert.size()) - convert.size())
+          : message.substr(0, message.find(':'));
+  for (const CLI::App* sub : app.get_subcommands()) {
+    if (const CLI::Option* option = sub->get_option_no_throw(name); option != nullptr) {
+      const std::string type = option->get_type_name();
+      return type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
+    }
+    if (TakesWholeNumbers(*sub, message)) return true;
+  }
+  return false;
+}
+
+// The first argument written as a long option with one dash ("-out"), which CLI11 would read as
+// the short flags -o -u -t and then report --out as missing; empty when none.
+std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg == "--") break;
+    if (arg.size() < 3 || arg[0] != '-' || std::isalpha(static_cast<unsigned char>(arg[1])) == 0) {
+      continue;
+    }
+    if (HasLongOption(app, arg.substr(1, arg.find('=') - 1))) return arg;
+  }
+  return {};
+}
+
+}  // namespace sewer3d::cli

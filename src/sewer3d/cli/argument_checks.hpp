@@ -1,0 +1,24 @@
+#pragma once
+/// \file
+/// Checks of the command line that CLI11 does not make, run by main before a command starts.
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <utility>
+
+namespace sewer3d::cli {
+
+/// The first option or argument of the chosen subcommands given as an empty string ("" names
+/// no file and no value) or as NaN (ranges never refuse it), with what is wrong; nullptr when
+/// none.
+std::pair<const CLI::Option*, const char*> BadValue(const CLI::App& app);
+
+/// Whether the option that a CLI11 message starts with ("--rows: …") takes whole numbers,
+/// looked up in the chosen subcommands.
+bool TakesWholeNumbers(const CLI::App& app, const std::string& message);
+
+/// The first argument written as a long option with one dash ("-out"), which CLI11 would read
+/// as the short flags -o -u -t and then report --out as missing; empty when none.
+std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv);
+
+}  // namespace sewer3d::cli
