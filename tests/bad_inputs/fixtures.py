@@ -5,6 +5,7 @@ Only the standard library: PNG chunks are assembled by hand (zlib + crc32), PLY 
 struct, so every fixture is exactly the malformed thing its name says.
 """
 import os
+import math
 import struct
 import sys
 import zlib
@@ -87,6 +88,11 @@ def main(out):
     # Identical and collinear points.
     ply(j("identical.ply"), "float", [(1.0, 2.0, 100.0)] * 50)
     ply(j("collinear.ply"), "float", [(float(i), 2.0 * i, 100.0 + i) for i in range(50)])
+    # A plane behind the camera (z < 0), and an arc of a Ø300 pipe whose axis is the view's z.
+    ply(j("behind.ply"), "float", [(x, y, -100.0 - 0.01 * x) for x, y, _ in plane])
+    arc = [(150 * math.cos(0.05 * i), 150 * math.sin(0.05 * i), 10.0 + 10 * k)
+           for i in range(60) for k in range(10)]
+    ply(j("arc_z.ply"), "float", arc)
     # A good cylinder patch with one point at 1e30 (a corrupt value, not a shape).
     ply(j("far_point.ply"), "double", [(float(x), float(y), float(z)) for x, y, z in ring]
         + [(1e30, 0.0, 150.0)])

@@ -129,6 +129,8 @@ scenario_with slip_beyond.json 'odometry={"slips": [{"station_mm": 1e6, "length_
 # Scene files: a frame's scene.json with its render options or features broken.
 "$S" simulate frame --module m/module.json --scene pipe-wall --supersampling 1 --out fpw >/dev/null
 json_with frame8/scene.json scene_bits16.json 'render.bits=16'
+json_with frame8/scene.json scene_dist_tiny.json 'scene.distance_mm=0.001'
+json_with fpw/scene.json scene_type_plane.json 'scene.type="plane"'
 json_with fpw/scene.json scene_pit_deep.json 'scene.features.2.depth_mm=1e6'
 printf '{"type": "cylinder", "diameter_mm": 1e400}' >scene_overflow.json
 scenario_with connection_wide.json 'pipe.features.0.diameter_mm=1000'
@@ -145,6 +147,7 @@ json_with m/module.json m/offset_huge.json 'pattern.offset_px=[-1e9,0]'
 json_with m/module.json m/k_huge.json 'camera.k=[1e10,0,0]'
 # The projector above the camera, not beside it: the disparity runs along the 6-row side.
 json_with m/module.json m/baseline_y.json "projector_from_camera.translation_mm=[0,-77.6,0]"
+json_with m/module.json m/fy_ten.json "camera.fy=4334"
 python3 -c "import sys; t = open('m/module.json').read(); open('m/nul.json', 'w').write(t[:100] + chr(0) + t[100:])"
 json_with frame8/scene.json scene_psf_huge.json 'render.projector_psf_px=1e6'
 json_with fpw/scene.json scene_joint_offset.json 'scene.features.0.offset_mm=1000'
@@ -157,6 +160,8 @@ broken_run same_file acquisitions.csv '3s|,[^,]*$|,'"$(sed -n 2p run_ok/acquisit
 broken_run times_zero acquisitions.csv '2,$s/^\([^,]*,[^,]*,[^,]*,\)[^,]*,/\10.000000,/'
 scenario_with nominal_far.json 'capture={"nominal_diameter_mm": 1000}'
 scenario_with gap_deep.json 'pipe.joints.0.gap_depth_mm=500'
+scenario_with crack_wide.json 'pipe.features.0={"id": "K1", "type": "crack", "station_mm": 300, "clock_h": 2, "length_mm": 80, "width_mm": 500, "depth_mm": 2}'
+scenario_with triplet_long.json 'capture={"triplet_interval_ms": 10000}'
 # Session 27 (probe 5's leftovers).
 # white_png PNG: the 8-bit PNG replaced by an all-white one of its size and colour type.
 white_png() {
@@ -259,6 +264,9 @@ rm run_loop/images/m0/000000_pattern.png && ln -s 000000_pattern.png run_loop/im
 cp -r run_two run_blank
 white_png run_blank/images/m0/000000_pattern.png
 broken_run matrix_missing rig.json 'modules.0.module.pattern.matrix="nothing.png"'
+broken_run clock_pose rig.json 'modules.1.clock_h=12'
+cp -r run_two run_period_tiny
+json_with run_two/run.json run_period_tiny/run.json 'acquisition_period_s=1e-9'
 cp -r run_ok run_same_place
 python3 -c "import json; p = 'run_same_place/rig.json'; r = json.load(open(p)); \
 r['modules'][1]['carrier_from_camera']['translation_mm'] = r['modules'][0]['carrier_from_camera']['translation_mm']; \

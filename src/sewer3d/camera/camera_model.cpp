@@ -66,6 +66,10 @@ void CameraIntrinsics::Check() const {
         fov >= 1.0 && fov <= 170.0, name,
         f << " px gives a field of view of " << fov << "° over " << side << " px; allowed 1..170°");
   }
+  // Pixels are square to a few per cent on any sensor: fy ten times fx is a typo.
+  SEWER3D_VALIDATE(fy >= 0.5 * fx && fy <= 2.0 * fx, "fy",
+                   fy << " px is " << fy / fx << " times fx (" << fx
+                      << " px); pixels that far from square are no camera's (0.5..2)");
   SEWER3D_VALIDATE(cx >= -0.5 && cx <= width - 0.5, "cx",
                    "the principal point must lie in the image (0.." << width << "), got " << cx);
   SEWER3D_VALIDATE(cy >= -0.5 && cy <= height - 0.5, "cy",

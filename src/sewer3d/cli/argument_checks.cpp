@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/pipeline/workspace.hpp"
+
 namespace sewer3d::cli {
 namespace {
 
@@ -72,6 +75,15 @@ std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
     if (HasLongOption(app, arg.substr(1, arg.find('=') - 1))) return arg;
   }
   return {};
+}
+
+void CheckNotInARun(const std::filesystem::path& folder, const char* flag) {
+  if (const auto run = OwnerAbove(folder, {"run.json"}, true); !run.empty()) {
+    throw InvalidValue(flag, folder.string() + " lies in the capture run " +
+                                 run.parent_path().string() +
+                                 ": outputs there would mix with the run as captured; choose "
+                                 "another folder");
+  }
 }
 
 }  // namespace sewer3d::cli

@@ -3,6 +3,7 @@
 /// Checks of the command line that CLI11 does not make, run by main before a command starts.
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <string>
 #include <utility>
 
@@ -20,5 +21,9 @@ bool TakesWholeNumbers(const CLI::App& app, const std::string& message);
 /// The first argument written as a long option with one dash ("-out"), which CLI11 would read
 /// as the short flags -o -u -t and then report --out as missing; empty when none.
 std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv);
+
+/// Throws InvalidValue naming `flag` when `folder` is a capture run's folder or lies inside one
+/// (a run.json there or above): outputs there would mix with the run as captured.
+void CheckNotInARun(const std::filesystem::path& folder, const char* flag);
 
 }  // namespace sewer3d::cli

@@ -29,6 +29,8 @@ std::vector<fs::path> PoseFolders(const fs::path& captures) {
   for (fs::directory_iterator it(captures, ec), end; !ec && it != end; it.increment(ec)) {
     const fs::path& p = it->path();
     if (!fs::is_directory(p, ec)) continue;
+    // The simulator's truth (it holds the pattern matrix it projected) is no pose.
+    if (p.filename() == "truth" && IsRegularFile(p / "poses.json")) continue;
     const bool texture = IsRegularFile(p / "texture.png"),
                pattern = IsRegularFile(p / "pattern.png");
     if (texture && pattern) poses.push_back(p);

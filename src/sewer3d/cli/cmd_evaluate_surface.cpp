@@ -42,16 +42,19 @@ void PrintPlane(const std::string& cloud, const Points& points) {
   std::vector<double> depths;
   for (const auto& p : points) depths.push_back(p.norm());
   std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
-  fmt::print(
-      "plane      median distance to the camera {:.3f} mm, plane at {:.3f} mm on the optical "
-      "axis\n",
-      depths[depths.size() / 2], -fit->offset / fit->normal.z());
+  // A plane nearly parallel to the optical axis meets it far away or never.
+  const std::string crossing =
+      std::abs(fit->normal.z()) > 1e-3
+          ? fmt::format("plane at {:.3f} mm on the optical axis", -fit->offset / fit->normal.z())
+          : "plane parallel to the optical axis";
+  fmt::print("plane      median distance to the camera {:.3f} mm, {}\n", depths[depths.size() / 2],
+             crossing);
   fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
 }
 
 void PrintCylinder(const std::string& cloud, const Points& points,
                    const std::optional<Scene>& truth) {
-  const auto fit = FitCylinder(points, Eigen::Vector3d::UnitY());
+  const auto fit = FitCylinderAnyAxis(points);
   if (!fit || !fit->converged) {
     throw FileError(cloud,
                     "no cylinder fits the points (identical or collinear points, or the fit did "
@@ -109,6 +112,20 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
                     "scene (evaluate cylinder fits this one)");
   }
   const Points all = ReadPlyPoints(cloud);
+  const auto behind =
+      std::count_if(all.begin(), all.end(), [](const auto& p) { return p.z() <= 0; });
+  if (!all.empty() && behind == static_cast<std::ptrdiff_t>(all.size())) {
+    throw FileError(cloud, fmt::format("all {} points lie behind the camera (z <= 0): evaluate "
+                                       "reads a cloud in the camera frame (z along the view)",
+                                       all.size()));
+  }
+  if (behind > 0) {
+    std::fflush(stdout);
+    fmt::print(stderr,
+               "sewer3d: warning: {}: {} of the {} points lie behind the camera (z <= 0) "
+               "and are left out\n",
+               cloud, behind, all.size());
+  }
   const Points points = InnerPoints(all, inner_fraction);
   if (points.size() < 10 && all.size() >= 10) {  // the option leaves too few, not the file
     throw InvalidValue("--inner-fraction",

@@ -9,6 +9,7 @@
 
 #include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/flag_names.hpp"
 #include "sewer3d/cli/summary.hpp"
@@ -95,6 +96,7 @@ Command AddModuleCommand(CLI::App& app) {
                                              e.field(), e.problem()));
             }
             const std::filesystem::path dir = args->out;
+            CheckNotInARun(dir, "--out");
             const BinaryArray pattern = DefaultPatternArray();
             // A module the decoder cannot use is refused before anything is written.
             const DisparityRange range =

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
@@ -35,6 +36,7 @@ Command AddReconstructCommand(CLI::App& app) {
       sub, [args] {
         const LoadedModule loaded = LoadModule(args->module);
         const ModuleDescription& module = loaded.module;
+        CheckNotInARun(args->out, "--out");
         for (const char* name : {"cloud.ply", "depth.tiff", "depth.png", "report.json"}) {
           const std::filesystem::path output = std::filesystem::path(args->out) / name;
           CheckNotAnInput(output, args->image, "--image");

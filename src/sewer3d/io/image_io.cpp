@@ -109,8 +109,12 @@ BinaryArray ReadPatternMatrix(const std::filesystem::path& path) {
   if (image.channels() > 1) {
     std::vector<cv::Mat> channels;
     cv::split(image, channels);
+    // A spot is any colour but black; alpha (grey + alpha, colour + alpha) is not a colour: an
+    // opaque export has 255 there everywhere.
+    const size_t colours =
+        channels.size() == 2 || channels.size() == 4 ? channels.size() - 1 : channels.size();
     cv::Mat any = channels[0] != 0;
-    for (size_t i = 1; i < channels.size(); ++i) any |= channels[i] != 0;
+    for (size_t i = 1; i < colours; ++i) any |= channels[i] != 0;
     image = any;
   }
   BinaryArray array(image.rows, image.cols);

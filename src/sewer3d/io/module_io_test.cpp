@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/io/file_error.hpp"
@@ -156,6 +157,19 @@ TEST_F(ModuleIoTest, RejectsTruncatedOrMissingPatternAndModule) {
   ExpectError(d, "'pattern.matrix' names an unusable file");
   EXPECT_THROW(LoadModule(dir_ / "no_such_module.json"), FileError);
   EXPECT_THROW(LoadModule(dir_), FileError);
+}
+
+TEST_F(ModuleIoTest, PatternMatrixWithAlphaIsReadByItsColour) {
+  // The matrix exported as RGBA with an opaque alpha: the alpha is no spot.
+  const BinaryArray pattern = DefaultPatternArray();
+  cv::Mat4b rgba(pattern.rows, pattern.cols, cv::Vec4b(0, 0, 0, 255));
+  for (int r = 0; r < pattern.rows; ++r) {
+    for (int c = 0; c < pattern.cols; ++c) {
+      if (pattern.at(r, c)) rgba(r, c) = cv::Vec4b(255, 255, 255, 255);
+    }
+  }
+  ASSERT_TRUE(cv::imwrite((dir_ / "rgba.png").string(), rgba));
+  EXPECT_EQ(ReadPatternMatrix(dir_ / "rgba.png"), pattern);
 }
 
 TEST_F(ModuleIoTest, NearUnitRotationWrittenWithFewDigitsIsAccepted) {

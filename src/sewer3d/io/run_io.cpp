@@ -39,6 +39,34 @@ bool InsideRun(const std::string& file) {
   return true;
 }
 
+// run.json's acquisition_period_s, where it gives one, must be that of the index: the median
+// time between a module's consecutive pattern images, within a factor of 2.
+void CheckAcquisitionPeriod(const fs::path& path, double period_s,
+                            const std::vector<RunImage>& images) {
+  if (period_s <= 0.0) return;                                  // not known
+  std::map<int, std::vector<std::pair<int, double>>> patterns;  // module: (counter, time)
+  for (const RunImage& image : images) {
+    if (image.kind == ImageKind::kPattern)
+      patterns[image.module].emplace_back(image.counter, image.time_s);
+  }
+  std::vector<double> gaps;
+  for (auto& [module, shots] : patterns) {
+    std::sort(shots.begin(), shots.end());
+    for (size_t i = 1; i < shots.size(); ++i) {
+      const int counters = shots[i].first - shots[i - 1].first;
+      gaps.push_back((shots[i].second - shots[i - 1].second) / counters);
+    }
+  }
+  if (gaps.empty()) return;
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  const double median = gaps[gaps.size() / 2];
+  if (period_s < 0.5 * median || period_s > 2.0 * median) {
+    throw FileError(path, fmt::format("acquisition_period_s is {:g} s, but acquisitions.csv has a "
+                                      "module's acquisitions {:.3g} s apart (median)",
+                                      period_s, median));
+  }
+}
+
 // run.json's counts, where it gives them, must match the rig and the index of a complete run.
 void CheckRunCounts(const fs::path& path, const RunCounts& counts, const CaptureRun& run) {
   const auto modules = static_cast<int>(run.rig.modules.size());
@@ -390,6 +418,7 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
     run.images.push_back(std::move(image));
   }
   CheckRunCounts(folder / "run.json", counts, run);
+  CheckAcquisitionPeriod(folder / "run.json", run.info.acquisition_period_s, run.images);
   OdometryCheck odometry = CheckOdometry(ReadOdometry(folder / "odometry.csv"));
   CheckOdometrySpan(folder / "odometry.csv", odometry.kept, run.images);
   run.odometry = std::move(odometry.kept);

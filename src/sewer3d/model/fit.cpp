@@ -115,10 +115,26 @@ std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& point
   return fit;
 }
 
+std::optional<CylinderFit> FitCylinderAnyAxis(const std::vector<Eigen::Vector3d>& points) {
+  std::optional<CylinderFit> best;
+  for (const Eigen::Vector3d axis :
+       {Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ()}) {
+    auto fit = FitCylinder(points, axis);
+    if (fit && fit->converged && (!best || fit->rms_mm < best->rms_mm)) best = std::move(fit);
+  }
+  return best ? best : FitCylinder(points, Eigen::Vector3d::UnitY());
+}
+
 std::vector<Eigen::Vector3d> InnerPoints(const std::vector<Eigen::Vector3d>& points,
                                          double fraction) {
   SEWER3D_VALIDATE(fraction > 0.0 && fraction <= 1.0, "inner_fraction",
                    "must be > 0 and <= 1, got " << fraction);
+  if (fraction == 1.0) {  // no bounds to round at the extremes
+    std::vector<Eigen::Vector3d> front;
+    for (const auto& p : points)
+      if (p.z() > 0) front.push_back(p);
+    return front;
+  }
   double x_lo = 1e300, x_hi = -1e300, y_lo = 1e300, y_hi = -1e300;
   for (const auto& p : points) {
     if (!(p.z() > 0)) continue;

@@ -38,8 +38,14 @@ struct CylinderFit {
 std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& points,
                                        const Eigen::Vector3d& axis_guess);
 
-/// The points whose viewing directions (x/z, y/z) lie in the central `fraction` of the cloud's
-/// extent along both image axes (the paper evaluates an inner part of the image).
+/// FitCylinder started from each coordinate axis (y first, the rig's pipe axis): the converged
+/// fit of least RMS. A patch of a pipe seen along another axis otherwise converges to a small
+/// cylinder through part of it.
+std::optional<CylinderFit> FitCylinderAnyAxis(const std::vector<Eigen::Vector3d>& points);
+
+/// The points in front of the camera (z > 0) whose viewing directions (x/z, y/z) lie in the
+/// central `fraction` of the cloud's extent along both image axes (the paper evaluates an inner
+/// part of the image); with `fraction` 1 every point in front of the camera.
 std::vector<Eigen::Vector3d> InnerPoints(const std::vector<Eigen::Vector3d>& points,
                                          double fraction);
 

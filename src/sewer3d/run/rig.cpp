@@ -20,6 +20,17 @@ void Rig::Check() const {
     SEWER3D_VALIDATE(names.insert(m.name).second, field + "name",
                      "module name '" << m.name << "' is used twice");
     ValidateClockHours(field + "clock_h", m.clock_h);
+    // clock_h names where the camera looks (12 h up: −y of the carrier, 3 h: +x); the pose is
+    // what is used, so the two must agree (a hand edit of one alone is a silent error).
+    const Eigen::Vector3d view = m.carrier_from_camera.RotationMatrix().col(2);
+    if (std::hypot(view.x(), view.y()) > 0.3) {
+      double looks_h = std::atan2(view.x(), -view.y()) * 6.0 / M_PI;
+      if (looks_h <= 0.0) looks_h += 12.0;
+      const double off_h = std::remainder(looks_h - m.clock_h, 12.0);
+      SEWER3D_VALIDATE(std::abs(off_h) <= 0.75, field + "clock_h",
+                       m.clock_h << " h, but carrier_from_camera has the camera look toward "
+                                 << looks_h << " h (they must agree within 0.75 h)");
+    }
     CheckWithin(field + "module.", [&] { m.module.Check(); });
     for (const Eigen::Vector3d& c :
          {m.carrier_from_camera.translation, ProjectorCentreInCarrier(m)}) {

@@ -54,6 +54,12 @@ void PipeFeature::Check() const {
       ValidatePositive("length_mm", length_mm);
       ValidatePositive("width_mm", width_mm);
       ValidatePositive("depth_mm", depth_mm);
+      // A crack is long and narrow: wider than long, or than 50 mm, it is a missing piece.
+      SEWER3D_VALIDATE(type != Type::kCrack || (width_mm < length_mm && width_mm <= 50.0),
+                       "width_mm",
+                       "a crack must be narrower than its length ("
+                           << length_mm << " mm) and at most 50 mm wide, got " << width_mm
+                           << " (a wide missing piece is spalling)");
       break;
     case Type::kDeposit:
       ValidatePositive("length_mm", length_mm);

@@ -77,10 +77,13 @@ std::optional<SurfaceHit> IntersectPlane(const Scene& s, const Eigen::Vector3d& 
 
 void Scene::Check() const {
   // Field names as in scene files (docs/simulator.md).
-  if (type == Type::kPlane) ValidatePositive("distance_mm", distance_mm);
+  // The ranges of `simulate frame`'s flags: a camera sees walls from centimetres to metres.
+  SEWER3D_VALIDATE(type != Type::kPlane || (distance_mm >= 10.0 && distance_mm <= 5000.0),
+                   "distance_mm", "must be 10 to 5000 mm, got " << distance_mm);
   SEWER3D_VALIDATE(std::abs(tilt_deg) < 89.0, "tilt_deg",
                    "must be within ±89 (exclusive), got " << tilt_deg);
-  if (type != Type::kPlane) ValidatePositive("diameter_mm", diameter_mm);
+  SEWER3D_VALIDATE(type == Type::kPlane || (diameter_mm >= 20.0 && diameter_mm <= 5000.0),
+                   "diameter_mm", "must be 20 to 5000 mm, got " << diameter_mm);
   // Its norm must be finite too: (0, 1e308, 1e308) overflows when normalised.
   SEWER3D_VALIDATE(axis.allFinite() && axis.norm() > 0.0 && std::isfinite(axis.norm()), "axis",
                    "must be a finite, non-zero direction");

@@ -5,6 +5,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
@@ -50,6 +52,17 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
     s.type = Scene::Type::kPipeWall;
   else
     in.Fail("type", "must be plane, cylinder or pipe_wall, got '" + type + "'");
+  // The other kind's members are refused, not ignored (a plane turned into a cylinder by hand
+  // would keep its distance_mm without effect).
+  const bool plane = s.type == Scene::Type::kPlane;
+  for (const char* key :
+       plane ? std::vector<const char*>{"diameter_mm", "axis", "axis_point_mm", "features"}
+             : std::vector<const char*>{"distance_mm", "tilt_deg"}) {
+    if (j.contains(key)) {
+      in.Fail(key, std::string("does not apply to a ") + type + " scene (only to " +
+                       (plane ? "cylinder and pipe_wall" : "plane") + " scenes)");
+    }
+  }
   s.material = ParseMaterial(in, in.Text(j, "material", "", "concrete"), "material");
   s.material_seed = in.Seed(j, "material_seed", "", 1);
   s.distance_mm = in.Number(j, "distance_mm", "", s.distance_mm);
