@@ -111,8 +111,11 @@ void JsonReader::NoNearMisses(const json& j, const std::string& prefix,
       // One edit in a short name, two in a longer one: "clock_hh", "Clock_h", "pitch_pc".
       const size_t allowed = std::min(key.size(), name.size()) <= 4 ? 1 : 2;
       if (EditDistance(key, name) <= allowed) {
-        Fail(prefix + key, "is not a field sewer3d reads; did you mean '" + prefix + name +
-                               "'? (fields far from every known name are kept as they are)");
+        std::string problem = "is not a field sewer3d reads; did you mean '";
+        problem += prefix;
+        problem += name;
+        problem += "'? (fields far from every known name are kept as they are)";
+        Fail(prefix + key, problem);
       }
     }
   }

@@ -14,6 +14,7 @@
 #include "sewer3d/pipeline/acquisition_images.hpp"
 #include "sewer3d/pipeline/rgbd_colour.hpp"
 #include "sewer3d/texture/colour.hpp"
+#include "sewer3d/triangulate/depth_map.hpp"
 
 namespace sewer3d {
 namespace {
@@ -74,7 +75,7 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
       const RgbdGeometry geometry =
           ReadRgbdGeometry(RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter));
       estimator.Add(linear, geometry.depth_mm);
-      without_depth += cv::countNonZero(geometry.depth_mm == geometry.depth_mm) == 0;
+      without_depth += CountDepthPixels(geometry.depth_mm) == 0 ? 1 : 0;
     } catch (const FileError& e) {
       // Passed over here; the colour pass fails the acquisition with the file and reason.
       if (unreadable.empty()) unreadable = e.what();

@@ -93,12 +93,15 @@ CapturePlan PlanCaptures(const Rig& rig, const Trajectory& trajectory, const Cap
   plan.period_s = (1.0 - o.overlap) * plan.footprint_mm / trajectory.options().speed_mm_s;
   // A module's triplet (and the odd modules' delay) must end before its next acquisition.
   const double triplet_s = (2.0 * o.triplet_interval_ms + o.group_delay_ms + o.exposure_ms) * 1e-3;
-  SEWER3D_VALIDATE(triplet_s < plan.period_s, "triplet_interval_ms",
-                   "a triplet takes " << triplet_s * 1e3 << " ms (two intervals, the group delay "
-                                      << "and an exposure), but acquisitions follow every "
-                                      << plan.period_s * 1e3
-                                      << " ms at this speed and overlap: the triplets would "
-                                         "interleave");
+  // The field named is the larger share of the triplet's time.
+  SEWER3D_VALIDATE(
+      triplet_s < plan.period_s,
+      2.0 * o.triplet_interval_ms >= o.group_delay_ms ? "triplet_interval_ms" : "group_delay_ms",
+      "a triplet takes " << triplet_s * 1e3 << " ms (two intervals, the group delay "
+                         << "and an exposure), but acquisitions follow every "
+                         << plan.period_s * 1e3
+                         << " ms at this speed and overlap: the triplets would "
+                            "interleave");
   const double last_start = trajectory.DurationS();
   for (int j = 0; j * plan.period_s <= last_start; ++j) {
     for (size_t k = 0; k < rig.modules.size(); ++k) {

@@ -34,7 +34,7 @@ cv::Mat1f InterpolateDepth(cv::Size image_size, const std::vector<Eigen::Vector2
         ids[k] = it->second;
     }
     if (!known) continue;  // a triangle touching Subdiv2D's outer virtual vertices
-    const Eigen::Vector2d a = pixels[ids[0]], b = pixels[ids[1]], c = pixels[ids[2]];
+    const Eigen::Vector2d &a = pixels[ids[0]], &b = pixels[ids[1]], &c = pixels[ids[2]];
     if ((a - b).norm() > max_edge_px || (b - c).norm() > max_edge_px ||
         (c - a).norm() > max_edge_px)
       continue;
@@ -60,6 +60,15 @@ cv::Mat1f InterpolateDepth(cv::Size image_size, const std::vector<Eigen::Vector2
     }
   }
   return depth;
+}
+
+int CountDepthPixels(const cv::Mat1f& depth_mm) {
+  int count = 0;
+  for (int r = 0; r < depth_mm.rows; ++r) {
+    const float* row = depth_mm[r];
+    for (int c = 0; c < depth_mm.cols; ++c) count += std::isnan(row[c]) ? 0 : 1;
+  }
+  return count;
 }
 
 }  // namespace sewer3d

@@ -17,4 +17,7 @@ namespace sewer3d {
 cv::Mat1f InterpolateDepth(cv::Size image_size, const std::vector<Eigen::Vector2d>& pixels,
                            const std::vector<double>& depths_mm, double max_edge_px);
 
+/// The pixels of a depth map that hold a depth (not NaN).
+int CountDepthPixels(const cv::Mat1f& depth_mm);
+
 }  // namespace sewer3d

@@ -121,7 +121,7 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
   frame.depth_mm = InterpolateDepth(pattern_image.size(), pixels_, depths_,
                                     options_.max_edge_steps * module_.pattern.pitch_px);
   report.seconds.depth_map = Since(t);
-  report.depth_pixels = cv::countNonZero(frame.depth_mm == frame.depth_mm);  // NaN is not equal
+  report.depth_pixels = CountDepthPixels(frame.depth_mm);
 
   report.spots_found = static_cast<int>(decoded.spots.size());
   report.lattice_groups = decoded.lattice.groups;
