@@ -7,6 +7,7 @@ python3 "$(dirname "$0")/fixtures.py" "$T"
 mkfifo fifo
 mkdir dir
 "$S" module --out m --camera-size 648x486 >/dev/null
+"$S" module --out m_full >/dev/null  # the default, full-size module
 # A tiny run's scenario: 40 mm of travel at 160 px, so a simulation takes about a second.
 cat >scenario_ok.json <<'JSON'
 {"camera_width": 160, "motion": {"travel_mm": 40, "start_station_mm": 300},

@@ -80,8 +80,11 @@ std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pa
   const int needed = static_cast<int>(std::ceil(range.max_cols));
   fmt::print("           {} columns {} the {} the disparity range needs\n", pattern.cols,
              spans ? "cover" : "do NOT cover", needed);
-  // The tile repeats every `rows` along v: a disparity as long in v meets a tile again.
-  const bool rows_cover = pattern.rows > range.max_rows;
+  // The pattern's columns must run along the disparity (its windows are unique along a row,
+  // the tile repeats every `rows` across): a disparity mostly along v and longer than the row
+  // period meets a window's twin. Lens distortion tilts the lines of a full-size module by a
+  // few degrees (58 px along v against 1185 along u), which the decoder follows.
+  const bool rows_cover = range.max_dv_px <= range.max_du_px || pattern.rows > range.max_rows;
   if (!rows_cover) {
     fmt::print("           {} rows do NOT cover the {:.0f} the disparity along v needs\n",
                pattern.rows, std::ceil(range.max_rows));
