@@ -2,10 +2,10 @@
 // geometry flags, or a scene JSON file (cmd_simulate.cpp renders it).
 
 #include <filesystem>
-#include <map>
 #include <string>
 #include <vector>
 
+#include "sewer3d/cli/flag_names.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/sim/scene_presets.hpp"
@@ -19,20 +19,17 @@ void CheckSceneOptions(const Scene& scene) {
   try {
     scene.Check();
   } catch (const InvalidValue& e) {
-    static const std::map<std::string, std::string> kOption{{"distance_mm", "--distance-mm"},
-                                                            {"tilt_deg", "--tilt-deg"},
-                                                            {"diameter_mm", "--diameter-mm"},
-                                                            {"axis_point_mm", "--decentre-mm"},
-                                                            {"axis", "--axis"}};
     if (e.field().rfind("features[", 0) == 0) {  // the built-in pipe-wall features
       throw InvalidValue("--diameter-mm",
                          "the pipe-wall preset's joint, bump, pit and crack do not fit this "
                          "diameter (" +
                              e.field() + ": " + e.problem() + ")");
     }
-    const auto it = kOption.find(e.field());
-    if (it == kOption.end()) throw;
-    throw InvalidValue(it->second, e.problem());
+    throw WithFlagNames(e, {{"distance_mm", "--distance-mm"},
+                            {"tilt_deg", "--tilt-deg"},
+                            {"diameter_mm", "--diameter-mm"},
+                            {"axis_point_mm", "--decentre-mm"},
+                            {"axis", "--axis"}});
   }
 }
 
