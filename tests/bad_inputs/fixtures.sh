@@ -41,6 +41,7 @@ scenario_with seed_big.json 'seed=9007199254740993'
 scenario_with nan_speed.json 'motion.speed_mm_s=NaN'
 scenario_with station_beyond.json 'pipe.features.0.station_mm=5000'
 scenario_with id_twice.json 'pipe.features.0.id="J1"'
+scenario_with start_beyond.json 'motion.start_station_mm=1200' 'motion.travel_mm=20'
 # Modules with degenerate geometry.
 module_with() { json_with m/module.json "$@"; }
 module_with m/zero_baseline.json 'projector_from_camera.translation_mm=[0,0,0]'
@@ -131,6 +132,8 @@ scenario_with slip_beyond.json 'odometry={"slips": [{"station_mm": 1e6, "length_
 "$S" simulate frame --module m/module.json --scene pipe-wall --supersampling 1 --out fpw >/dev/null
 json_with frame8/scene.json scene_bits16.json 'render.bits=16'
 json_with frame8/scene.json scene_dist_tiny.json 'scene.distance_mm=0.001'
+json_with frame8/scene.json scene_f0.json 'render.camera_f_number=0'
+json_with frame8/scene.json scene_module_gone.json 'module="gone/module.json"'
 json_with fpw/scene.json scene_type_plane.json 'scene.type="plane"'
 json_with fpw/scene.json scene_pit_deep.json 'scene.features.2.depth_mm=1e6'
 printf '{"type": "cylinder", "diameter_mm": 1e400}' >scene_overflow.json

@@ -70,10 +70,12 @@ void CameraIntrinsics::Check() const {
   SEWER3D_VALIDATE(fy >= 0.5 * fx && fy <= 2.0 * fx, "fy",
                    fy << " px is " << fy / fx << " times fx (" << fx
                       << " px); pixels that far from square are no camera's (0.5..2)");
-  SEWER3D_VALIDATE(cx >= -0.5 && cx <= width - 0.5, "cx",
-                   "the principal point must lie in the image (0.." << width << "), got " << cx);
-  SEWER3D_VALIDATE(cy >= -0.5 && cy <= height - 0.5, "cy",
-                   "the principal point must lie in the image (0.." << height << "), got " << cy);
+  SEWER3D_VALIDATE(
+      cx >= -0.5 && cx <= width - 0.5, "cx",
+      "the principal point must lie in the image (-0.5.." << width - 0.5 << "), got " << cx);
+  SEWER3D_VALIDATE(
+      cy >= -0.5 && cy <= height - 0.5, "cy",
+      "the principal point must lie in the image (-0.5.." << height - 0.5 << "), got " << cy);
   // The radial polynomial may fold back in the image's corners (those pixels are refused), but
   // not inside the circle the image's sides enclose: most of the image would be ambiguous.
   const double fold = FindFoldRadius(k);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "sewer3d/camera/default_module.hpp"
 #include "sewer3d/camera/field_of_view.hpp"
@@ -98,6 +99,23 @@ DisparityRange ComputeDisparityRange(const ModuleDescription& module, double z_m
   range.max_cols = range.max_du_px / module.pattern.pitch_px;
   range.max_rows = range.max_dv_px / module.pattern.pitch_px;
   return range;
+}
+
+std::string PatternSpanProblem(const DisparityRange& range, int rows, int cols) {
+  std::ostringstream problem;
+  if (cols <= range.max_cols) {
+    problem << "the pattern's " << cols << " columns do not cover the "
+            << static_cast<int>(std::ceil(range.max_cols)) << " the disparity range needs";
+  } else if (range.max_dv_px > range.max_du_px && rows <= range.max_rows) {
+    // Lens distortion tilts a full-size module's lines by a few degrees (58 px along v against
+    // 1185 along u), which the decoder follows; a disparity mostly along v meets a twin.
+    problem.precision(3);
+    problem << "the disparity runs " << range.max_rows
+            << " rows along the projector's v, and the pattern repeats every " << rows
+            << " rows: a window meets its twin on the same epipolar line (the baseline must lie "
+               "along the pattern's rows, projector u)";
+  }
+  return problem.str();
 }
 
 }  // namespace sewer3d

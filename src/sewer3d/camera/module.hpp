@@ -57,4 +57,10 @@ struct DisparityRange {
 DisparityRange ComputeDisparityRange(const ModuleDescription& module, double z_min_mm,
                                      double z_max_mm, int step_px = 16);
 
+/// Why a pattern matrix of `rows` x `cols` cannot be decoded over a module's disparity `range`
+/// (ComputeDisparityRange over the working distances): its windows are unique along a row and the
+/// tile repeats, so the disparity must stay within the columns, and a disparity mostly along v
+/// within the rows. Empty when it can.
+std::string PatternSpanProblem(const DisparityRange& range, int rows, int cols);
+
 }  // namespace sewer3d

@@ -63,6 +63,30 @@ bool TakesWholeNumbers(const CLI::App& app, const std::string& message) {
   return false;
 }
 
+// What a missing argument or subcommand of the deepest chosen subcommand is for, in place of
+// CLI11's "KIND is required" or "A subcommand is required"; empty for any other message.
+std::string MissingArgument(const CLI::App& app, const std::string& message) {
+  const CLI::App* deepest = &app;
+  while (!deepest->get_subcommands().empty()) deepest = deepest->get_subcommands().front();
+  const std::string command = deepest == &app ? "sewer3d" : deepest->get_name();
+  if (message == "A subcommand is required") {
+    std::string names;
+    for (const CLI::App* sub : deepest->get_subcommands([](const CLI::App*) { return true; })) {
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    return command + " needs a subcommand: " + names;
+  }
+  static const std::string required = " is required";
+  if (message.size() <= required.size() ||
+      message.compare(message.size() - required.size(), required.size(), required) != 0) {
+    return {};
+  }
+  const CLI::Option* option =
+      deepest->get_option_no_throw(message.substr(0, message.size() - required.size()));
+  if (option == nullptr || !option->get_positional()) return {};
+  return command + " needs its " + option->get_name() + " argument: " + option->get_description();
+}
+
 // The first argument written as a long option with one dash ("-out"), which CLI11 would read as
 // the short flags -o -u -t and then report --out as missing; empty when none.
 std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
@@ -75,6 +99,16 @@ std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
     if (HasLongOption(app, arg.substr(1, arg.find('=') - 1))) return arg;
   }
   return {};
+}
+
+CLI::Validator FileNameEnding(const std::string& extension, const std::string& why) {
+  return {[extension, why](std::string& name) {
+            const std::filesystem::path path(name);
+            if (path.extension() == extension && !path.stem().empty()) return std::string();
+            return why + ": a file name ending in " + extension +
+                   (path.filename() == extension ? " with a name before it" : "") + ", got " + name;
+          },
+          extension.substr(1)};
 }
 
 void CheckNotInARun(const std::filesystem::path& folder, const char* flag) {

@@ -18,9 +18,18 @@ std::pair<const CLI::Option*, const char*> BadValue(const CLI::App& app);
 /// looked up in the chosen subcommands.
 bool TakesWholeNumbers(const CLI::App& app, const std::string& message);
 
+/// What a missing positional argument or subcommand of the deepest chosen subcommand is for
+/// ("evaluate needs its KIND argument: plane, cylinder, …"), in place of CLI11's "KIND is
+/// required" or "A subcommand is required"; empty for any other message.
+std::string MissingArgument(const CLI::App& app, const std::string& message);
+
 /// The first argument written as a long option with one dash ("-out"), which CLI11 would read
 /// as the short flags -o -u -t and then report --out as missing; empty when none.
 std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv);
+
+/// A CLI11 check that a file name to write ends in `extension` (".png") and has a stem; its
+/// refusal says why (`why`: "the matrix is written losslessly as PNG").
+CLI::Validator FileNameEnding(const std::string& extension, const std::string& why);
 
 /// Throws InvalidValue naming `flag` when `folder` is a capture run's folder or lies inside one
 /// (a run.json there or above): outputs there would mix with the run as captured.

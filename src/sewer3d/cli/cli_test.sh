@@ -121,7 +121,7 @@ expect_file_error "$tmp/nojoint.json" "pipe.joints: 2 sections need 1 joint" \
 printf '{"pipe": {"sections": [{"length_mm": 3000}]}, "motion": {"speed_mm_s": -5}}' >"$tmp/slow.json"
 expect_file_error "$tmp/slow.json" "motion.speed_mm_s: a crawler's speed must be 1..1000 mm/s" \
   "$bin" simulate run --scenario "$tmp/slow.json" --out "$tmp/r"
-printf '{"pipe": {"sections": [{"length_mm": 3000}]}, "rig": {"stagger_mm": 200}}' >"$tmp/long_rig.json"
+printf '{"pipe": {"sections": [{"length_mm": 3000}]}, "rig": {"stagger_mm": 200}, "motion": {"start_station_mm": 700}}' >"$tmp/long_rig.json"
 expect_file_error "$tmp/long_rig.json" "rig.stagger_mm" \
   "$bin" simulate run --scenario "$tmp/long_rig.json" --out "$tmp/r"
 printf '{"pipe": {"sections": [{"length_mm": 500, "material": "wood"}]}}' >"$tmp/wood.json"
@@ -140,7 +140,7 @@ expect_ok "$bin" evaluate plane --cloud "$tmp/r/plane/cloud.ply" --truth "$tmp/s
 grep -q "RMS" "$tmp/out" || fail "evaluate prints no RMS"
 grep -Eq "plane at (89\.9[5-9]|90\.0[0-4])" "$tmp/out" || fail "evaluate does not find the 90 mm plane: $(cat "$tmp/out")"
 expect_error "cylinder\|points" "$bin" evaluate cylinder --cloud "$tmp/r/plane/cloud.ply" --inner-fraction 0.05
-expect_error "sphere not in" "$bin" evaluate sphere --cloud "$tmp/r/plane/cloud.ply"
+expect_error "expected one of plane, cylinder, rgbd, registration, model, inspection, got sphere" "$bin" evaluate sphere --cloud "$tmp/r/plane/cloud.ply"
 # Blank, wrong-size, truncated and non-image inputs: one-line errors, no crash.
 "$bin" simulate frame --module "$tmp/m/module.json" --scene plane --distance-mm 2000 \
   --out "$tmp/s/far" --supersampling 1 >/dev/null 2>&1

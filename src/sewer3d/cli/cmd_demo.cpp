@@ -85,6 +85,8 @@ void CheckDemoFolder(const fs::path& dir) {
     throw InvalidValue("--out", dir.string() + " lies in " + owner.string() +
                                     "'s folder; the demo needs a folder of its own");
   }
+  // A workspace of another run there would be refused only after the simulation.
+  CheckWorkspaceOfRun(dir / "ws", dir / "run");
 }
 
 int RunDemo(const DemoArgs& a) {

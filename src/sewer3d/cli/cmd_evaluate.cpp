@@ -25,7 +25,7 @@ Command AddEvaluateCommand(CLI::App& app) {
       app.add_subcommand("evaluate",
                          "Accuracy against the truth: a plane or cylinder fitted to a cloud, or a "
                          "processing stage on a simulated run (rgbd)");
-  sub->add_option("what", args->surface, "plane, cylinder, rgbd, registration, model or inspection")
+  sub->add_option("KIND", args->surface, "plane, cylinder, rgbd, registration, model or inspection")
       ->required()
       ->check(CLI::IsMember({"plane", "cylinder", "rgbd", "registration", "model", "inspection"}));
   sub->add_option("--cloud", args->cloud, "plane, cylinder: point cloud (PLY, camera frame, mm)");

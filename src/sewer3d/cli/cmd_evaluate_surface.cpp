@@ -22,18 +22,33 @@ namespace {
 
 using Points = std::vector<Eigen::Vector3d>;
 
-// A wall seen by a module spans tens of millimetres; a cloud a few millimetres across was
-// most likely written in metres.
+// A wall seen by a module spans tens of millimetres at a few hundred from the camera; a cloud a
+// few millimetres across was most likely written in metres, one tens of metres away in
+// micrometres.
 void WarnOfUnits(const std::string& cloud, const Points& all) {
   Eigen::Vector3d lo = all.front(), hi = all.front();
   for (const auto& p : all) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const double extent = (hi - lo).norm();
-  if (extent >= 5.0) return;
+  std::vector<double> distances;
+  for (const auto& p : all) distances.push_back(p.norm());
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  const double distance = distances[distances.size() / 2];
+  std::string problem;
+  if (extent < 5.0) {
+    problem = fmt::format(
+        "the points span only {:.3g} mm: coordinates are read as millimetres "
+        "(is the cloud in metres?)",
+        extent);
+  } else if (distance > 1e4) {
+    problem = fmt::format(
+        "the points lie {:.3g} m from the camera (median), far beyond any "
+        "module's reach: coordinates are read as millimetres (is the cloud in "
+        "micrometres?)",
+        distance / 1000.0);
+  }
+  if (problem.empty()) return;
   std::fflush(stdout);
-  fmt::print(stderr,
-             "sewer3d: warning: {}: the points span only {:.3g} mm: coordinates are read as "
-             "millimetres (is the cloud in metres?)\n",
-             cloud, extent);
+  fmt::print(stderr, "sewer3d: warning: {}: {}\n", cloud, problem);
 }
 
 void PrintPlane(const std::string& cloud, const Points& points) {
@@ -111,7 +126,14 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
                     "the true scene is a cylinder or pipe wall; evaluate plane needs a plane "
                     "scene (evaluate cylinder fits this one)");
   }
-  const Points all = ReadPlyPoints(cloud);
+  std::string frame;
+  const Points all = ReadPlyPoints(cloud, &frame);
+  if (!frame.empty() && frame != "camera frame") {
+    throw FileError(cloud, "its points are in the " + frame +
+                               " (its header says so); evaluate plane|cylinder judges a "
+                               "camera-frame cloud of reconstruct or rgbd (the model's own fit "
+                               "is in WS/model/report.json)");
+  }
   const auto behind =
       std::count_if(all.begin(), all.end(), [](const auto& p) { return p.z() <= 0; });
   if (!all.empty() && behind == static_cast<std::ptrdiff_t>(all.size())) {

@@ -88,7 +88,8 @@ Command AddModelCommand(CLI::App& app) {
             }
             ProgressBar bar(args->quiet);
             auto progress = [&](const std::string& pass, int done, int total) {
-              bar.Update("model " + pass, done, total, pass == "tiles" ? "tiles" : "items");
+              bar.Update("model " + pass, done, total,
+                         pass == "samples" ? "acquisitions" : pass.c_str());
             };
             ModelStageReport r;
             std::string behind;  // rgbd outputs older than the run's images

@@ -72,7 +72,7 @@ Command AddModuleCommand(CLI::App& app) {
   sub->add_option("--spot-px", args->options.spot_diameter_px, "Spot diameter, projector px")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 100.0));
-  return {sub, [args] {
+  return {sub, [args, sub] {
             const auto size = *ParseSize(args->camera_size);
             args->options.camera_width = size.first;
             args->options.camera_height = size.second;
@@ -85,12 +85,17 @@ Command AddModuleCommand(CLI::App& app) {
                                       {"stereo_angle_deg", "--stereo-angle-deg"},
                                       {"camera_size", "--camera-size"}});
             }
+            // The geometry's flags, with --camera-size where given (its aspect sets the
+            // vertical field of view).
+            const std::string geometry = sub->count("--camera-size") > 0
+                                             ? "--camera-size, --hfov-deg, --stereo-angle-deg"
+                                             : "--hfov-deg, --stereo-angle-deg";
             ModuleDescription module;
             try {
               module = MakeDefaultModule(args->options);
               module.Check();
             } catch (const InvalidValue& e) {  // valid options, but no valid module from them
-              throw InvalidValue("--hfov-deg, --stereo-angle-deg",
+              throw InvalidValue(geometry,
                                  fmt::format("this geometry gives no valid module ({}: {}): choose "
                                              "a wider field of view or a smaller stereo angle",
                                              e.field(), e.problem()));
@@ -103,7 +108,7 @@ Command AddModuleCommand(CLI::App& app) {
                 ComputeDisparityRange(module, kWorkingDistanceMinMm, kWorkingDistanceMaxMm);
             if (pattern.cols <= range.max_cols) {
               throw InvalidValue(
-                  "--hfov-deg, --stereo-angle-deg",
+                  geometry,
                   fmt::format("this geometry's disparity over {:g}-{:g} mm spans {:.0f} pattern "
                               "columns, more than the pattern's {}: choose a smaller stereo "
                               "angle or field of view",
@@ -111,7 +116,9 @@ Command AddModuleCommand(CLI::App& app) {
                               std::ceil(range.max_cols), pattern.cols));
             }
             if (const std::string problem = DepthPrecisionProblem(module); !problem.empty())
-              throw InvalidValue("--hfov-deg, --stereo-angle-deg", problem);
+              throw InvalidValue(geometry, problem);
+            if (const std::string problem = SpotSizeProblem(module); !problem.empty())
+              throw InvalidValue("--pitch-px, --spot-px", problem);
             const SubmapSearchOptions search = DefaultPatternSearchOptions();
             if (const std::string problem = WindowFitProblem(module, search.constraints.window);
                 !problem.empty()) {

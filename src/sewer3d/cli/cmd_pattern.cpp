@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/flag_names.hpp"
 #include "sewer3d/core/check.hpp"
@@ -51,17 +52,8 @@ Command AddPatternCommand(CLI::App& app) {
   auto& s = args->search;
   sub->add_option("--out", args->out, "Matrix PNG to write; a .json report goes beside it")
       ->required()
-      ->check(CLI::Validator(
-          [](std::string& name) {
-            // The matrix must survive exactly: a lossy format would change spots.
-            const std::filesystem::path path(name);
-            return path.extension() == ".png" && path.stem() != ""
-                       ? std::string()
-                       : "the matrix is written losslessly as PNG: a file name ending in .png "
-                         "(pattern.png), got " +
-                             name;
-          },
-          "PNG"));
+      // The matrix must survive exactly: a lossy format would change spots.
+      ->check(FileNameEnding(".png", "the matrix is written losslessly as PNG"));
   sub->add_option("--window", s.constraints.window, "Codeword window side, elements")
       ->capture_default_str()
       ->check(CLI::Range(2, 8));

@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
@@ -78,7 +79,9 @@ Command AddPoseGraphCommand(CLI::App& app) {
       app.add_subcommand("posegraph", "Optimise a g2o pose graph (Ceres LM, chordal init)");
   sub->add_option("--in", args->in, "Input graph (g2o VERTEX_SE3:QUAT / EDGE_SE3:QUAT)")
       ->required();
-  sub->add_option("--out", args->out, "Optimised graph to write (g2o)")->required();
+  sub->add_option("--out", args->out, "Optimised graph to write (g2o)")
+      ->required()
+      ->check(FileNameEnding(".g2o", "the optimised graph is written as g2o text"));
   sub->add_option("--init", args->init, "Start: the file's poses (odometry), chordal, or auto")
       ->capture_default_str()
       ->check(CLI::IsMember({"odometry", "chordal", "auto"}));

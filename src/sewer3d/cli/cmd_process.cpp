@@ -16,12 +16,15 @@
 namespace sewer3d::cli {
 namespace {
 
-// The unit of a pass's counts ("rgbd geometry" counts acquisitions, "register pairs" pairs).
+// The unit of a pass's counts ("rgbd geometry" counts acquisitions, "register pairs" pairs,
+// "model tiles" tiles).
 const char* PassUnit(const std::string& pass) {
   const std::string last = pass.substr(pass.rfind(' ') + 1);
   if (last == "pairs") return "pairs";
   if (last == "reference") return "modules";
   if (last == "walls") return "steps";
+  if (last == "tiles" || last == "meshes") return last == "tiles" ? "tiles" : "meshes";
+  if (last == "maps" || last == "crops") return "pieces";  // of the model, as inspect counts
   return "acquisitions";
 }
 

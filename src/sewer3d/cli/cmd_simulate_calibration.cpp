@@ -86,7 +86,7 @@ int RunCalibration(const CalibrationArgs& a) {
     poses = RandomBoardPoses(loaded.module, board, a.poses, a.seed);
   } catch (const InvalidValue& e) {  // named as the flags
     if (e.field() == "square_mm") throw InvalidValue("--square-mm", e.problem());
-    if (e.field() == "board") throw InvalidValue("--board", e.problem());
+    if (e.field() == "board") throw InvalidValue("--board, --square-mm", e.problem());
     throw;
   }
   const std::filesystem::path out(a.out);

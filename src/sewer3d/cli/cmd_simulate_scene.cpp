@@ -1,6 +1,8 @@
 // `sewer3d simulate frame`'s scene from its options: plane, cylinder or pipe-wall from the
 // geometry flags, or a scene JSON file (cmd_simulate.cpp renders it).
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -8,6 +10,8 @@
 #include "sewer3d/cli/flag_names.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/text_file.hpp"
 #include "sewer3d/sim/scene_presets.hpp"
 #include "sewer3d/simio/scene_io.hpp"
 
@@ -70,6 +74,33 @@ Scene BuiltInScene(const FrameArgs& a, const CLI::App& frame) {
   return scene;
 }
 
+bool SameText(const std::filesystem::path& a, const std::filesystem::path& b) {
+  try {
+    return ReadTextFile(a) == ReadTextFile(b);
+  } catch (const FileError&) {
+    return false;  // one is no readable text file: not the module given
+  }
+}
+
+// A rendered frame's scene.json names the module it was rendered with; this frame is rendered
+// with --module, which the user is told where the two differ.
+void WarnOfOtherModule(const std::filesystem::path& scene_file, const std::string& module) {
+  const std::string named = ReadSceneModule(scene_file);
+  if (named.empty()) return;
+  std::error_code ec;
+  if (!std::filesystem::exists(named, ec)) {
+    fmt::print(stderr,
+               "sewer3d: warning: {}: names the module {}, which is not there; rendering with "
+               "--module {}\n",
+               scene_file.string(), named, module);
+  } else if (!std::filesystem::equivalent(named, module, ec) && !SameText(named, module)) {
+    fmt::print(stderr,
+               "sewer3d: warning: {}: was rendered with the module {}; rendering with --module {} "
+               "instead\n",
+               scene_file.string(), named, module);
+  }
+}
+
 // A scene file; its render options, with the render flags given on the command line over them.
 Scene FileScene(const FrameArgs& a, const CLI::App& frame, RenderOptions& options) {
   const std::filesystem::path file(a.scene);
@@ -86,6 +117,7 @@ Scene FileScene(const FrameArgs& a, const CLI::App& frame, RenderOptions& option
     }
   }
   Scene scene = ReadScene(file);
+  WarnOfOtherModule(file, a.module);
   if (ReadSceneRenderOptions(file, options)) {
     if (frame.count("--seed")) options.seed = a.render.seed;
     if (frame.count("--supersampling")) options.supersampling = a.render.supersampling;

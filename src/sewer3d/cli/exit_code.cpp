@@ -53,12 +53,33 @@ ErrorExit ExitForError(const std::exception_ptr& error) {
   }
 }
 
-std::string ReadableRangeError(const std::string& message, bool whole) {
+std::string ReadableParseError(const std::string& message, bool whole) {
   static const std::regex range("^(.*): Value (.*) not in range (\\S+) to (\\S+)$");
   static const std::regex convert("^Could not convert: (\\S+) = (.*)$");
   static const std::regex empty_file("^(\\S+): File does not exist: $");
+  static const std::regex at_most("^(\\S+): At Most (\\d+) required but received (\\d+)$");
+  static const std::regex at_least("^(\\S+): At least (\\d+) required but received (\\d+)$");
+  static const std::regex member("^(\\S+): (.*) not in \\{(.*)\\}$");
   std::smatch m;
   if (std::regex_match(message, m, empty_file)) return m[1].str() + ": must not be empty";
+  static const std::regex folder("^(\\S+): File is actually a directory: (.+)$");
+  static const std::regex no_file("^(\\S+): File does not exist: (.+)$");
+  if (std::regex_match(message, m, folder))
+    return m[1].str() + ": " + m[2].str() + " is a folder, not a file";
+  if (std::regex_match(message, m, no_file))
+    return m[1].str() + ": " + m[2].str() + ": no such file";
+  if (std::regex_match(message, m, member)) {
+    const std::string choices = std::regex_replace(m[3].str(), std::regex(","), ", ");
+    if (m[2].str().empty()) return m[1].str() + ": must not be empty (one of " + choices + ")";
+    return m[1].str() + ": expected one of " + choices + ", got " + m[2].str();
+  }
+  if (std::regex_match(message, m, at_most)) {
+    if (m[2].str() == "1") return m[1].str() + ": given " + m[3].str() + " times; give it once";
+    return m[1].str() + ": takes at most " + m[2].str() + " values, got " + m[3].str();
+  }
+  if (std::regex_match(message, m, at_least)) {
+    return m[1].str() + ": takes " + m[2].str() + " values, got " + m[3].str();
+  }
   if (std::regex_match(message, m, convert)) {
     return m[1].str() + ": expected " + (whole ? "a whole number" : "a number") + ", got " +
            m[2].str();

@@ -33,7 +33,9 @@ ErrorExit ExitForError(const std::exception_ptr& error);
 /// CLI11's range refusal ("--rows: Value 12.5 not in range 2 to 4096") in the words of the other
 /// value errors: "--rows: expected a whole number from 2 to 4096, got 12.5" (`whole`: the option
 /// takes integers; otherwise "a number"). CLI11's "Could not convert: --rows = 1.5" becomes
-/// "--rows: expected a whole number, got 1.5". Any other message comes back unchanged.
-std::string ReadableRangeError(const std::string& message, bool whole);
+/// "--rows: expected a whole number, got 1.5". Counts too: "--module: At Most 1 required but
+/// received 2" becomes "--module: given 2 times; give it once", "--axis: At least 3 required but
+/// received 2" "--axis: takes 3 values, got 2". Any other message comes back unchanged.
+std::string ReadableParseError(const std::string& message, bool whole);
 
 }  // namespace sewer3d::cli

@@ -31,17 +31,31 @@ TEST(ExitCode, BadFileNamesTheFile) {
 }
 
 TEST(ExitCode, RangeRefusalsSayWhatIsExpected) {
-  EXPECT_EQ(ReadableRangeError("--rows: Value 12.5 not in range 2 to 4096", true),
+  EXPECT_EQ(ReadableParseError("--rows: Value 12.5 not in range 2 to 4096", true),
             "--rows: expected a whole number from 2 to 4096, got 12.5");
-  EXPECT_EQ(ReadableRangeError("--tilt-deg: Value 9x not in range -80 to 80", false),
+  EXPECT_EQ(ReadableParseError("--tilt-deg: Value 9x not in range -80 to 80", false),
             "--tilt-deg: expected a number from -80 to 80, got 9x");
-  EXPECT_EQ(ReadableRangeError("--d: Value 9 not in range 10.000000 to 0.050000", false),
+  EXPECT_EQ(ReadableParseError("--d: Value 9 not in range 10.000000 to 0.050000", false),
             "--d: expected a number from 10 to 0.05, got 9");
-  EXPECT_EQ(ReadableRangeError("Could not convert: --seed = 1.5", true),
+  EXPECT_EQ(ReadableParseError("Could not convert: --seed = 1.5", true),
             "--seed: expected a whole number, got 1.5");
-  EXPECT_EQ(ReadableRangeError("--images: File does not exist: ", false),
+  EXPECT_EQ(ReadableParseError("--images: File does not exist: ", false),
             "--images: must not be empty");
-  EXPECT_EQ(ReadableRangeError("--out is required", true), "--out is required");
+  EXPECT_EQ(ReadableParseError("--out is required", true), "--out is required");
+  EXPECT_EQ(ReadableParseError("--images: File is actually a directory: cal/pose_00", false),
+            "--images: cal/pose_00 is a folder, not a file");
+  EXPECT_EQ(ReadableParseError("--module: File does not exist: m.json", false),
+            "--module: m.json: no such file");
+  EXPECT_EQ(ReadableParseError("--edges:  not in {feature,rig,none}", false),
+            "--edges: must not be empty (one of feature, rig, none)");
+  EXPECT_EQ(ReadableParseError("--init: fast not in {odometry,chordal}", false),
+            "--init: expected one of odometry, chordal, got fast");
+  EXPECT_EQ(ReadableParseError("--module: At Most 1 required but received 2", false),
+            "--module: given 2 times; give it once");
+  EXPECT_EQ(ReadableParseError("--axis: At least 3 required but received 2", false),
+            "--axis: takes 3 values, got 2");
+  EXPECT_EQ(ReadableParseError("--size: At Most 2 required but received 3", false),
+            "--size: takes at most 2 values, got 3");
 }
 
 TEST(ExitCode, RejectedValuesAreUsageErrors) {

@@ -101,10 +101,15 @@ int main(int argc, char** argv) {
       std::cout << app.help();
       return 0;
     }
+    if (const std::string missing = sewer3d::cli::MissingArgument(app, e.what());
+        !missing.empty()) {
+      fmt::print(stderr, "sewer3d: error: {} (see sewer3d --help)\n", missing);
+      return sewer3d::cli::kExitUsage;
+    }
     // Range and conversion refusals in the words of the other value errors.
     fmt::print(
         stderr, "sewer3d: error: {} (see sewer3d --help)\n",
-        sewer3d::cli::ReadableRangeError(e.what(), sewer3d::cli::TakesWholeNumbers(app, e.what())));
+        sewer3d::cli::ReadableParseError(e.what(), sewer3d::cli::TakesWholeNumbers(app, e.what())));
     return sewer3d::cli::kExitUsage;
   }
   if (const auto [option, problem] = sewer3d::cli::BadValue(app); option != nullptr) {

@@ -62,6 +62,7 @@ std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pa
   fmt::print("depth      ±{:.2f} mm at {:g} mm for {:g} px of disparity error\n",
              DepthErrorMm(m, kWorkingDistanceMaxMm), kWorkingDistanceMaxMm, kDisparityErrorPx);
   if (std::string problem = DepthPrecisionProblem(m); !problem.empty()) return problem;
+  if (std::string problem = SpotSizeProblem(m); !problem.empty()) return problem;
 
   PatternConstraints constraints;
   PatternReport report = VerifyPattern(pattern, constraints);
@@ -80,10 +81,7 @@ std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pa
   const int needed = static_cast<int>(std::ceil(range.max_cols));
   fmt::print("           {} columns {} the {} the disparity range needs\n", pattern.cols,
              spans ? "cover" : "do NOT cover", needed);
-  // The pattern's columns must run along the disparity (its windows are unique along a row,
-  // the tile repeats every `rows` across): a disparity mostly along v and longer than the row
-  // period meets a window's twin. Lens distortion tilts the lines of a full-size module by a
-  // few degrees (58 px along v against 1185 along u), which the decoder follows.
+  // As PatternSpanProblem judges it.
   const bool rows_cover = range.max_dv_px <= range.max_du_px || pattern.rows > range.max_rows;
   if (!rows_cover) {
     fmt::print("           {} rows do NOT cover the {:.0f} the disparity along v needs\n",
@@ -92,17 +90,22 @@ std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pa
   if (std::string problem = WindowFitProblem(m, constraints.window); !problem.empty())
     return problem;
   if (!report.valid) return "the pattern matrix violates its constraints: " + Describe(report);
-  if (!spans)
-    return fmt::format("the pattern's {} columns do not cover the {} the disparity range needs",
-                       pattern.cols, needed);
-  if (!rows_cover) {
-    return fmt::format(
-        "the disparity runs {:.1f} rows along the projector's v, and the pattern repeats every {} "
-        "rows: a window meets its twin on the same epipolar line (the baseline must lie along the "
-        "pattern's rows, projector u)",
-        range.max_rows, pattern.rows);
-  }
-  return "";
+  return PatternSpanProblem(range, pattern.rows, pattern.cols);
+}
+
+std::string SpotSizeProblem(const ModuleDescription& m) {
+  constexpr double kMinSpotPx = 1.5, kMinPitchPx = 3.0;
+  // Camera pixels per projector pixel on a wall at the working distance (the centres are
+  // millimetres apart, the wall a hundred away).
+  const double scale =
+      std::min(m.camera.fx, m.camera.fy) / std::max(m.projector.fx, m.projector.fy);
+  const double spot = m.pattern.spot_diameter_px * scale, pitch = m.pattern.pitch_px * scale;
+  if (spot >= kMinSpotPx && pitch >= kMinPitchPx) return "";
+  return fmt::format(
+      "the camera images the spots {:.2g} px across at a pitch of {:.2g} px; the decoder needs "
+      "at least {:g} px and {:g} px (raise pattern.pitch_px and spot_diameter_px, or the "
+      "camera's resolution)",
+      spot, pitch, kMinSpotPx, kMinPitchPx);
 }
 
 std::string WindowFitProblem(const ModuleDescription& m, int window) {

@@ -30,4 +30,9 @@ std::string DepthPrecisionProblem(const ModuleDescription& module);
 /// module's pitch (the decoder reads such windows), else why not.
 std::string WindowFitProblem(const ModuleDescription& module, int window);
 
+/// Why the camera images the pattern's spots too small to decode (under 1.5 px across, or a
+/// pitch under 3 px: the simulator's plane decodes under half its spots there); empty when it
+/// resolves them.
+std::string SpotSizeProblem(const ModuleDescription& module);
+
 }  // namespace sewer3d::cli

@@ -135,15 +135,20 @@ void InspectOptions::Check() const {
   CheckWithin("defects.", [&] { defects.Check(); });
 }
 
+void CheckNominalDiameter(const InspectOptions& options, double radius_mm) {
+  const double dn =
+      options.nominal_diameter_mm > 0.0 ? options.nominal_diameter_mm : 2.0 * radius_mm;
+  SEWER3D_VALIDATE(
+      std::abs(dn - 2.0 * radius_mm) <= 0.25 * 2.0 * radius_mm, "nominal_diameter_mm",
+      "must be within 25 % of the model's diameter (" << 2.0 * radius_mm << " mm), got " << dn);
+}
+
 Inspection Inspect(const CoarseMap& map, const Centreline& centreline,
                    const InspectOptions& options) {
   options.Check();
+  CheckNominalDiameter(options, centreline.radius_mm);
   const double radius = centreline.radius_mm;
   const double dn = options.nominal_diameter_mm > 0.0 ? options.nominal_diameter_mm : 2.0 * radius;
-  // Percentages of a DN far from the model's diameter would be meaningless.
-  SEWER3D_VALIDATE(
-      std::abs(dn - 2.0 * radius) <= 0.25 * 2.0 * radius, "nominal_diameter_mm",
-      "must be within 25 % of the model's diameter (" << 2.0 * radius << " mm), got " << dn);
   SEWER3D_VALIDATE(map.RowMm() <= options.max_map_cell_mm * (1.0 + 1e-9), "map",
                    "cells of " << map.RowMm() << " mm are coarser than max_map_cell_mm ("
                                << options.max_map_cell_mm << " mm)");

@@ -53,6 +53,10 @@ struct Inspection {
   InspectionReport report;
 };
 
+/// InvalidValue ("nominal_diameter_mm") when options' nominal diameter (0: the model's) lies
+/// more than 25 % from the model's diameter (2 × radius_mm): its percentages would mean nothing.
+void CheckNominalDiameter(const InspectOptions& options, double radius_mm);
+
 /// Observations on `map` (CoarseMapBuilder) of a model with `centreline`. InvalidValue
 /// ("map") when the map's cells are coarser than options.max_map_cell_mm. A joint with nothing
 /// measured on either side, or neither a gap nor an offset, is no observation.

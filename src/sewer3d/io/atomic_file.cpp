@@ -72,10 +72,29 @@ std::filesystem::path TemporaryPathFor(const std::filesystem::path& path) {
   return path.parent_path() / name;
 }
 
+namespace {
+
+// Linux file systems hold names of up to 255 bytes; the temporary adds its suffix to the name.
+void CheckNameLength(const std::filesystem::path& path) {
+  constexpr std::size_t kNameMax = 255;
+  const std::size_t name = path.filename().string().size();
+  const std::size_t temporary = TemporaryPathFor(path).filename().string().size();
+  if (temporary <= kNameMax) return;
+  const std::string limit = "the file system's limit of " + std::to_string(kNameMax) + " bytes";
+  throw FileError(path,
+                  "the file name is " + std::to_string(name) + " bytes long" +
+                      (name > kNameMax ? ", over " + limit
+                                       : "; with the " + std::to_string(temporary - name) +
+                                             " bytes its temporary name adds, over " + limit));
+}
+
+}  // namespace
+
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path&)>& write) {
   std::error_code ec;
   if (path.empty()) throw FileError(path, "an empty file name");
+  CheckNameLength(path);
   // Renaming over a FIFO or a device (/dev/null as root) would replace it with a plain file.
   const auto status = std::filesystem::status(path, ec);
   if (std::filesystem::is_directory(status)) throw FileError(path, "is a folder, not a file");
@@ -110,6 +129,7 @@ void CheckOutputFile(const std::filesystem::path& path) {
   const fs::file_status status = fs::symlink_status(path, ec);
   if (fs::is_directory(path, ec)) throw FileError(path, "is a folder, not a file");
   if (!path.has_filename()) throw FileError(path, "names a folder (ends with /), not a file");
+  CheckNameLength(path);
   if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_symlink(status))
     throw FileError(path, "not a regular file (a FIFO, socket or device); not replaced");
   fs::path above = fs::absolute(path, ec).parent_path();

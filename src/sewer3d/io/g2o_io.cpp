@@ -1,5 +1,8 @@
 #include "sewer3d/io/g2o_io.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -105,6 +108,19 @@ PoseGraph ReadG2o(const std::filesystem::path& path) {
     if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 BOM
     if (line.find('\0') != std::string::npos)
       throw FileError(path, "line " + std::to_string(number) + ": a NUL byte: not a text file");
+    // g2o is ASCII: another byte (a PNG's 0x89, a control character) means another kind of file,
+    // named by its value rather than printed raw.
+    const auto odd = std::find_if(line.begin(), line.end(), [](char c) {
+      const auto b = static_cast<unsigned char>(c);
+      return b >= 0x80 || (b < 0x20 && c != '\t' && c != '\r');
+    });
+    const size_t first = line.find_first_not_of(" \t");
+    if (odd != line.end() && (first == std::string::npos || line[first] != '#')) {
+      throw FileError(
+          path, fmt::format("line {}: byte 0x{:02X} at column {}: not a g2o text file "
+                            "(g2o is ASCII)",
+                            number, static_cast<unsigned char>(*odd), odd - line.begin() + 1));
+    }
     const LineParser in(path, number, line);
     if (in.empty()) continue;
     if (in.tag() == "VERTEX_SE3:QUAT") {

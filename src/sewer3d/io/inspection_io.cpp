@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/csv.hpp"
@@ -158,7 +159,7 @@ Observation ReadObservation(const JsonReader& in, const json& j, const std::stri
             "'" + o.code + "' is not an EN 13508-2 main code (BAA-BAP, BBA-BBH, BCA-BCE, BDA-BDG)");
   }
   o.characterisation = in.Text(j, "characterisation", p, "");
-  o.station_mm = in.Number(j, "station_mm", p);
+  o.station_mm = InRange(in, j, "station_mm", p, -1e9, 1e9);  // as model.json's stations
   o.length_mm = InRange(in, j, "length_mm", p, 0.0, 1e9);
   o.clock_h = InRange(in, j, "clock_h", p, 0.0, 12.0);
   o.clock_from_h = InRange(in, j, "clock_from_h", p, 0.0, 12.0);
@@ -196,9 +197,13 @@ std::vector<Observation> ReadObservationsJson(const std::filesystem::path& path)
   if (!j.contains("observations")) in.Fail("observations", "is missing");
   const json& list = in.Array(j, "observations", "");
   std::vector<Observation> observations;
-  for (size_t i = 0; i < list.size(); ++i)
-    observations.push_back(
-        ReadObservation(in, list[i], "observations[" + std::to_string(i) + "]."));
+  std::set<std::string> ids;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string p = "observations[" + std::to_string(i) + "].";
+    observations.push_back(ReadObservation(in, list[i], p));
+    if (!ids.insert(observations.back().id).second)
+      in.Fail(p + "id", "'" + observations.back().id + "' is listed twice");
+  }
   return observations;
 }
 

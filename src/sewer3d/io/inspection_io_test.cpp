@@ -213,6 +213,8 @@ TEST_F(InspectionIoTest, BadObservationsJsonNamesTheField) {
   expect_error("\"code\": \"BBC\"", "\"code\": \"BBX\"", "observations[1].code");
   expect_error("\"version\": 1", "\"version\": 2", "version");
   expect_error("sewer3d-observations", "sewer3d-features", "format");
+  expect_error("\"station_mm\": 700.0", "\"station_mm\": 1e308", "observations[1].station_mm");
+  expect_error("\"id\": \"O2\"", "\"id\": \"O1\"", "observations[1].id");
 }
 
 TEST_F(InspectionIoTest, ObservationsCsvHasOneQuotedLinePerObservation) {

@@ -295,4 +295,23 @@ nlohmann::json IntrinsicsJson(const CameraIntrinsics& c, nlohmann::json j) {
   return j;
 }
 
+std::string KnownFileKind(const nlohmann::json& j) {
+  if (!j.is_object()) return {};
+  static const std::pair<const char*, const char*> kFormats[] = {
+      {"sewer3d-rig", "a rig file (rig.json)"},
+      {"sewer3d-run", "a capture run's run.json"},
+      {"sewer3d pipe model", "a pipe model's model.json"},
+      {"sewer3d-observations", "an inspection's observations.json"},
+      {"sewer3d-workspace", "a workspace's workspace.json"},
+      {"sewer3d-reference-light", "a reference-light file"}};
+  const auto format = j.find("format");
+  for (const auto& [name, kind] : kFormats) {
+    if (format != j.end() && *format == nlohmann::json(name)) return kind;
+  }
+  if (j.contains("camera") && j.contains("projector")) return "a module file";
+  if (j.contains("pipe") || j.contains("motion")) return "a scenario file";
+  if (j.contains("scene") || (j.contains("type") && j.contains("material"))) return "a scene file";
+  return {};
+}
+
 }  // namespace sewer3d

@@ -79,6 +79,11 @@ class JsonReader {
   std::filesystem::path path_;
 };
 
+/// What sewer3d file a JSON object is, from its "format" member or its top-level members ("a
+/// rig file (rig.json)", "a module file"); empty when it is none of them. For refusals of a file
+/// given where another kind belongs.
+std::string KnownFileKind(const nlohmann::json& j);
+
 /// The JSON form JsonReader::Pose reads, over the members `j` already holds.
 nlohmann::json PoseToJson(const Rigid3d& pose, nlohmann::json j = nlohmann::json::object());
 

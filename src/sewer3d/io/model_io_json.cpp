@@ -133,6 +133,10 @@ PipeModelInfo ReadModelJson(const std::filesystem::path& path) {
     in.Fail("format", "must be \"sewer3d pipe model\"");
   if (in.Integer(j, "version", "", -1) != kVersion)
     in.Fail("version", "must be " + std::to_string(kVersion));
+  // Every length in the file is in millimetres; a file that says otherwise is not read as mm.
+  if (const std::string units = in.Text(j, "units", "", "mm"); units != "mm")
+    in.Fail("units",
+            "must be \"mm\" (every length in the file is in millimetres), got \"" + units + "\"");
   PipeModelInfo info;
   const json& map = in.RequiredObject(j, "map", "");
   info.grid.resolution_mm = in.Positive(map, "resolution_mm", "map.");

@@ -214,6 +214,7 @@ TEST_F(ModelIoTest, BadModelJsonNamesTheField) {
   expect_error("\"station_mm\": -10.0", "\"station_mm\": -9.0", "centreline.samples[1].station_mm");
   expect_error("\"scale_mm\": 0.002", "\"scale_mm\": 0", "displacement_png.scale_mm");
   expect_error("\"version\": 1", "\"version\": 7", "version");
+  expect_error("\"units\": \"mm\"", "\"units\": \"m\"", "units");
   expect_error("\"station0_mm\": 5.0", "\"station0_mm\": 1e300", "map.station0_mm");
   expect_error("\"resolution_mm\": 1.0", "\"resolution_mm\": 500", "map.resolution_mm");
   {  // a centreline sample at 1e308 mm: no centreline (inspect ran on it without a word)

@@ -41,6 +41,10 @@ json ObjectOr(const json& doc, const char* key) {
 ModuleDescription ParseModule(const std::string& text, const std::filesystem::path& path) {
   const JsonReader in(path);
   const json root = in.ParseObject(text);
+  if (!root.contains("camera")) {
+    if (const std::string kind = KnownFileKind(root); !kind.empty() && kind != "a module file")
+      in.Fail("camera", "is missing: this is " + kind + ", not a module file");
+  }
   in.NoNearMisses(root, "", {"camera", "projector", "projector_from_camera", "pattern"});
   ModuleDescription m;
   m.camera = ReadIntrinsics(in, root, "camera");
@@ -61,11 +65,31 @@ ModuleDescription ParseModule(const std::string& text, const std::filesystem::pa
   return m;
 }
 
+namespace {
+
+// A relative matrix path is looked up beside the module file as named ("./pattern.png" for a
+// file in the working folder, so that the message shows where); for a symbolic link, beside the
+// file it points to when the matrix is not beside the link.
+std::filesystem::path MatrixBeside(const std::filesystem::path& module,
+                                   const std::filesystem::path& matrix) {
+  const std::filesystem::path folder =
+      module.parent_path().empty() ? std::filesystem::path(".") : module.parent_path();
+  std::error_code ec;
+  if (std::filesystem::exists(folder / matrix, ec) || !std::filesystem::is_symlink(module, ec))
+    return folder / matrix;
+  const std::filesystem::path target = std::filesystem::canonical(module, ec);
+  if (!ec && std::filesystem::exists(target.parent_path() / matrix, ec))
+    return target.parent_path() / matrix;
+  return folder / matrix;
+}
+
+}  // namespace
+
 LoadedModule LoadModule(const std::filesystem::path& path) {
   LoadedModule loaded;
   loaded.module = ParseModule(ReadTextFile(path), path);
   std::filesystem::path matrix = loaded.module.pattern.matrix_path;
-  if (matrix.is_relative()) matrix = path.parent_path() / matrix;
+  if (matrix.is_relative()) matrix = MatrixBeside(path, matrix);
   try {
     loaded.pattern = ReadPatternMatrix(matrix);
   } catch (const FileError& e) {

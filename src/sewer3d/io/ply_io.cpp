@@ -15,16 +15,22 @@
 #include "sewer3d/io/input_file.hpp"
 
 namespace sewer3d {
+namespace {
+
+constexpr const char* kPlyComment = "comment sewer3d, mm, ";
+
+}  // namespace
 
 void WritePly(const std::filesystem::path& path, const std::vector<Eigen::Vector3d>& points,
-              const std::vector<std::array<std::uint8_t, 3>>& colours) {
+              const std::vector<std::array<std::uint8_t, 3>>& colours, const std::string& frame) {
   if (!colours.empty() && colours.size() != points.size()) {
     throw FileError(path, "colours and points differ in number");
   }
   WriteFileAtomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream file(temporary, std::ios::binary);
     if (!file) throw FileError(path, "cannot open for writing");
-    file << "ply\nformat binary_little_endian 1.0\ncomment sewer3d, mm, camera frame\n"
+    file << "ply\nformat binary_little_endian 1.0\n"
+         << kPlyComment << frame << "\n"
          << "element vertex " << points.size()
          << "\nproperty float x\nproperty float y\nproperty float z\n";
     if (!colours.empty()) file << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
@@ -54,6 +60,7 @@ struct PlyElement {
 
 struct PlyHeader {
   std::string format;
+  std::string frame;  ///< from sewer3d's comment ("camera frame"); empty for other writers
   std::vector<PlyElement> elements;
 };
 
@@ -92,6 +99,10 @@ PlyHeader ReadPlyHeader(std::istream& file, const std::filesystem::path& path) {
         throw FileError(path, "element " + element.name + ": count '" + count +
                                   "' is not a whole number below 10^19");
       element.count = std::strtoull(count.c_str(), nullptr, 10);
+      for (const PlyElement& other : header.elements) {
+        if (other.name == element.name)
+          throw FileError(path, "PLY element '" + element.name + "' declared twice");
+      }
       header.elements.push_back(element);
     } else if (word == "property") {
       if (header.elements.empty()) throw FileError(path, "PLY property before any element");
@@ -108,6 +119,8 @@ PlyHeader ReadPlyHeader(std::istream& file, const std::filesystem::path& path) {
           throw FileError(path, "PLY property '" + property.name + "' declared twice");
       }
       header.elements.back().properties.push_back(property);
+    } else if (line.rfind(kPlyComment, 0) == 0) {
+      header.frame = line.substr(std::string(kPlyComment).size());
     } else if (word != "comment" && word != "obj_info" && !word.empty()) {
       throw FileError(path, "unknown PLY header line: " + line.substr(0, 60));
     }
@@ -144,28 +157,46 @@ void ThrowCount(const std::filesystem::path& path, std::uint64_t read, std::uint
       path, "truncated: " + std::to_string(read) + " of " + std::to_string(declared) + " vertices");
 }
 
-// One ASCII value of vertex n; a token that is no number is named, the end of the file is a
-// truncation (the stream is left failed).
-double ReadAsciiValue(std::istream& file, const std::filesystem::path& path, std::uint64_t n) {
+// One ASCII vertex, n, from its line (blank lines skipped): as many numbers as the header
+// declares properties. False at the end of the file.
+bool ReadAsciiVertex(std::istream& file, const std::filesystem::path& path, std::uint64_t n,
+                     std::vector<double>& values) {
+  std::string line;
+  do {
+    if (!std::getline(file, line)) return false;
+  } while (line.find_first_not_of(" \t\r") == std::string::npos);
+  std::istringstream in(line);
   std::string token;
-  if (!(file >> token)) return 0.0;
-  char* end = nullptr;
-  const double v = std::strtod(token.c_str(), &end);
-  if (end != token.c_str() + token.size()) {
-    throw FileError(
-        path, "vertex " + std::to_string(n) + ": '" + token.substr(0, 20) + "' is not a number");
+  size_t k = 0;
+  for (; in >> token; ++k) {
+    if (k == values.size()) {
+      throw FileError(path, fmt::format("vertex {}: more values than the {} properties the "
+                                        "header declares",
+                                        n, values.size()));
+    }
+    char* end = nullptr;
+    values[k] = std::strtod(token.c_str(), &end);
+    if (end != token.c_str() + token.size()) {
+      throw FileError(path, fmt::format("vertex {}: '{}' is not a number", n, token.substr(0, 20)));
+    }
   }
-  return v;
+  if (k < values.size()) {
+    throw FileError(path, fmt::format("vertex {}: {} values, but the header declares {} "
+                                      "properties",
+                                      n, k, values.size()));
+  }
+  return true;
 }
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
+std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path, std::string* frame) {
   const std::uintmax_t file_bytes =
       CheckInputFile(path, std::numeric_limits<std::uintmax_t>::max());
   std::ifstream file(path, std::ios::binary);
   if (!file) throw FileError(path, "cannot open file");
   const PlyHeader header = ReadPlyHeader(file, path);
+  if (frame != nullptr) *frame = header.frame;
   const bool ascii = header.format == "ascii";
   const bool big = header.format == "binary_big_endian";
   if (!ascii && !big && header.format != "binary_little_endian")
@@ -192,7 +223,7 @@ std::vector<Eigen::Vector3d> ReadPlyPoints(const std::filesystem::path& path) {
   std::vector<char> record(stride);
   for (std::uint64_t n = 0; n < vertex.count; ++n) {
     if (ascii) {
-      for (double& v : values) v = ReadAsciiValue(file, path, n);
+      if (!ReadAsciiVertex(file, path, n, values)) ThrowCount(path, n, vertex.count);
     } else if (file.read(record.data(), static_cast<std::streamsize>(stride))) {
       size_t at = 0;
       for (size_t i = 0; i < values.size(); ++i) {

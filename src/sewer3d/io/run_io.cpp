@@ -39,11 +39,8 @@ bool InsideRun(const std::string& file) {
   return true;
 }
 
-// run.json's acquisition_period_s, where it gives one, must be that of the index: the median
-// time between a module's consecutive pattern images, within a factor of 2.
-void CheckAcquisitionPeriod(const fs::path& path, double period_s,
-                            const std::vector<RunImage>& images) {
-  if (period_s <= 0.0) return;                                  // not known
+// The median time between a module's consecutive pattern images; 0 where no module has two.
+double MedianPatternGap(const std::vector<RunImage>& images) {
   std::map<int, std::vector<std::pair<int, double>>> patterns;  // module: (counter, time)
   for (const RunImage& image : images) {
     if (image.kind == ImageKind::kPattern)
@@ -57,13 +54,43 @@ void CheckAcquisitionPeriod(const fs::path& path, double period_s,
       gaps.push_back((shots[i].second - shots[i - 1].second) / counters);
     }
   }
-  if (gaps.empty()) return;
+  if (gaps.empty()) return 0.0;
   std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
-  const double median = gaps[gaps.size() / 2];
+  return gaps[gaps.size() / 2];
+}
+
+// run.json's acquisition_period_s, where it gives one, must be that of the index: the median
+// time between a module's consecutive pattern images, within a factor of 2.
+void CheckAcquisitionPeriod(const fs::path& path, double period_s, double median) {
+  if (period_s <= 0.0 || median <= 0.0) return;  // not known
   if (period_s < 0.5 * median || period_s > 2.0 * median) {
     throw FileError(path, fmt::format("acquisition_period_s is {:g} s, but acquisitions.csv has a "
                                       "module's acquisitions {:.3g} s apart (median)",
                                       period_s, median));
+  }
+}
+
+// A texture image is shot just before or after its pattern image: more than half an acquisition
+// period away (1 s where the period is not known), it shows the wall somewhere else.
+void CheckTripletTimes(const fs::path& index, double period_s,
+                       const std::vector<RunImage>& images) {
+  const double limit_s = period_s > 0.0 ? 0.5 * period_s : 1.0;
+  std::map<std::pair<int, int>, double> pattern_time;  // (module, counter): time
+  for (const RunImage& image : images) {
+    if (image.kind == ImageKind::kPattern)
+      pattern_time[{image.module, image.counter}] = image.time_s;
+  }
+  for (const RunImage& image : images) {
+    const auto pattern = pattern_time.find({image.module, image.counter});
+    if (image.kind == ImageKind::kPattern || pattern == pattern_time.end()) continue;
+    const double gap_s = std::abs(image.time_s - pattern->second);
+    if (gap_s > limit_s) {
+      throw FileError(index, fmt::format("{} is {:g} s from its pattern image, more than {:.3g} s "
+                                         "({}): it was not shot with it",
+                                         image.file, gap_s, limit_s,
+                                         period_s > 0.0 ? "half the time between acquisitions"
+                                                        : "the period is not known"));
+    }
   }
 }
 
@@ -73,6 +100,14 @@ void CheckRunCounts(const fs::path& path, const RunCounts& counts, const Capture
   if (counts.modules >= 0 && counts.modules != modules) {
     throw FileError(
         path, fmt::format("modules: says {}, rig.json describes {}", counts.modules, modules));
+  }
+  // The modules first: a wrong module count makes the image count look wrong too.
+  const std::int64_t planned = std::int64_t{3} * counts.modules * counts.acquisitions;
+  if (counts.modules >= 0 && counts.acquisitions >= 0 && counts.images >= 0 &&
+      counts.images != planned) {
+    throw FileError(path, fmt::format("field 'images' must be 3 x modules x acquisitions ({}), "
+                                      "got {}",
+                                      planned, counts.images));
   }
   const auto images = static_cast<int>(run.images.size());
   if (run.info.complete && counts.images >= 0 && counts.images != images) {
@@ -154,7 +189,8 @@ void WriteRunInfo(const fs::path& path, const RunInfo& info, const RunCounts& co
                {"modules", counts.modules},
                {"acquisitions", counts.acquisitions},
                {"images", counts.images},
-               {"acquisition_period_s", info.acquisition_period_s},
+               {"acquisition_period_s",
+                info.acquisition_period_s > 0.0 ? json(info.acquisition_period_s) : json(nullptr)},
                {"color_filter", info.color_filter},
                {"simulation_seconds", counts.simulation_seconds}};
   WriteTextFile(path, j.dump(2) + "\n");
@@ -184,12 +220,16 @@ RunInfo InfoOf(const JsonReader& in, const json& j) {
     if (!seed->is_number_unsigned()) in.Fail("seed", "must be a non-negative integer");
     info.seed = seed->get<std::uint64_t>();
   }
-  // The time between two acquisitions of a module; 0 (or absent): not known. Nothing downstream
-  // relies on it (times come from acquisitions.csv).
-  info.acquisition_period_s = in.Number(j, "acquisition_period_s", "", 0.0);
-  if (!(info.acquisition_period_s >= 0.0 && info.acquisition_period_s <= kMaxTimeS))
-    in.Fail("acquisition_period_s", fmt::format("must be 0 (not known) to {:g} s, got {}",
-                                                kMaxTimeS, info.acquisition_period_s));
+  // The time between two acquisitions of a module; absent or null: not known (held as 0). Nothing
+  // downstream relies on it (times come from acquisitions.csv). A period of 0 s is no period.
+  const auto period = j.find("acquisition_period_s");
+  if (period != j.end() && !period->is_null()) {
+    info.acquisition_period_s = in.Number(j, "acquisition_period_s", "");
+    if (!(info.acquisition_period_s > 0.0 && info.acquisition_period_s <= kMaxTimeS))
+      in.Fail("acquisition_period_s",
+              fmt::format("must be above 0 and up to {:g} s (leave it out where not known), got {}",
+                          kMaxTimeS, info.acquisition_period_s));
+  }
   info.color_filter = in.Text(j, "color_filter", "", "none");
   if (info.color_filter != "none" && info.color_filter != "RGGB")
     in.Fail("color_filter", "must be \"none\" or \"RGGB\", got '" + info.color_filter + "'");
@@ -203,12 +243,6 @@ RunCounts CountsOf(const JsonReader& in, const json& j) {
         std::pair{"images", &counts.images}}) {
     *count = in.Integer(j, key, "", -1);
     if (j.contains(key) && *count < 0) in.Fail(key, fmt::format("a count, got {}", *count));
-  }
-  const std::int64_t planned = std::int64_t{3} * counts.modules * counts.acquisitions;
-  if (counts.modules >= 0 && counts.acquisitions >= 0 && counts.images >= 0 &&
-      counts.images != planned) {
-    in.Fail("images",
-            fmt::format("must be 3 x modules x acquisitions ({}), got {}", planned, counts.images));
   }
   return counts;
 }
@@ -418,7 +452,10 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
     run.images.push_back(std::move(image));
   }
   CheckRunCounts(folder / "run.json", counts, run);
-  CheckAcquisitionPeriod(folder / "run.json", run.info.acquisition_period_s, run.images);
+  const double median_gap_s = MedianPatternGap(run.images);
+  CheckAcquisitionPeriod(folder / "run.json", run.info.acquisition_period_s, median_gap_s);
+  CheckTripletTimes(index, median_gap_s > 0.0 ? median_gap_s : run.info.acquisition_period_s,
+                    run.images);
   OdometryCheck odometry = CheckOdometry(ReadOdometry(folder / "odometry.csv"));
   CheckOdometrySpan(folder / "odometry.csv", odometry.kept, run.images);
   run.odometry = std::move(odometry.kept);

@@ -23,9 +23,11 @@ class RigAgainstImages : public ::testing::Test {
   void SetUp() override {
     run_.folder = fs::temp_directory_path() / "sewer3d_acquisition_images_test";
     fs::remove_all(run_.folder);
-    for (int k = 0; k < 2; ++k)
-      run_.rig.modules.push_back(
-          {"m" + std::to_string(k), 12.0, testing::SmallDefaultModule(), {}});
+    for (int k = 0; k < 2; ++k) {
+      std::string name = "m";
+      name += std::to_string(k);  // not "m" + …: GCC 12 warns falsely (-Wrestrict) there
+      run_.rig.modules.push_back({name, 12.0, testing::SmallDefaultModule(), {}});
+    }
     width_ = run_.rig.modules[0].module.camera.width;
     height_ = run_.rig.modules[0].module.camera.height;
   }

@@ -117,6 +117,8 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
                                 "`sewer3d model --resolution-mm {:g}` or finer",
                                 info.grid.resolution_mm, limit, limit));
   }
+  // Before BeginStage, which (with --force) removes the earlier inspection.
+  CheckNominalDiameter(options.inspect, info.centreline.radius_mm);
   workspace.BeginStage(kStage, InspectOptionsJson(options), options.force);
   const InspectionFiles files = InspectionFilesIn(workspace.folder());
 

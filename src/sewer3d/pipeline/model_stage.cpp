@@ -199,9 +199,14 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
                                const ModelStageOptions& options, const ModelProgress& progress) {
   options.Check();
   const auto start = Clock::now();
-  workspace.BeginStage(kStage, ModelOptionsJson(options), options.force);
+  // The model begins (with --force: the earlier one removed) once the fit has accepted the
+  // options: a refused --nominal-diameter-mm leaves the earlier model as it was.
+  workspace.CheckBeginStage(kStage, ModelOptionsJson(options), options.force);
+  const auto begin = [&] {
+    workspace.BeginStage(kStage, ModelOptionsJson(options), options.force);
+    if (options.force) RemoveFolder(workspace.StageFolder(kStage));
+  };
   const std::filesystem::path ws = workspace.folder(), folder = workspace.StageFolder(kStage);
-  if (options.force) RemoveFolder(folder);
   ModelStageReport report;
   report.threads = options.threads;
 
@@ -226,6 +231,7 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
         fit.report.slices_used, fit.report.slices_used + fit.report.slices_rejected, all.size(),
         acquisitions.size(), fit_options.min_slice_points, fit_options.min_slice_coverage_deg);
     report.message += OdometryHint(ws);
+    begin();
     workspace.FinishStage(kStage, false, {{"error", report.message}});
     return report;
   }
@@ -238,6 +244,7 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
                    "must be within 25 % of the measured diameter (" << fitted_mm << " mm), got "
                                                                     << report.nominal_diameter_mm);
   fit.centreline.radius_mm = 0.5 * report.nominal_diameter_mm;
+  begin();
 
   PipeModelInfo info;
   info.centreline = fit.centreline;

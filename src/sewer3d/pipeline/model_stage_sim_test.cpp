@@ -13,8 +13,10 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/model_io.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/pipeline/model_stage.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
@@ -155,6 +157,19 @@ TEST_F(ModelStageTiny, TilesGoWhenTheWholeRunFilesHoldTheMaps) {
   EXPECT_EQ(model.maps.grid.rows, report_.grid.rows);
   EXPECT_EQ(cv::countNonZero(model.maps.coverage == 1),
             static_cast<int>(std::lround(r.measured_fraction * r.grid.rows * r.grid.cols)));
+}
+
+TEST_F(ModelStageTiny, ARefusedNominalDiameterLeavesTheEarlierModel) {
+  const fs::path model_json = dir_ / "ws" / "model" / "model.json";
+  ASSERT_TRUE(fs::exists(model_json));
+  const std::string before = ReadTextFile(model_json);
+  ModelStageOptions options = options_;
+  options.force = true;
+  options.nominal_diameter_mm = 100.0;  // the pipe measures 300 mm
+  Workspace ws(dir_ / "ws", run_.folder);
+  EXPECT_THROW(RunModelStage(run_, ws, options), InvalidValue);
+  ASSERT_TRUE(fs::exists(model_json));
+  EXPECT_EQ(ReadTextFile(model_json), before);
 }
 
 }  // namespace

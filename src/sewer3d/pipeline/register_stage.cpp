@@ -232,13 +232,19 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   report.fusion = fused.report;
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   report.seconds_per_node = report.seconds / report.nodes;
+  // A resumed stage that registered nothing new and fused the same poses changes nothing
+  // downstream (the later stages stay as they are).
+  const std::filesystem::path poses = folder / "poses.csv";
+  const std::string poses_before = IsRegularFile(poses) ? ReadTextFile(poses) : std::string();
   WriteRegistrationOutputs(folder, run.rig, nodes, edges, fused, options.length_scale_mm,
                            RegisterStageReportToJson(report));
+  const bool changed = poses_before.empty() || ReadTextFile(poses) != poses_before;
   workspace.FinishStage(kStage, fused.report.usable,
                         {{"nodes", std::to_string(report.nodes)},
                          {"left_out", std::to_string(report.left_out.size())},
                          {"edges", std::to_string(edges.size())},
-                         {"rejected", std::to_string(fused.report.rejected)}});
+                         {"rejected", std::to_string(fused.report.rejected)}},
+                        changed);
   return report;
 }
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/inspection_io.hpp"
 #include "sewer3d/report/workspace_inputs.hpp"
 
@@ -12,6 +13,21 @@ namespace {
 bool NotDone(const Workspace& workspace, const char* stage) {
   const auto it = workspace.record().stages.find(stage);
   return it != workspace.record().stages.end() && !it->second.done;
+}
+
+bool Done(const Workspace& workspace, const char* stage) {
+  const auto it = workspace.record().stages.find(stage);
+  return it != workspace.record().stages.end() && it->second.done;
+}
+
+// A file a stage recorded as done writes, gone since: the report would show the stage's results
+// as empty.
+void CheckStageFile(const Workspace& workspace, const char* stage,
+                    const std::filesystem::path& file) {
+  if (Done(workspace, stage) && !std::filesystem::exists(file)) {
+    throw FileError(file, std::string("missing, though workspace.json records the ") + stage +
+                              " stage as done: run `sewer3d " + stage + "` again with --force");
+  }
 }
 
 }  // namespace
@@ -31,6 +47,8 @@ ReportStageReport RunReportStage(const CaptureRun& run, Workspace& workspace, bo
         "Observations and profile left out: workspace.json records the inspect stage as not "
         "done (failed, interrupted, or its model redone since); run `sewer3d inspect`.");
   } else {
+    CheckStageFile(workspace, "inspect", files.profile_csv);
+    CheckStageFile(workspace, "inspect", files.observations_json);
     if (std::filesystem::exists(files.profile_csv)) in.profile = ReadProfileCsv(files.profile_csv);
     if (std::filesystem::exists(files.observations_json))
       in.observations = ReadObservationsJson(files.observations_json);

@@ -66,6 +66,11 @@ std::string WhyRedo(const CaptureRun& run, const RgbdFiles& files) {
   return {};
 }
 
+// A finished acquisition whose colour image was removed since: its colour pass is redone.
+bool ColourLost(const RgbdFiles& files) {
+  return IsRegularFile(files.report) && !IsRegularFile(files.color);
+}
+
 }  // namespace
 
 json InputStamps(const CaptureRun& run, const Acquisition& a) {
@@ -88,6 +93,14 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
     const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter);
     if (!RgbdGeometryDone(files)) continue;
     const std::string changed = WhyRedo(run, files);
+    if (changed.empty() && ColourLost(files)) {
+      std::error_code ec;
+      std::filesystem::remove(files.report, ec);
+      lines.push_back(
+          fmt::format("m{} counter {}: {} removed since an earlier run processed it: "
+                      "its colour is redone",
+                      a.module, a.counter, files.color.string()));
+    }
     if (changed.empty()) continue;
     std::error_code ec;
     std::filesystem::remove(files.report, ec);
@@ -104,7 +117,7 @@ bool RgbdUpToDate(const CaptureRun& run, const std::filesystem::path& rgbd_folde
   for (const Acquisition& a : GroupAcquisitions(run.images)) {
     const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter);
     if (!RgbdGeometryDone(files) || !IsRegularFile(files.report)) return false;
-    if (!WhyRedo(run, files).empty()) return false;
+    if (!WhyRedo(run, files).empty() || ColourLost(files)) return false;
   }
   return true;
 }
@@ -120,8 +133,8 @@ std::string RgbdBehind(const CaptureRun& run, const Workspace& workspace) {
   const std::set<std::pair<int, int>> left_out = LeftOut(folder / "report.json");
   for (const Acquisition& a : GroupAcquisitions(run.images)) {
     const RgbdFiles files = RgbdAcquisitionFiles(folder, a.module, a.counter);
-    const bool current =
-        RgbdGeometryDone(files) && IsRegularFile(files.report) && WhyRedo(run, files).empty();
+    const bool current = RgbdGeometryDone(files) && IsRegularFile(files.report) &&
+                         !ColourLost(files) && WhyRedo(run, files).empty();
     if (current || left_out.count({a.module, a.counter}) > 0) continue;
     return fmt::format(
         "{}: does not hold m{} counter {} as the run has it now (rgbd unfinished, or images "

@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/camera/module.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
@@ -71,6 +73,19 @@ std::vector<PatternConstraints> RigConstraints(const CaptureRun& run) {
     } catch (const std::invalid_argument& e) {
       throw FileError(run.folder / "rig.json", "module m" + std::to_string(k) +
                                                    ": cannot decode with its pattern: " + e.what());
+    }
+    // A matrix replaced since the module was designed (too few columns for its disparity) would
+    // fail every acquisition as if the images were wrong.
+    const ModuleDescription& module = run.rig.modules[k].module;
+    const int step = std::max(1, std::max(module.camera.width, module.camera.height) / 64);
+    const DisparityRange range =
+        ComputeDisparityRange(module, kWorkingDistanceMinMm, kWorkingDistanceMaxMm, step);
+    const BinaryArray& pattern = run.patterns[k];
+    if (const std::string problem = PatternSpanProblem(range, pattern.rows, pattern.cols);
+        !problem.empty()) {
+      throw FileError(run.folder / "rig.json", "module " + run.rig.modules[k].name + " (" +
+                                                   run.rig.modules[k].module.pattern.matrix_path +
+                                                   "): " + problem);
     }
   }
   return constraints;

@@ -162,7 +162,8 @@ Workspace::Workspace(const std::filesystem::path& folder, const CaptureRun& run)
   CheckRunFiles(run);
 }
 
-void Workspace::BeginStage(const std::string& stage, const std::string& options_json, bool force) {
+void Workspace::CheckBeginStage(const std::string& stage, const std::string& options_json,
+                                bool force) const {
   const auto it = record_.stages.find(stage);
   const bool recorded = it != record_.stages.end();
   if (recorded && it->second.options_json == "{}" && options_json != "{}" && !force) {
@@ -176,6 +177,11 @@ void Workspace::BeginStage(const std::string& stage, const std::string& options_
                             OptionsChange(it->second.options_json, options_json) +
                             "); use --force to redo it (its outputs are removed)");
   }
+}
+
+void Workspace::BeginStage(const std::string& stage, const std::string& options_json, bool force) {
+  CheckBeginStage(stage, options_json, force);
+  const bool recorded = record_.stages.count(stage) > 0;
   WorkspaceStage& s = record_.stages[stage];
   const bool afresh = force || s.stale;
   if (afresh) {

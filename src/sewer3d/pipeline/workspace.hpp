@@ -96,6 +96,10 @@ class Workspace {
   /// stage is recorded stale (an earlier stage's outputs changed since it ran), and every later
   /// stage recorded is marked stale.
   void BeginStage(const std::string& stage, const std::string& options_json, bool force);
+  /// BeginStage's refusals (a damaged options record, other options without `force`), without
+  /// its effects: a stage that works before it can begin checks first, and removes nothing when
+  /// that work refuses an option.
+  void CheckBeginStage(const std::string& stage, const std::string& options_json, bool force) const;
 
   /// Records the end of `stage` (begun before): `done` (every item finished without failure)
   /// with the time, the wall time since its BeginStage (`seconds`), and `notes` about its

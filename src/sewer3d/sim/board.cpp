@@ -70,8 +70,9 @@ std::vector<Rigid3d> RandomBoardPoses(const ModuleDescription& module, const Che
   std::vector<Rigid3d> poses;
   for (std::uint64_t attempt = 0; static_cast<int>(poses.size()) < count; ++attempt) {
     SEWER3D_VALIDATE(attempt < 200000, "board",
-                     "no pose shows the whole board to both camera and projector (try fewer or "
-                     "smaller squares)");
+                     "no pose shows the whole board ("
+                         << board.cols << " x " << board.rows << " squares of " << board.square_mm
+                         << " mm) to both camera and projector (try fewer or smaller squares)");
     auto u = [&](int k) { return HashUniform(seed, attempt, k); };
     // Board centre on a random camera ray through the image, at a random depth.
     const auto xy =

@@ -217,8 +217,12 @@ void RenderOptions::Check() const {
                    "must be 1..16, got " << supersampling);
   SEWER3D_VALIDATE(sensor_width_mm > 0.0 && sensor_width_mm <= 100.0, "sensor_width_mm",
                    "must be > 0 and at most 100 mm, got " << sensor_width_mm);
-  within("camera_f_number", camera_f_number, 0.0, 64.0);
-  within("projector_f_number", projector_f_number, 0.0, 64.0);
+  // 0: a pinhole (RenderOptions::Ideal); a lens is f/0.5 or slower.
+  for (const auto& [field, f_number] : {std::pair{"camera_f_number", camera_f_number},
+                                        std::pair{"projector_f_number", projector_f_number}}) {
+    SEWER3D_VALIDATE(f_number == 0.0 || (f_number >= 0.5 && f_number <= 64.0), field,
+                     "must be 0 (a pinhole) or 0.5..64, got " << f_number);
+  }
   SEWER3D_VALIDATE(camera_focus_mm > 0.0 && camera_focus_mm <= 1e5, "camera_focus_mm",
                    "must be > 0 and at most 1e5 mm, got " << camera_focus_mm);
   SEWER3D_VALIDATE(projector_focus_mm > 0.0 && projector_focus_mm <= 1e5, "projector_focus_mm",

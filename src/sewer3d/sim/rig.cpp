@@ -28,7 +28,8 @@ Rig MakeRig(const ModuleDescription& module, const RigOptions& o) {
   const Eigen::Vector3d projector_in_camera = module.projector_from_camera.Inverse().translation;
   for (int k = 0; k < o.modules; ++k) {
     RigModule m;
-    m.name = "m" + std::to_string(k);
+    m.name = "m";
+    m.name += std::to_string(k);  // not "m" + …: GCC 12 warns falsely (-Wrestrict) there
     m.clock_h = std::fmod(o.first_clock_h + 12.0 * k / o.modules, 12.0);
     if (m.clock_h <= 1e-9) m.clock_h += 12.0;  // clock positions run 0+ .. 12
     m.module = module;

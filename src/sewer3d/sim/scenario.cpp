@@ -235,12 +235,6 @@ void Scenario::Check() const {
                      "odometry.slips[" + std::to_string(i) + "].station_mm",
                      "lies far outside the " << length << " mm pipe, got " << s);
   }
-  SEWER3D_VALIDATE(motion.start_station_mm - 0.5 * rig.carrier_length_mm >= -length &&
-                       motion.start_station_mm + motion.travel_mm <= 2.0 * length,
-                   "motion.travel_mm",
-                   "the robot's travel from start_station_mm "
-                       << motion.start_station_mm << " over " << motion.travel_mm
-                       << " mm lies far outside the " << length << " mm pipe");
   for (size_t i = 0; i < world.sections.size(); ++i) {
     const double diameter = world.sections[i].diameter_mm;
     SEWER3D_VALIDATE(
@@ -250,6 +244,25 @@ void Scenario::Check() const {
                          << " mm, wander " << motion.wander_mm << " mm) does not fit in a Ø"
                          << diameter << " section");
   }
+  // Each camera looks at the wall around its own module's station: beyond the pipe's ends the
+  // simulator extends the end sections, a pipe nobody described. The outermost modules may stand
+  // out by a radius (a robot entering from a manhole), not more.
+  const double half_span = 0.5 * (rig.modules - 1) * rig.stagger_mm;
+  const double rear = motion.start_station_mm - half_span;
+  const double front = motion.start_station_mm + motion.travel_mm + half_span;
+  const double start_margin = 0.5 * world.sections.front().diameter_mm;
+  const double end_margin = 0.5 * world.sections.back().diameter_mm;
+  SEWER3D_VALIDATE(rear >= -start_margin, "motion.start_station_mm",
+                   "the rear module starts at station "
+                       << rear << " mm, more than a radius (" << start_margin
+                       << " mm) before the pipe's start; start at " << half_span - start_margin
+                       << " mm or later");
+  SEWER3D_VALIDATE(front <= length + end_margin, "motion.travel_mm",
+                   "the front module would reach station "
+                       << front << " mm, more than a radius (" << end_margin
+                       << " mm) past the end of the " << length << " mm pipe (start_station_mm "
+                       << motion.start_station_mm << " + travel_mm " << motion.travel_mm << " + "
+                       << half_span << " mm to the front module)");
 }
 
 Eigen::Vector3d CameraWhiteBalance(const Scenario& scenario, int module) {

@@ -116,6 +116,15 @@ void Scene::Check() const {
             << " (connections, spalling and deposits need a pipe world: simulate run)");
     CheckWithin(field, [&] { ft.CheckInPipe(diameter_mm); });
   }
+  // Joint steps add up along the wall: together they are held to one joint's limit.
+  double steps_mm = 0.0;
+  for (const PipeFeature& ft : features)
+    if (ft.type == PipeFeature::Type::kJointStep) steps_mm += std::abs(ft.offset_mm);
+  SEWER3D_VALIDATE(steps_mm <= 0.2 * diameter_mm, "features",
+                   "the joints' offsets add up to " << steps_mm << " mm, more than a fifth of the Ø"
+                                                    << diameter_mm
+                                                    << " pipe (the wall beyond them would leave "
+                                                       "the pipe)");
 }
 
 double WallDisplacementMm(const Scene& scene, double clock_rad, double station_mm) {

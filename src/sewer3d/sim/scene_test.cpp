@@ -98,5 +98,22 @@ TEST(Scene, TakesTheWallFeaturesItCanRender) {
   }
 }
 
+TEST(Scene, JointStepsAreHeldToOneJointsLimitTogether) {
+  Scene s;
+  s.type = Scene::Type::kPipeWall;
+  s.diameter_mm = 300.0;
+  const PipeFeature joint{
+      .type = PipeFeature::Type::kJointStep, .depth_mm = 4.0, .gap_mm = 6.0, .offset_mm = 5.0};
+  s.features.assign(12, joint);  // 60 mm: a fifth of the diameter
+  EXPECT_NO_THROW(s.Check());
+  s.features.push_back(joint);
+  try {
+    s.Check();
+    FAIL() << "13 joints of 5 mm in a Ø300 wall passed";
+  } catch (const InvalidValue& e) {
+    EXPECT_EQ(e.field(), "features");
+  }
+}
+
 }  // namespace
 }  // namespace sewer3d

@@ -13,10 +13,19 @@
 namespace sewer3d {
 namespace {
 
+// A figure of an empty set is no figure: null, not 0.
+nlohmann::json Value(double value, bool measured) {
+  return measured ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
 nlohmann::json FiguresJson(const ErrorFigures& f) {
-  return {{"cells", f.cells},           {"mean_mm", f.mean_mm},
-          {"rms_mm", f.rms_mm},         {"median_abs_mm", f.median_abs_mm},
-          {"p95_abs_mm", f.p95_abs_mm}, {"max_abs_mm", f.max_abs_mm}};
+  const bool any = f.cells > 0;
+  return {{"cells", f.cells},
+          {"mean_mm", Value(f.mean_mm, any)},
+          {"rms_mm", Value(f.rms_mm, any)},
+          {"median_abs_mm", Value(f.median_abs_mm, any)},
+          {"p95_abs_mm", Value(f.p95_abs_mm, any)},
+          {"max_abs_mm", Value(f.max_abs_mm, any)}};
 }
 
 /// Mean of the finite values of `error` in cells of `factor` × `factor` (NaN where none).
@@ -82,17 +91,17 @@ std::string ModelEvaluationToJson(const ModelEvaluation& e) {
       {"by_clock_hour", hours},
       {"axis_offset",
        {{"rows", e.axis_offset.cells},
-        {"mean_mm", e.axis_offset.mean_mm},
-        {"median_mm", e.axis_offset.median_abs_mm},
-        {"p95_mm", e.axis_offset.p95_abs_mm},
-        {"max_mm", e.axis_offset.max_abs_mm}}},
+        {"mean_mm", Value(e.axis_offset.mean_mm, e.axis_offset.cells > 0)},
+        {"median_mm", Value(e.axis_offset.median_abs_mm, e.axis_offset.cells > 0)},
+        {"p95_mm", Value(e.axis_offset.p95_abs_mm, e.axis_offset.cells > 0)},
+        {"max_mm", Value(e.axis_offset.max_abs_mm, e.axis_offset.cells > 0)}}},
       {"after_axis_offset", FiguresJson(e.after_axis_offset)},
       {"after_axis_offset_by_material", after_axis},
       {"circumference",
        {{"sections", c.sections},
-        {"mean_diff_mm", c.mean_diff_mm},
-        {"mean_abs_diff_mm", c.mean_abs_diff_mm},
-        {"max_abs_diff_mm", c.max_abs_diff_mm},
+        {"mean_diff_mm", Value(c.mean_diff_mm, c.sections > 0)},
+        {"mean_abs_diff_mm", Value(c.mean_abs_diff_mm, c.sections > 0)},
+        {"max_abs_diff_mm", Value(c.max_abs_diff_mm, c.sections > 0)},
         {"profile", profile}}},
       {"truth_from_model",
        {{"translation_mm", {t.x(), t.y(), t.z()}},

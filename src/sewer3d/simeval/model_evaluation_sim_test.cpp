@@ -138,5 +138,22 @@ TEST(ModelEvaluation, StrideSubsamplesTheCellsAndAWrongAlignmentShowsAsError) {
   EXPECT_NEAR(off.after_axis_offset_by_material.at("concrete").mean_mm, kPlanted_mm, 0.01);
 }
 
+TEST(ModelEvaluation, FiguresOfNothingMeasuredAreNullNotZero) {
+  const Rigid3d truth_from_model(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 0));
+  const PipeGeometry truth(TwoSections());
+  PipeModel model = SyntheticModel(truth_from_model);
+  // A quarter of the turn measured: no station for the axis offset, no whole cross-section.
+  model.maps.coverage.colRange(model.maps.grid.cols / 4, model.maps.grid.cols).setTo(0);
+  const ModelEvaluation e = EvaluatePipeModel(model, truth, truth_from_model, {});
+  EXPECT_GT(e.all.cells, 0);
+  EXPECT_EQ(e.axis_offset.cells, 0);
+  EXPECT_EQ(e.circumference.sections, 0);
+  const auto json = nlohmann::json::parse(ModelEvaluationToJson(e));
+  EXPECT_TRUE(json["all"]["rms_mm"].is_number());
+  EXPECT_TRUE(json["axis_offset"]["mean_mm"].is_null());
+  EXPECT_TRUE(json["after_axis_offset"]["rms_mm"].is_null());
+  EXPECT_TRUE(json["circumference"]["mean_diff_mm"].is_null());
+}
+
 }  // namespace
 }  // namespace sewer3d

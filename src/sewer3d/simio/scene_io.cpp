@@ -1,5 +1,7 @@
 #include "sewer3d/simio/scene_io.hpp"
 
+#include <fmt/format.h>
+
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -43,6 +45,12 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
   const JsonReader in(path);
   const json j = in.ParseObject(text);
   Scene s;
+  if (!j.contains("type")) {
+    const std::string kind = KnownFileKind(j);
+    in.Fail("type", "is missing: " + (kind.empty() ? "" : "this is " + kind + ", not a scene; ") +
+                        "a scene file (or a rendered frame's scene.json) has type plane, "
+                        "cylinder or pipe_wall");
+  }
   const std::string type = in.Text(j, "type", "", "");
   if (type == "plane")
     s.type = Scene::Type::kPlane;
@@ -126,6 +134,11 @@ bool ReadSceneRenderOptions(const std::filesystem::path& path, RenderOptions& op
   options.seed = in.Seed(doc, "seed", "", options.seed);
   ValidateFileContents(path, [&] { CheckWithin("render.", [&] { options.Check(); }); });
   return true;
+}
+
+std::string ReadSceneModule(const std::filesystem::path& path) {
+  const JsonReader in(path);
+  return in.Text(in.ParseObject(ReadTextFile(path)), "module", "", "");
 }
 
 std::string SceneToJson(const Scene& s) {
@@ -227,12 +240,35 @@ Material ParseMaterial(const JsonReader& in, const std::string& name, const std:
   in.Fail(field, "must be concrete, vitrified_clay, plastic or sediment, got '" + name + "'");
 }
 
+namespace {
+
+// An f-number in a file: null is a pinhole (no defocus; held as 0), a number is a lens's
+// f-number. 0 is refused: it would read as an aperture without limit, not as a pinhole.
+nlohmann::json FNumberJson(double f_number) {
+  return f_number > 0.0 ? nlohmann::json(f_number) : nlohmann::json(nullptr);
+}
+
+double ReadFNumber(const JsonReader& in, const nlohmann::json& j, const char* key,
+                   const std::string& p, double fallback) {
+  const auto it = j.find(key);
+  if (it == j.end()) return fallback;
+  if (it->is_null()) return 0.0;
+  const double f_number = in.Number(j, key, p);
+  if (!(f_number >= 0.5 && f_number <= 64.0))
+    in.Fail(p + key, fmt::format("must be an f-number from 0.5 to 64 (null: a pinhole, no "
+                                 "defocus), got {:g}",
+                                 f_number));
+  return f_number;
+}
+
+}  // namespace
+
 nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
   return {{"supersampling", o.supersampling},
           {"sensor_width_mm", o.sensor_width_mm},
-          {"camera_f_number", o.camera_f_number},
+          {"camera_f_number", FNumberJson(o.camera_f_number)},
           {"camera_focus_mm", o.camera_focus_mm},
-          {"projector_f_number", o.projector_f_number},
+          {"projector_f_number", FNumberJson(o.projector_f_number)},
           {"projector_focus_mm", o.projector_focus_mm},
           {"projector_psf_px", o.projector_psf_px},
           {"texture_level", o.texture_level},
@@ -284,9 +320,9 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
                 "color_filter"});
   o.supersampling = in.Integer(j, "supersampling", p, o.supersampling);
   o.sensor_width_mm = in.Number(j, "sensor_width_mm", p, o.sensor_width_mm);
-  o.camera_f_number = in.Number(j, "camera_f_number", p, o.camera_f_number);
+  o.camera_f_number = ReadFNumber(in, j, "camera_f_number", p, o.camera_f_number);
   o.camera_focus_mm = in.Number(j, "camera_focus_mm", p, o.camera_focus_mm);
-  o.projector_f_number = in.Number(j, "projector_f_number", p, o.projector_f_number);
+  o.projector_f_number = ReadFNumber(in, j, "projector_f_number", p, o.projector_f_number);
   o.projector_focus_mm = in.Number(j, "projector_focus_mm", p, o.projector_focus_mm);
   o.projector_psf_px = in.Number(j, "projector_psf_px", p, o.projector_psf_px);
   o.texture_level = in.Number(j, "texture_level", p, o.texture_level);
