@@ -14,6 +14,7 @@
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/ply_io.hpp"
+#include "sewer3d/model/cloud_facts.hpp"
 #include "sewer3d/model/fit.hpp"
 #include "sewer3d/simio/scene_io.hpp"
 
@@ -22,30 +23,10 @@ namespace {
 
 using Points = std::vector<Eigen::Vector3d>;
 
-// A wall seen by a module spans tens of millimetres at a few hundred from the camera; a cloud a
-// few millimetres across was most likely written in metres, one tens of metres away in
-// micrometres.
-void WarnOfUnits(const std::string& cloud, const Points& all) {
-  Eigen::Vector3d lo = all.front(), hi = all.front();
-  for (const auto& p : all) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const double extent = (hi - lo).norm();
-  std::vector<double> distances;
-  for (const auto& p : all) distances.push_back(p.norm());
-  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
-  const double distance = distances[distances.size() / 2];
-  std::string problem;
-  if (extent < 5.0) {
-    problem = fmt::format(
-        "the points span only {:.3g} mm: coordinates are read as millimetres "
-        "(is the cloud in metres?)",
-        extent);
-  } else if (distance > 1e4) {
-    problem = fmt::format(
-        "the points lie {:.3g} m from the camera (median), far beyond any "
-        "module's reach: coordinates are read as millimetres (is the cloud in "
-        "micrometres?)",
-        distance / 1000.0);
-  }
+// A cloud that is probably not in millimetres is warned of, after the fit: a cloud no surface
+// fits gets its one error line.
+void WarnOfUnits(const std::string& cloud, const CameraCloudFacts& facts) {
+  const std::string problem = CloudUnitsProblem(facts);
   if (problem.empty()) return;
   std::fflush(stdout);
   fmt::print(stderr, "sewer3d: warning: {}: {}\n", cloud, problem);
@@ -54,16 +35,13 @@ void WarnOfUnits(const std::string& cloud, const Points& all) {
 void PrintPlane(const std::string& cloud, const Points& points) {
   const auto fit = FitPlane(points);
   if (!fit) throw FileError(cloud, "points do not span a plane");
-  std::vector<double> depths;
-  for (const auto& p : points) depths.push_back(p.norm());
-  std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
   // A plane nearly parallel to the optical axis meets it far away or never.
   const std::string crossing =
       std::abs(fit->normal.z()) > 1e-3
           ? fmt::format("plane at {:.3f} mm on the optical axis", -fit->offset / fit->normal.z())
           : "plane parallel to the optical axis";
-  fmt::print("plane      median distance to the camera {:.3f} mm, {}\n", depths[depths.size() / 2],
-             crossing);
+  fmt::print("plane      median distance to the camera {:.3f} mm, {}\n",
+             DescribeCameraCloud(points).median_distance_mm, crossing);
   fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
 }
 
@@ -128,15 +106,15 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
   }
   std::string frame;
   const Points all = ReadPlyPoints(cloud, &frame);
-  if (!frame.empty() && frame != "camera frame") {
+  if (!frame.empty() && frame != kCameraFrame) {
     throw FileError(cloud, "its points are in the " + frame +
                                " (its header says so); evaluate plane|cylinder judges a "
                                "camera-frame cloud of reconstruct or rgbd (the model's own fit "
                                "is in WS/model/report.json)");
   }
-  const auto behind =
-      std::count_if(all.begin(), all.end(), [](const auto& p) { return p.z() <= 0; });
-  if (!all.empty() && behind == static_cast<std::ptrdiff_t>(all.size())) {
+  const CameraCloudFacts facts = DescribeCameraCloud(all);
+  const std::size_t behind = facts.behind;
+  if (!all.empty() && behind == all.size()) {
     throw FileError(cloud, fmt::format("all {} points lie behind the camera (z <= 0): evaluate "
                                        "reads a cloud in the camera frame (z along the view)",
                                        all.size()));
@@ -163,7 +141,7 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
   } else {
     PrintCylinder(cloud, points, truth);
   }
-  WarnOfUnits(cloud, all);  // after the fit: a cloud no surface fits gets its one error line
+  WarnOfUnits(cloud, facts);
   if (truth) PrintTruthDistances(*truth, all);
   return 0;
 }

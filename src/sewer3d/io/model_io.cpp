@@ -150,7 +150,7 @@ MapFilesReport WriteMapFiles(const ModelMapFiles& files, const PipeMaps& maps,
   const SurfacePoints surface = MapSurfacePoints(centreline, maps);
   report.surface_points = surface.points.size();
   WriteFileAtomically(files.surface, [&](const std::filesystem::path& t) {
-    WritePly(t, surface.points, surface.colours_rgb, "model frame");
+    WritePly(t, surface.points, surface.colours_rgb, kModelFrame);
   });
   return report;
 }
