@@ -3,12 +3,12 @@
 #include <fmt/core.h>
 
 #include <charconv>
-#include <cmath>
 #include <filesystem>
 #include <string_view>
 
 #include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/camera/module_checks.hpp"
 #include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/flag_names.hpp"
@@ -103,26 +103,23 @@ Command AddModuleCommand(CLI::App& app) {
             const std::filesystem::path dir = args->out;
             CheckNotInARun(dir, "--out");
             const BinaryArray pattern = DefaultPatternArray();
-            // A module the decoder cannot use is refused before anything is written.
-            const DisparityRange range =
-                ComputeDisparityRange(module, kWorkingDistanceMinMm, kWorkingDistanceMaxMm);
-            if (pattern.cols <= range.max_cols) {
-              throw InvalidValue(
-                  geometry,
-                  fmt::format("this geometry's disparity over {:g}-{:g} mm spans {:.0f} pattern "
-                              "columns, more than the pattern's {}: choose a smaller stereo "
-                              "angle or field of view",
-                              kWorkingDistanceMinMm, kWorkingDistanceMaxMm,
-                              std::ceil(range.max_cols), pattern.cols));
-            }
-            if (const std::string problem = DepthPrecisionProblem(module); !problem.empty())
-              throw InvalidValue(geometry, problem);
-            if (const std::string problem = SpotSizeProblem(module); !problem.empty())
-              throw InvalidValue("--pitch-px, --spot-px", problem);
             const SubmapSearchOptions search = DefaultPatternSearchOptions();
-            if (const std::string problem = WindowFitProblem(module, search.constraints.window);
-                !problem.empty()) {
-              throw InvalidValue("--pitch-px", problem);
+            // A module the decoder cannot use is refused before anything is written.
+            if (const auto problem = FindUsabilityProblem(module, pattern.rows, pattern.cols,
+                                                          search.constraints.window)) {
+              using Cause = UsabilityProblem::Cause;
+              switch (problem->cause) {
+                case Cause::kSpotSize:
+                  throw InvalidValue("--pitch-px, --spot-px", problem->text);
+                case Cause::kWindowFit:
+                  throw InvalidValue("--pitch-px", problem->text);
+                case Cause::kPatternSpan:
+                  throw InvalidValue(geometry, problem->text +
+                                                   ": choose a smaller stereo angle or field "
+                                                   "of view");
+                case Cause::kDepthPrecision:
+                  throw InvalidValue(geometry, problem->text);
+              }
             }
             for (const std::filesystem::path& file :
                  {dir / module.pattern.matrix_path,
