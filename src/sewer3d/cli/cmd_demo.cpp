@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
@@ -89,6 +90,29 @@ void CheckDemoFolder(const fs::path& dir) {
   CheckWorkspaceOfRun(dir / "ws", dir / "run");
 }
 
+// The files to look at, each with what it shows.
+void PrintLookAt(const fs::path& dir, const fs::path& html) {
+  constexpr std::pair<const char*, const char*> kLookAt[] = {
+      {"ws/model/preview.png", "the unrolled pipe: texture over displacement"},
+      {"ws/model/mesh.glb", "the displaced 3D model (any glTF viewer)"},
+      {"ws/model/mesh.obj", "the textured cylinder (MeshLab, Blender)"},
+      {"ws/inspection/observations.csv", "EN 13508-2 observations (crops/: their maps)"},
+      {"ws/evaluation/model/error_map.png", "the model against the true wall"},
+      {"run/truth/overview.png", "the unrolled pipe and every image's footprint"},
+      {"ws/rgbd/m0/000000_color.png", "corrected colour at the pattern instant"},
+      {"ws/rgbd/m0/000000_depth_preview.png", "its depth map"},
+      {"ws/registration/graph.png", "the pose graph"},
+      {"ws/evaluation/rgbd/colour_montage.png", "captured | corrected | true albedo"},
+      {"ws/evaluation/*/evaluation.json", "the figures above"},
+      {"ws/workspace.json", "options, stages done, seconds"}};
+  size_t width = html.string().size();
+  for (const auto& item : kLookAt) width = std::max(width, (dir / item.first).string().size());
+  fmt::print("look at:\n  {:<{}}  the inspection report (any browser, offline)\n", html.string(),
+             width);
+  for (const auto& [path, what] : kLookAt)
+    fmt::print("  {:<{}}  {}\n", (dir / path).string(), width, what);
+}
+
 int RunDemo(const DemoArgs& a) {
   const auto start = Clock::now();
   const fs::path dir = a.out, run = dir / "run", ws = dir / "ws";
@@ -131,24 +155,7 @@ int RunDemo(const DemoArgs& a) {
   fmt::print(
       "\n== demo: done in {:.1f} s ({} threads; peak memory {:.2f} GB): {}, evaluate {:.1f} s\n",
       SecondsSince(start), a.threads, PeakMemoryGb(), times, evaluate_s);
-  const std::string d = dir.string();
-  fmt::print("look at:\n");
-  fmt::print("  {}    the inspection report (any browser, offline)\n", page.html.string());
-  fmt::print("  {}/ws/model/preview.png            the unrolled pipe: texture over displacement\n",
-             d);
-  fmt::print("  {}/ws/model/mesh.glb               the displaced 3D model (any glTF viewer)\n", d);
-  fmt::print("  {}/ws/model/mesh.obj               the textured cylinder (MeshLab, Blender)\n", d);
-  fmt::print("  {}/ws/inspection/observations.csv  EN 13508-2 observations (crops/: their maps)\n",
-             d);
-  fmt::print("  {}/ws/evaluation/model/error_map.png  the model against the true wall\n", d);
-  fmt::print("  {}/run/truth/overview.png          the unrolled pipe and every image's footprint\n",
-             d);
-  fmt::print("  {}/ws/rgbd/m0/000000_color.png     corrected colour at the pattern instant\n", d);
-  fmt::print("  {}/ws/rgbd/m0/000000_depth_preview.png  its depth map\n", d);
-  fmt::print("  {}/ws/registration/graph.png       the pose graph\n", d);
-  fmt::print("  {}/ws/evaluation/rgbd/colour_montage.png  captured | corrected | true albedo\n", d);
-  fmt::print("  {}/ws/evaluation/*/evaluation.json  the figures above\n", d);
-  fmt::print("  {}/ws/workspace.json               options, stages done, seconds\n", d);
+  PrintLookAt(dir, page.html);
   return 0;
 }
 
