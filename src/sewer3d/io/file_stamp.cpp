@@ -11,8 +11,9 @@
 namespace sewer3d {
 namespace {
 
+// Nanoseconds since the Unix epoch (libstdc++'s file clock counts from another epoch).
 std::int64_t ModificationTimeNs(const std::filesystem::path& path, std::error_code& ec) {
-  const auto time = std::filesystem::last_write_time(path, ec);
+  const auto time = std::chrono::file_clock::to_sys(std::filesystem::last_write_time(path, ec));
   return std::chrono::duration_cast<std::chrono::nanoseconds>(time.time_since_epoch()).count();
 }
 

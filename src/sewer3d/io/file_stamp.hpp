@@ -11,7 +11,7 @@ namespace sewer3d {
 
 struct FileStamp {
   std::uintmax_t bytes = 0;
-  std::int64_t mtime_ns = 0;  ///< since the file clock's epoch
+  std::int64_t mtime_ns = 0;  ///< modification time, since the Unix epoch
   std::uint64_t hash = 0;     ///< of the whole content (ContentHash)
 };
 

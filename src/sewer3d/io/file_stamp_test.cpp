@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -47,6 +49,11 @@ TEST_F(FileStampTest, SameFileMatchesAReplacedOneDoesNot) {
   WriteTextFile(file, "pattern image of counter 0");
   const FileStamp stamp = StampFile(file);
   EXPECT_EQ(stamp.bytes, 26u);
+  // Unix time: the file was written a moment ago (the file system's clock is the system's).
+  const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                  std::chrono::system_clock::now().time_since_epoch())
+                                  .count();
+  EXPECT_LT(std::abs(stamp.mtime_ns - now_ns), std::int64_t{60'000'000'000});
   EXPECT_TRUE(StillStamped(stamp, file));
   // Same size, other bytes, other time: a replaced image.
   WriteTextFile(file, "pattern image of counter 1");
