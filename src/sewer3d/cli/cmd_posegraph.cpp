@@ -66,6 +66,17 @@ void WarnOfDisagreement(const std::string& in, double final_cost, size_t edges) 
              in, chi2);
 }
 
+// Why the optimised poses are no result, or "": the optimisation failed, or some poses have no
+// chain of edges to a fixed node and are whatever the file said.
+std::string WhyNotWritten(const PoseGraphReport& r) {
+  if (!r.usable)
+    return fmt::format("optimisation did not give a usable solution ({})", r.termination);
+  if (r.unanchored_nodes == 0) return "";
+  return fmt::format(
+      "{} of {} nodes have no chain of edges to a fixed node, so their poses are not determined",
+      r.unanchored_nodes, r.nodes);
+}
+
 }  // namespace
 
 Command AddPoseGraphCommand(CLI::App& app) {
@@ -133,20 +144,10 @@ Command AddPoseGraphCommand(CLI::App& app) {
             // Poses without a chain of edges to a fixed node are whatever the file said.
             fmt::print("usable      {}\n", r.usable && r.unanchored_nodes == 0 ? "yes" : "no");
             if (options.certify) PrintCertificate(r);
-            if (!r.usable) {  // nothing written: a file at --out would pass for a result
-              std::fflush(stdout);
-              fmt::print(stderr,
-                         "sewer3d: error: {}: optimisation did not give a usable solution ({}); "
-                         "{} not written\n",
-                         args->in, r.termination, args->out);
-              return 1;
-            }
-            if (r.unanchored_nodes > 0) {  // their poses are whatever the file said
-              std::fflush(stdout);
-              fmt::print(stderr,
-                         "sewer3d: error: {}: {} of {} nodes have no chain of edges to a fixed "
-                         "node, so their poses are not determined; {} not written\n",
-                         args->in, r.unanchored_nodes, r.nodes, args->out);
+            if (const std::string why = WhyNotWritten(r); !why.empty()) {
+              std::fflush(stdout);  // a file at --out would pass for a result
+              fmt::print(stderr, "sewer3d: error: {}: {}; {} not written\n", args->in, why,
+                         args->out);
               return 1;
             }
             if (r.termination.rfind("NO_CONVERGENCE", 0) == 0) {  // usable, not the optimum
