@@ -36,7 +36,54 @@ size_t EditDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+// At most the last 30 characters of text[from, end) with each run of white space as one space
+// and other control characters as '?': what the reader had read when it stopped.
+std::string TextBefore(const std::string& text, std::size_t from, std::size_t end) {
+  std::string near;
+  for (std::size_t i = from; i < end; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const bool space = c == ' ' || c == '\t' || c == '\r' || c == '\n';
+    if (space && (near.empty() || near.back() == ' ')) continue;
+    near += space ? ' ' : c < 0x20 ? '?' : static_cast<char>(c);
+  }
+  if (near.size() > 30) near = "…" + near.substr(near.size() - 30);
+  return near;
+}
+
 }  // namespace
+
+std::string JsonSyntaxProblem(const std::string& text, std::size_t byte, const std::string& what) {
+  const std::size_t bom = text.starts_with("\xEF\xBB\xBF") ? 3 : 0;
+  const std::size_t first = text.find_first_not_of(" \t\r\n", bom);
+  if (first != std::string::npos && text[first] != '{' && text[first] != '[') {
+    const std::size_t line_end = std::min(text.find_first_of("\r\n", first), first + 20);
+    const std::string begin = TextBefore(text, first, std::min(text.size(), line_end));
+    return "is not JSON (it begins with \"" + begin + "\"; a JSON file begins with '{')";
+  }
+  // nlohmann counts the byte it stopped at from 1; the line and column from it.
+  const std::size_t at = std::min(text.size(), byte > 0 ? byte - 1 : 0);
+  const std::size_t line = 1 + std::count(text.begin(), text.begin() + at, '\n');
+  const std::size_t line_start = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
+  const std::size_t column = at - (line_start == std::string::npos ? 0 : line_start + 1) + 1;
+  std::string reason;
+  if (what.find("unexpected end of input") != std::string::npos) {
+    reason = "the file ends inside an object, array or string (cut short?)";
+  } else if (what.find("control character") != std::string::npos) {
+    reason = "a string holds a raw line break or control character (a quote missing?)";
+  } else if (what.find("object key") != std::string::npos) {
+    reason = "a member name must follow, in double quotes (a comma too many, or single quotes?)";
+  } else if (what.find("invalid literal") != std::string::npos) {
+    reason = "not a JSON value (JSON has no comments, single quotes or bare words)";
+  } else {
+    const std::size_t dash = what.find(" - ");
+    reason = dash == std::string::npos ? "syntax error" : what.substr(dash + 3);
+    reason = reason.substr(0, reason.find("; last read"));
+  }
+  const std::string found = at < text.size() ? "'" + TextBefore(text, at, at + 1) + "'" : "the end";
+  return "invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
+         " (" + found + " after \"" + TextBefore(text, at > 60 ? at - 60 : 0, at) +
+         "\"): " + reason;
+}
 
 void JsonReader::Fail(const std::string& field, const std::string& problem) const {
   throw FileError(path_, "field '" + field + "' " + problem);
@@ -76,11 +123,12 @@ JsonReader::json JsonReader::ParseObject(const std::string& text) const {
   };
   try {
     j = json::parse(text, check);
-  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e400
-    // Without nlohmann's "[json.exception...] " prefix (through "parse error at ...: ").
+  } catch (const json::parse_error& e) {
+    throw FileError(path_, JsonSyntaxProblem(text, e.byte, e.what()));
+  } catch (const json::exception& e) {  // out_of_range for a number like 1e400
+    // Without nlohmann's "[json.exception...] " prefix.
     const std::string what = e.what();
-    auto cut = what.find(": ");
-    if (cut == std::string::npos) cut = what.find("] ");
+    const auto cut = what.find("] ");
     throw FileError(path_,
                     "invalid JSON: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
   }

@@ -84,6 +84,11 @@ class JsonReader {
 /// given where another kind belongs.
 std::string KnownFileKind(const nlohmann::json& j);
 
+/// A readable account of a JSON syntax error nlohmann stopped at (`byte`, counted from 1, and
+/// its message `what`): the line and column, the text before it and what JSON wanted there; for
+/// a file that does not begin like JSON at all (a CSV, an image) just that.
+std::string JsonSyntaxProblem(const std::string& text, std::size_t byte, const std::string& what);
+
 /// The JSON form JsonReader::Pose reads, over the members `j` already holds.
 nlohmann::json PoseToJson(const Rigid3d& pose, nlohmann::json j = nlohmann::json::object());
 
