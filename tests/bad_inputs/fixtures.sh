@@ -134,6 +134,7 @@ json_with frame8/scene.json scene_bits16.json 'render.bits=16'
 json_with frame8/scene.json scene_dist_tiny.json 'scene.distance_mm=0.001'
 json_with frame8/scene.json scene_f0.json 'render.camera_f_number=0'
 json_with frame8/scene.json scene_module_gone.json 'module="gone/module.json"'
+json_with frame8/scene.json scene_sensor_tiny.json 'render.sensor_width_mm=1e-6'
 json_with fpw/scene.json scene_type_plane.json 'scene.type="plane"'
 json_with fpw/scene.json scene_pit_deep.json 'scene.features.2.depth_mm=1e6'
 printf '{"type": "cylinder", "diameter_mm": 1e400}' >scene_overflow.json

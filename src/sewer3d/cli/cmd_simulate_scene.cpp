@@ -117,7 +117,6 @@ Scene FileScene(const FrameArgs& a, const CLI::App& frame, RenderOptions& option
     }
   }
   Scene scene = ReadScene(file);
-  WarnOfOtherModule(file, a.module);
   if (ReadSceneRenderOptions(file, options)) {
     if (frame.count("--seed")) options.seed = a.render.seed;
     if (frame.count("--supersampling")) options.supersampling = a.render.supersampling;
@@ -125,6 +124,7 @@ Scene FileScene(const FrameArgs& a, const CLI::App& frame, RenderOptions& option
     if (frame.count("--speed-mm-s")) options.speed_mm_s = a.render.speed_mm_s;
     if (frame.count("--exposure-ms")) options.exposure_ms = a.render.exposure_ms;
   }
+  WarnOfOtherModule(file, a.module);  // once the file is known good: an error is one line
   return scene;
 }
 

@@ -215,8 +215,9 @@ void RenderOptions::Check() const {
   };
   SEWER3D_VALIDATE(supersampling >= 1 && supersampling <= 16, "supersampling",
                    "must be 1..16, got " << supersampling);
-  SEWER3D_VALIDATE(sensor_width_mm > 0.0 && sensor_width_mm <= 100.0, "sensor_width_mm",
-                   "must be > 0 and at most 100 mm, got " << sensor_width_mm);
+  // It sets the pixel pitch, so the apertures' blur: the smallest camera chips are about 1 mm
+  // wide, the largest 40.
+  within("sensor_width_mm", sensor_width_mm, 0.5, 100.0);
   // 0: a pinhole (RenderOptions::Ideal); a lens is f/0.5 or slower.
   for (const auto& [field, f_number] : {std::pair{"camera_f_number", camera_f_number},
                                         std::pair{"projector_f_number", projector_f_number}}) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -90,7 +91,11 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
       if (!type) in.Fail(prefix + "type", "must be joint, bump, pit or crack, got '" + kind + "'");
       ft.type = *type;  // Scene::Check rejects the kinds only a pipe world takes
       ft.station_mm = in.Number(f, "station_mm", prefix, 0.0);
-      ft.clock_h = ClockDegToHours(in.Number(f, "clock_deg", prefix, 0.0));
+      // The file's angle, in the file's unit: Scene::Check's ±12 h would name clock_h.
+      const double clock_deg = in.Number(f, "clock_deg", prefix, 0.0);
+      if (!(std::abs(clock_deg) <= 360.0))
+        in.Fail(prefix + "clock_deg", fmt::format("must be within ±360°, got {:g}", clock_deg));
+      ft.clock_h = ClockDegToHours(clock_deg);
       ft.gap_mm = in.Number(f, "gap_mm", prefix, 0.0);
       ft.offset_mm = in.Number(f, "offset_mm", prefix, 0.0);
       ft.radius_mm = in.Number(f, "radius_mm", prefix, 0.0);
@@ -138,7 +143,15 @@ bool ReadSceneRenderOptions(const std::filesystem::path& path, RenderOptions& op
 
 std::string ReadSceneModule(const std::filesystem::path& path) {
   const JsonReader in(path);
-  return in.Text(in.ParseObject(ReadTextFile(path)), "module", "", "");
+  const std::filesystem::path named = in.Text(in.ParseObject(ReadTextFile(path)), "module", "", "");
+  if (named.empty() || named.is_absolute()) return named.string();
+  // Relative to the scene file; files written before that named it from the folder they were
+  // rendered in.
+  const std::filesystem::path beside = path.parent_path() / named;
+  std::error_code ec;
+  return std::filesystem::exists(beside, ec) || !std::filesystem::exists(named, ec)
+             ? beside.lexically_normal().string()
+             : named.string();
 }
 
 std::string SceneToJson(const Scene& s) {
@@ -208,7 +221,11 @@ void WriteRenderedFrame(const std::filesystem::path& dir, const RenderedFrame& f
   json doc;
   doc["scene"] = json::parse(SceneToJson(scene));
   doc["seed"] = o.seed;
-  doc["module"] = module_path.string();
+  // Relative to the scene file, as a scenario's module is: the folder can move with its module.
+  std::error_code ec;
+  const std::filesystem::path relative = std::filesystem::relative(module_path, dir, ec);
+  doc["module"] =
+      (ec || relative.empty() ? std::filesystem::absolute(module_path) : relative).generic_string();
   doc["render"] = RenderOptionsToJson(o);
   doc["depth_range_mm"] = {lo, hi};
   WriteTextFile(dir / "scene.json", doc.dump(2) + "\n");

@@ -18,8 +18,9 @@ std::string SceneToJson(const Scene& scene);
 /// A scene file's "render" member (a rendered frame's scene.json has one) read over `options`;
 /// false (options unchanged) when the file has none. FileError naming the field when invalid.
 bool ReadSceneRenderOptions(const std::filesystem::path& path, RenderOptions& options);
-/// The module a rendered frame's scene.json names (its "module" member, as given to `simulate
-/// frame`); empty when the file names none. FileError when the member is not a string.
+/// The module a rendered frame's scene.json names (its "module" member, relative to the file's
+/// folder), as a path to open from here; empty when the file names none. FileError when the
+/// member is not a string.
 std::string ReadSceneModule(const std::filesystem::path& path);
 
 /// The pattern image as stored: 8-bit grey, or 16-bit holding the DN when bits > 8.
