@@ -120,4 +120,9 @@ void CheckNotInARun(const std::filesystem::path& folder, const char* flag) {
   }
 }
 
+void CheckFileNotInARun(const std::filesystem::path& file, const char* flag) {
+  const std::filesystem::path folder = file.parent_path();
+  CheckNotInARun(folder.empty() ? std::filesystem::path(".") : folder, flag);
+}
+
 }  // namespace sewer3d::cli

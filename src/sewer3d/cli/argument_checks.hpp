@@ -34,5 +34,8 @@ CLI::Validator FileNameEnding(const std::string& extension, const std::string& w
 /// Throws InvalidValue naming `flag` when `folder` is a capture run's folder or lies inside one
 /// (a run.json there or above): outputs there would mix with the run as captured.
 void CheckNotInARun(const std::filesystem::path& folder, const char* flag);
+/// CheckNotInARun for the folder an output file `file` goes to (the working folder for a bare
+/// name).
+void CheckFileNotInARun(const std::filesystem::path& file, const char* flag);
 
 }  // namespace sewer3d::cli

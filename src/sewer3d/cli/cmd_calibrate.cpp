@@ -8,6 +8,7 @@
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/chessboard.hpp"
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/calibrate_commands.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/io/atomic_file.hpp"
@@ -29,6 +30,7 @@ struct CameraArgs {
 
 int RunCamera(const CameraArgs& a) {
   const auto board_size = ParseSize(a.board);
+  CheckFileNotInARun(a.out, "--out");
   CheckOutputFile(a.out);
   for (const std::string& image : a.images) CheckNotAnInput(a.out, image, "--images");
   CameraCalibrationFile file;

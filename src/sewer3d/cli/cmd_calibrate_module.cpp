@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sewer3d/calib/module_from_captures.hpp"
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/calibrate_commands.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
@@ -53,6 +54,7 @@ void CheckBoardFile(const fs::path& captures, const BoardLayout& layout) {
 
 int RunModule(const ModuleArgs& a) {
   const auto board_size = ParseSize(a.board);
+  CheckFileNotInARun(a.out, "--out");
   CheckOutputFile(a.out);  // before minutes of work
   // pattern.png is written beside the module file: they must be two files.
   if (fs::path(a.out).filename() == "pattern.png")

@@ -111,9 +111,11 @@ Command AddPatternCommand(CLI::App& app) {
                                       {"window", "--window"},
                                       {"rows", "--rows"},
                                       {"cols", "--cols"},
+                                      {"rows, cols", "--rows, --cols"},
                                       {"max_moves", "--max-moves"}});
             }
             // Both outputs checked before the search: a refusal leaves neither written.
+            CheckFileNotInARun(args->out, "--out");
             CheckNotAModulesMatrix(args->out);
             CheckOutputFile(args->out);
             CheckOutputFile(PatternSidecarPath(args->out));

@@ -306,7 +306,9 @@ double DistinctWindows(int n, int min_weight, bool isolated) {
 void SubmapSearchOptions::Check() const {
   constraints.Check();
   const int n = constraints.window;
-  SEWER3D_VALIDATE(rows >= n && cols >= n, "rows",
+  // The field that is too small (both when both are).
+  const char* small = rows < n && cols < n ? "rows, cols" : rows < n ? "rows" : "cols";
+  SEWER3D_VALIDATE(rows >= n && cols >= n, small,
                    "the array (" << rows << "x" << cols << ") must be at least the window (" << n
                                  << "x" << n << ")");
   SEWER3D_VALIDATE(static_cast<std::int64_t>(rows) * cols <= kMaxPatternElements, "cols",
