@@ -2,6 +2,7 @@
 // a cloud (cmd_evaluate_surface.cpp); rgbd, registration, model and inspection judge a stage
 // on a simulated run (cmd_evaluate_rgbd.cpp, cmd_evaluate_registration.cpp, ...).
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,15 @@ Command AddEvaluateCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1, 101));
   sub->add_option("--workspace", args->workspace,
-                  "rgbd, registration, model, inspection: the processing workspace WS");
+                  "rgbd, registration, model, inspection: the processing workspace WS")
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            std::error_code ec;
+            return std::filesystem::exists(s, ec) && !std::filesystem::is_directory(s, ec)
+                       ? s + " is a file; give the workspace folder (the --out of process)"
+                       : std::string();
+          },
+          "WS"));
   sub->add_option(
       "--out", args->out,
       "rgbd, registration, model, inspection: folder for evaluation.json and pictures (default "

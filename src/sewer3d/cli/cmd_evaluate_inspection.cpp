@@ -51,12 +51,18 @@ int RunEvaluateInspection(const std::string& run_folder, const std::string& work
   for (const std::string& id : o.invented) fmt::print("  invented: {}\n", id);
   for (const TrueItemMatch& m : o.items) PrintItem(m);
   const ProfileEvaluation& p = e.profile;
-  fmt::print(
-      "profile against the true rings over {} clean stations: circumference |error| median "
-      "{:.3f} %, max {:.3f} %; ovality (EN) |error| median {:.3f}, max {:.3f} points; ASTM max "
-      "{:.3f} points\n",
-      p.clean_rows, p.circumference_pct.median, p.circumference_pct.max, p.ovality_en_pct.median,
-      p.ovality_en_pct.max, p.ovality_astm_pct.max);
+  if (p.clean_rows == 0) {
+    fmt::print(
+        "profile against the true rings: not measured (no clean station: none measured all round "
+        "at least 50 mm from every joint and feature)\n");
+  } else {
+    fmt::print(
+        "profile against the true rings over {} clean stations: circumference |error| median "
+        "{:.3f} %, max {:.3f} %; ovality (EN) |error| median {:.3f}, max {:.3f} points; ASTM max "
+        "{:.3f} points\n",
+        p.clean_rows, p.circumference_pct.median, p.circumference_pct.max, p.ovality_en_pct.median,
+        p.ovality_en_pct.max, p.ovality_astm_pct.max);
+  }
   fmt::print("wrote {}\n", (folder / "evaluation.json").string());
   return 0;
 }

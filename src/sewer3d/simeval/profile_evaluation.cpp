@@ -126,9 +126,13 @@ ProfileEvaluation EvaluateProfileAgainstTruth(const Profile& profile, const Cent
 std::string ProfileEvaluationToJson(const ProfileEvaluation& e) {
   // NaN is not JSON: a missing error is null.
   const auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; };
-  const auto summary = [](const AbsErrorSummary& s) {
-    return nlohmann::json{
-        {"rows", s.rows}, {"median_abs", s.median}, {"p95_abs", s.p95}, {"max_abs", s.max}};
+  // Over no row there is no error to give: null, not 0.
+  const auto summary = [&number](const AbsErrorSummary& s) {
+    const auto value = [&](double x) { return s.rows > 0 ? number(x) : nullptr; };
+    return nlohmann::json{{"rows", s.rows},
+                          {"median_abs", value(s.median)},
+                          {"p95_abs", value(s.p95)},
+                          {"max_abs", value(s.max)}};
   };
   nlohmann::json rows = nlohmann::json::array();
   for (const ProfileRowEvaluation& r : e.rows) {

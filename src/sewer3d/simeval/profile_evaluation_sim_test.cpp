@@ -146,6 +146,13 @@ TEST(ProfileEvaluation, PlantedDisplacementShowsAsCircumferenceAndHeightError) {
   EXPECT_EQ(json["rows"].size(), profile.rows.size());
 }
 
+TEST(ProfileEvaluation, NoCleanStationGivesNullErrorsNotZeros) {
+  const auto json = nlohmann::json::parse(ProfileEvaluationToJson(ProfileEvaluation{}));
+  EXPECT_EQ(json["clean_rows"].get<int>(), 0);
+  for (const char* field : {"median_abs", "p95_abs", "max_abs"})
+    EXPECT_TRUE(json["circumference_pct"][field].is_null()) << field;
+}
+
 TEST(ProfileEvaluation, OptionsAreChecked) {
   ProfileEvaluationOptions o;
   o.ring_directions = 4;
