@@ -34,6 +34,12 @@ std::string CloudUnitsProblem(const CameraCloudFacts& facts) {
         "metres?)",
         facts.extent_mm);
   }
+  if (facts.median_distance_mm < 30.0) {
+    return fmt::format(
+        "the points lie {:.3g} mm from the camera (median), nearer than a module measures (75 "
+        "to 225 mm): coordinates are read as millimetres (is the cloud in centimetres?)",
+        facts.median_distance_mm);
+  }
   if (facts.median_distance_mm > 1e4) {
     return fmt::format(
         "the points lie {:.3g} m from the camera (median), far beyond any module's reach: "

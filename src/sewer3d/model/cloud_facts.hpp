@@ -23,7 +23,8 @@ CameraCloudFacts DescribeCameraCloud(const std::vector<Eigen::Vector3d>& points)
 
 /// Why the coordinates are probably not millimetres, or empty. A wall seen by a module spans
 /// tens of millimetres at a few hundred from the camera: a cloud under 5 mm across was most
-/// likely written in metres, one over 10 m away (median) in micrometres.
+/// likely written in metres, one nearer than 30 mm (median) in centimetres, one over 10 m away
+/// in micrometres.
 std::string CloudUnitsProblem(const CameraCloudFacts& facts);
 
 }  // namespace sewer3d

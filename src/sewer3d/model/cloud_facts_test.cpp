@@ -29,9 +29,11 @@ TEST(CameraCloudFacts, MeasuresExtentDistanceAndPointsBehind) {
   EXPECT_EQ(CloudUnitsProblem(facts), "");
 }
 
-TEST(CameraCloudFacts, TellsMetresAndMicrometresApart) {
+TEST(CameraCloudFacts, TellsMetresCentimetresAndMicrometresApart) {
   const auto metres = CloudUnitsProblem(DescribeCameraCloud(Wall(1e-3)));
   EXPECT_NE(metres.find("in metres?"), std::string::npos) << metres;
+  const auto centimetres = CloudUnitsProblem(DescribeCameraCloud(Wall(0.05)));
+  EXPECT_NE(centimetres.find("in centimetres?"), std::string::npos) << centimetres;
   const auto far = DescribeCameraCloud(Wall(1e3));
   EXPECT_NEAR(far.median_distance_mm, 1e3 * DescribeCameraCloud(Wall(1.0)).median_distance_mm,
               1e-6 * far.median_distance_mm);
