@@ -46,6 +46,13 @@ CaptureOutcome ModuleCalibrator::AddCapture(const cv::Mat1b& texture_grey,
     return outcome;
   }
   outcome.corners = static_cast<int>(corners->size());
+  std::vector<CalibrationView> used;
+  for (const ModuleCalibrationView& v : views_) used.push_back({v.camera_corners});
+  if (const int same = RepeatedView(used, {*corners}); same >= 0) {
+    outcome.status = CaptureOutcome::Status::kRepeated;
+    outcome.repeats = same;
+    return outcome;
+  }
   const std::vector<CodedObservation> observations =
       CodedObservations(decoder_.Decode(pattern_image));
   // Each decoded spot's projector element centre: exact, unlike the spot's camera centre.

@@ -41,8 +41,10 @@ struct CaptureOutcome {
     kUsed,
     kBoardNotFound,      ///< the whole board was not found in the texture image
     kCornersNotCarried,  ///< some corners have too few decoded spots around them
+    kRepeated,           ///< the board lies where it did in a capture already used
   };
   Status status = Status::kUsed;
+  int repeats = -1;         ///< kRepeated: the capture used before (0-based, in order of use)
   int corners = 0;          ///< board corners (0 when the board was not found)
   int corners_missing = 0;  ///< corners that could not be carried into the projector
   int spots_decoded = 0;    ///< spots with a projector element (0 when the board was not found)
@@ -71,7 +73,9 @@ class ModuleCalibrator {
 
   /// One pose: `texture_grey` with the board lit (projector off), `pattern_image` (8- or
   /// 16-bit grey, projector on), both the nominal camera's size (else std::invalid_argument).
-  /// The pose is used only when every corner is found and carried into the projector.
+  /// The pose is used only when every corner is found and carried into the projector, and the
+  /// board does not lie where it did in a pose already used (the same capture twice adds nothing
+  /// but weight).
   CaptureOutcome AddCapture(const cv::Mat1b& texture_grey, const cv::Mat& pattern_image);
 
   /// Captures kept so far (the views of Calibrate, in the order they were added).

@@ -69,6 +69,7 @@ TEST(ModuleCalibrator, TwoPassesRecoverTheTrueModuleFromRenderedCaptures) {
   const std::vector<Rigid3d> poses = RandomBoardPoses(truth, board, count, 1);
   ModuleCalibrator calibrator(truth, pattern, PatternConstraints{},
                               BoardLayout{board.cols, board.rows, board.square_mm});
+  cv::Mat1b first_texture, first_pattern;  // the first capture used, given again below
   for (int i = 0; i < count; ++i) {
     const BoardSurface surface(board, poses[i]);
     RenderOptions o;
@@ -91,7 +92,17 @@ TEST(ModuleCalibrator, TwoPassesRecoverTheTrueModuleFromRenderedCaptures) {
     EXPECT_NE(outcome.status, CaptureOutcome::Status::kBoardNotFound) << "pose " << i;
     EXPECT_EQ(outcome.corners, board.cols * board.rows) << "pose " << i;
     EXPECT_EQ(outcome.status == CaptureOutcome::Status::kUsed, outcome.corners_missing == 0);
+    if (outcome.status == CaptureOutcome::Status::kUsed && first_texture.empty()) {
+      first_texture = texture_grey;
+      first_pattern = pattern8;
+    }
   }
+  // The same capture again adds nothing: refused as a repeat of the first one used.
+  const int used = calibrator.captures_used();
+  const CaptureOutcome again = calibrator.AddCapture(first_texture, first_pattern);
+  EXPECT_EQ(again.status, CaptureOutcome::Status::kRepeated);
+  EXPECT_EQ(again.repeats, 0);
+  EXPECT_EQ(calibrator.captures_used(), used);
   RecordProperty("captures_used", calibrator.captures_used());
   ASSERT_GE(calibrator.captures_used(), count / 2);
   const ModuleFromCapturesResult r = calibrator.Calibrate();

@@ -92,6 +92,11 @@ std::vector<std::string> AddCaptures(ModuleCalibrator& calibrator,
                  pose.string(), outcome.corners_missing, outcome.corners);
       continue;
     }
+    if (outcome.status == CaptureOutcome::Status::kRepeated) {
+      fmt::print("{}: the board lies where it did in {}, skipped\n", pose.string(),
+                 used[static_cast<std::size_t>(outcome.repeats)]);
+      continue;
+    }
     used.push_back(pose.filename().string());
     bar.Update("calibrate module", static_cast<int>(used.size()), static_cast<int>(poses.size()),
                "poses");
