@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <utility>
 
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/csv.hpp"
@@ -145,6 +147,35 @@ bool IsMainCode(const std::string& code) {
   return code[2] >= 'A' && code[2] <= last[code[1] - 'A'];
 }
 
+// Why `characterisation` cannot be that of `code`, or "": EN 13508-2 gives BAJ A (longitudinal),
+// B (radial), C (angular) and BAA A (vertical), B (horizontal); any code at most two capitals.
+std::string CharacterisationProblem(const std::string& code, const std::string& characterisation) {
+  const std::string allowed = code == "BAJ" ? "ABC" : code == "BAA" ? "AB" : "";
+  if (!allowed.empty() && !characterisation.empty() &&
+      (characterisation.size() != 1 || allowed.find(characterisation[0]) == std::string::npos)) {
+    std::string letters;
+    for (std::size_t k = 0; k < allowed.size(); ++k)
+      letters += (k == 0 ? "" : k + 1 == allowed.size() ? " or " : ", ") + allowed.substr(k, 1);
+    return "'" + characterisation + "' is not a characterisation of " + code + " (" + letters + ")";
+  }
+  const bool capitals = std::all_of(characterisation.begin(), characterisation.end(),
+                                    [](char c) { return c >= 'A' && c <= 'Z'; });
+  if (characterisation.size() > 2 || !capitals)
+    return "'" + characterisation + "' is not an EN 13508-2 characterisation (1 or 2 capitals)";
+  return "";
+}
+
+// The unit a quantity's name implies (offset_mm: mm), or "" for a name without a known suffix.
+std::string UnitOfName(const std::string& name) {
+  constexpr std::pair<const char*, const char*> kSuffixes[] = {{"_mm", "mm"},   {"_mm2", "mm2"},
+                                                               {"_pct", "%"},   {"_pct_of_dn", "%"},
+                                                               {"_deg", "deg"}, {"_h", "h"}};
+  for (const auto& [suffix, unit] : kSuffixes) {
+    if (name.ends_with(suffix)) return unit;
+  }
+  return "";
+}
+
 Observation ReadObservation(const JsonReader& in, const json& j, const std::string& p) {
   if (!j.is_object()) in.Fail(p.substr(0, p.size() - 1), "must be an object");
   in.OnlyKnown(
@@ -159,6 +190,10 @@ Observation ReadObservation(const JsonReader& in, const json& j, const std::stri
             "'" + o.code + "' is not an EN 13508-2 main code (BAA-BAP, BBA-BBH, BCA-BCE, BDA-BDG)");
   }
   o.characterisation = in.Text(j, "characterisation", p, "");
+  if (const std::string problem = CharacterisationProblem(o.code, o.characterisation);
+      !problem.empty()) {
+    in.Fail(p + "characterisation", problem);
+  }
   o.station_mm = InRange(in, j, "station_mm", p, -1e9, 1e9);  // as model.json's stations
   o.length_mm = InRange(in, j, "length_mm", p, 0.0, 1e9);
   o.clock_h = InRange(in, j, "clock_h", p, 0.0, 12.0);
@@ -174,6 +209,12 @@ Observation ReadObservation(const JsonReader& in, const json& j, const std::stri
     in.OnlyKnown(quantities[i], q, {"name", "value", "unit"});
     o.quantities.push_back({in.Text(quantities[i], "name", q), in.Number(quantities[i], "value", q),
                             in.Text(quantities[i], "unit", q, "")});
+    const Quantity& read = o.quantities.back();
+    const std::string implied = UnitOfName(read.name);
+    if (!implied.empty() && !read.unit.empty() && read.unit != implied) {
+      in.Fail(q + "unit", "'" + read.unit + "' contradicts the quantity's name " + read.name +
+                              " (" + implied + ")");
+    }
   }
   const json& crop = in.RequiredObject(j, "crop", p);
   const std::string c = p + "crop.";

@@ -215,6 +215,12 @@ TEST_F(InspectionIoTest, BadObservationsJsonNamesTheField) {
   expect_error("sewer3d-observations", "sewer3d-features", "format");
   expect_error("\"station_mm\": 700.0", "\"station_mm\": 1e308", "observations[1].station_mm");
   expect_error("\"id\": \"O2\"", "\"id\": \"O1\"", "observations[1].id");
+  // A unit the name contradicts (a 4 mm offset read as 4 m), a characterisation BAJ has not.
+  expect_error("\"unit\": \"mm\"", "\"unit\": \"m\"", "observations[0].quantities[0].unit");
+  expect_error("\"characterisation\": \"B\"", "\"characterisation\": \"ZZ\"",
+               "observations[0].characterisation");
+  expect_error("\"characterisation\": \"B\"", "\"characterisation\": \"b\"",
+               "observations[0].characterisation");
 }
 
 TEST_F(InspectionIoTest, ObservationsCsvHasOneQuotedLinePerObservation) {
