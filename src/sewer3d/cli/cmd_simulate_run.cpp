@@ -59,6 +59,14 @@ int RunRun(const RunArgs& a) {
     LoadedModule loaded = LoadModule(module_file);
     module = loaded.module;
     pattern = loaded.pattern;
+    // RUN/truth/scenario.json reproduces the run: it names the module used (--module included),
+    // from its own folder.
+    std::error_code ec;
+    const std::filesystem::path truth = std::filesystem::absolute(a.out) / "truth";
+    const std::filesystem::path relative =
+        std::filesystem::relative(std::filesystem::absolute(module_file), truth, ec);
+    s.module_file = (ec || relative.empty() ? std::filesystem::absolute(module_file) : relative)
+                        .generic_string();
   } else {
     DefaultModuleOptions options;
     options.camera_width = s.camera_width;
