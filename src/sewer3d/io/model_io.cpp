@@ -1,7 +1,9 @@
 #include "sewer3d/io/model_io.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
 
@@ -9,6 +11,7 @@
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/input_file.hpp"
 #include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/model/mesh.hpp"
 
@@ -76,7 +79,40 @@ PipeMaps AssembleTiles(const std::filesystem::path& model_dir, const PipeModelIn
   return maps;
 }
 
+// FileError unless the PNG at `path` declares grid.cols x grid.rows in its header.
+void CheckPngSize(const std::filesystem::path& path, const MapGrid& grid) {
+  CheckInputFile(path);
+  std::array<char, 64> head{};
+  std::ifstream in(path, std::ios::binary);
+  in.read(head.data(), head.size());
+  const std::vector<std::uint8_t> bytes(head.begin(), head.begin() + in.gcount());
+  const auto size = ImageHeaderSize(bytes);
+  if (!size) throw FileError(path, "not a PNG image (its header is not one)");
+  if (size->width != static_cast<std::uint64_t>(grid.cols) ||
+      size->height != static_cast<std::uint64_t>(grid.rows)) {
+    throw FileError(path, "size " + std::to_string(size->width) + " x " +
+                              std::to_string(size->height) + " is not the map's " +
+                              std::to_string(grid.cols) + " x " + std::to_string(grid.rows));
+  }
+}
+
 }  // namespace
+
+void CheckMapFileSizes(const std::filesystem::path& model_dir, const PipeModelInfo& info) {
+  const auto check = [](const ModelMapFiles& files, const MapGrid& grid) {
+    for (const auto* path : {&files.texture, &files.coverage, &files.samples})
+      CheckPngSize(*path, grid);
+  };
+  if (info.whole_maps) {
+    check(WholeMapFiles(model_dir), info.grid);
+    return;
+  }
+  for (const ModelTile& t : info.tiles) {
+    MapGrid tile_grid = info.grid;
+    tile_grid.rows = t.rows;
+    check(TileMapFiles(model_dir, t.index), tile_grid);
+  }
+}
 
 cv::Mat3b DisplacementView(const cv::Mat1f& displacement_mm, double range_mm) {
   cv::Mat3b view(displacement_mm.size(), cv::Vec3b(0, 0, 0));

@@ -89,6 +89,12 @@ MapFilesReport WriteMapFiles(const ModelMapFiles& files, const PipeMaps& maps,
 /// against `grid`.
 PipeMaps ReadMapFiles(const ModelMapFiles& files, const MapGrid& grid);
 
+/// FileError naming the first PNG map (texture, coverage, samples; whole or of a tile) that is
+/// missing or whose header declares another size than model.json's grid: what ReadMapFiles would
+/// refuse, found without decoding, so that a stage can refuse before it removes its earlier
+/// outputs.
+void CheckMapFileSizes(const std::filesystem::path& model_dir, const PipeModelInfo& info);
+
 /// A run held whole: its map files, then model.json (info.grid = maps.grid, no tiles).
 MapFilesReport WritePipeModel(const std::filesystem::path& model_dir, const Centreline& centreline,
                               const PipeMaps& maps, double start_station_mm,

@@ -189,6 +189,20 @@ TEST_F(ModelIoTest, TilesGiveTheWholeFilesOrStandForThem) {
   ASSERT_EQ(model.info.tiles.size(), 2u);
   EXPECT_EQ(model.info.tiles[1].rows, 35);
   ExpectSameMaps(model.maps, maps_);
+  // The headers agree with model.json; a grid of other rows (an edited model.json) is refused
+  // before any map is decoded, naming the first map.
+  EXPECT_NO_THROW(CheckMapFileSizes(tiled, model.info));
+  PipeModelInfo edited = model.info;
+  edited.tiles[1].rows = 100;
+  try {
+    CheckMapFileSizes(tiled, edited);
+    ADD_FAILURE() << "no error for a tile of 100 rows";
+  } catch (const FileError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("tile_1_texture.png: size 942 x 35 is not the map's 942 x 100"),
+        std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(ModelIoTest, BadModelJsonNamesTheField) {

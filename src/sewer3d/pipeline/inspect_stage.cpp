@@ -119,6 +119,7 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
   }
   // Before BeginStage, which (with --force) removes the earlier inspection.
   CheckNominalDiameter(options.inspect, info.centreline.radius_mm);
+  CheckMapFileSizes(model_dir, info);
   workspace.BeginStage(kStage, InspectOptionsJson(options), options.force);
   const InspectionFiles files = InspectionFilesIn(workspace.folder());
 
