@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <tuple>
 #include <utility>
 
 #include "sewer3d/io/atomic_file.hpp"
@@ -72,6 +73,28 @@ std::vector<RegistrationPoseRow> ReadRegistrationPoses(const std::filesystem::pa
     rows.push_back(r);
   }
   return rows;
+}
+
+std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows) {
+  constexpr double kSlackMm = 500.0, kMaxSpeedMmS = 2000.0;
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
+    return std::tie(a.module, a.time_s, a.counter) < std::tie(b.module, b.time_s, b.counter);
+  });
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const RegistrationPoseRow &a = rows[i - 1], &b = rows[i];
+    if (a.module != b.module) continue;
+    const double apart_mm =
+        (b.world_from_camera.translation - a.world_from_camera.translation).norm();
+    const double dt_s = b.time_s - a.time_s;
+    if (!(apart_mm <= kSlackMm + kMaxSpeedMmS * dt_s)) {
+      return fmt::format(
+          "module {}'s acquisitions {} and {} lie {:.4g} m apart, {:.3g} s apart in time: faster "
+          "than a crawler moves (an edited file, or a registration gone wrong); run register "
+          "again",
+          a.module, a.counter, b.counter, apart_mm / 1000.0, dt_s);
+    }
+  }
+  return "";
 }
 
 int RegistrationVertexId(int module, int counter) { return module * 1000000 + counter; }

@@ -30,6 +30,12 @@ void WriteRegistrationPoses(const std::filesystem::path& path,
                             const std::vector<RegistrationPoseRow>& rows);
 std::vector<RegistrationPoseRow> ReadRegistrationPoses(const std::filesystem::path& path);
 
+/// Why `rows` cannot be one run's poses, or "": two acquisitions of a module, next to each other
+/// in time, whose cameras lie farther apart than a crawler moves (0.5 m plus 2 m/s of their time
+/// difference): an edited poses.csv or a registration gone wrong, which would stretch the model
+/// over the gap.
+std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows);
+
 /// The vertex id of an acquisition in graph.g2o and edges.csv: module · 10⁶ + counter.
 int RegistrationVertexId(int module, int counter);
 

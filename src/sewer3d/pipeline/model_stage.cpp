@@ -48,7 +48,10 @@ std::vector<ModelAcquisition> RegisteredAcquisitions(
   if (!std::filesystem::exists(poses_file))
     throw FileError(poses_file, "missing: run the register stage first");
   std::vector<ModelAcquisition> acquisitions;
-  for (const RegistrationPoseRow& row : ReadRegistrationPoses(poses_file)) {
+  const std::vector<RegistrationPoseRow> rows = ReadRegistrationPoses(poses_file);
+  if (const std::string problem = PoseJumpProblem(rows); !problem.empty())
+    throw FileError(poses_file, problem);
+  for (const RegistrationPoseRow& row : rows) {
     if (row.module < 0 || row.module >= static_cast<int>(run.rig.modules.size()))
       throw FileError(poses_file, "module " + std::to_string(row.module) + " is not in the rig");
     acquisitions.push_back({row.module, row.counter, row.world_from_camera});
