@@ -79,7 +79,14 @@ std::string JsonSyntaxProblem(const std::string& text, std::size_t byte, const s
     reason = dash == std::string::npos ? "syntax error" : what.substr(dash + 3);
     reason = reason.substr(0, reason.find("; last read"));
   }
-  const std::string found = at < text.size() ? "'" + TextBefore(text, at, at + 1) + "'" : "the end";
+  std::string found = "the end";
+  if (at < text.size()) {
+    const auto c = static_cast<unsigned char>(text[at]);
+    found = c == '\n' || c == '\r'  ? "a line break"
+            : c == ' ' || c == '\t' ? "a space"
+            : c < 0x20              ? "a control character"
+                                    : "'" + TextBefore(text, at, at + 1) + "'";
+  }
   return "invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) +
          " (" + found + " after \"" + TextBefore(text, at > 60 ? at - 60 : 0, at) +
          "\"): " + reason;
