@@ -53,6 +53,11 @@ ErrorExit ExitForError(const std::exception_ptr& error) {
   }
 }
 
+int ParseErrorExit(const std::string& message) {
+  static const std::regex file("^\\S+: File (does not exist|is actually a directory): .+$");
+  return std::regex_match(message, file) ? kExitBadFile : kExitUsage;
+}
+
 std::string ReadableParseError(const std::string& message, bool whole) {
   static const std::regex range("^(.*): Value (.*) not in range (\\S+) to (\\S+)$");
   static const std::regex convert("^Could not convert: (\\S+) = (.*)$");

@@ -38,4 +38,8 @@ ErrorExit ExitForError(const std::exception_ptr& error);
 /// received 2" "--axis: takes 3 values, got 2". Any other message comes back unchanged.
 std::string ReadableParseError(const std::string& message, bool whole);
 
+/// The exit code of a CLI11 refusal: kExitBadFile for a file option naming a missing file or a
+/// folder (as a loader's refusal of the same file), kExitUsage for the rest.
+int ParseErrorExit(const std::string& message);
+
 }  // namespace sewer3d::cli

@@ -31,6 +31,11 @@ TEST(ExitCode, BadFileNamesTheFile) {
 }
 
 TEST(ExitCode, RangeRefusalsSayWhatIsExpected) {
+  // A missing input file or a folder is a bad file (3), as the loaders say; the rest usage (2).
+  EXPECT_EQ(ParseErrorExit("--module: File does not exist: nope/module.json"), kExitBadFile);
+  EXPECT_EQ(ParseErrorExit("--images: File is actually a directory: calib"), kExitBadFile);
+  EXPECT_EQ(ParseErrorExit("--module: File does not exist: "), kExitUsage);  // empty value
+  EXPECT_EQ(ParseErrorExit("--rows: Value 12.5 not in range 2 to 4096"), kExitUsage);
   EXPECT_EQ(ReadableParseError("--rows: Value 12.5 not in range 2 to 4096", true),
             "--rows: expected a whole number from 2 to 4096, got 12.5");
   EXPECT_EQ(ReadableParseError("--tilt-deg: Value 9x not in range -80 to 80", false),

@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     fmt::print(
         stderr, "sewer3d: error: {} (see sewer3d --help)\n",
         sewer3d::cli::ReadableParseError(e.what(), sewer3d::cli::TakesWholeNumbers(app, e.what())));
-    return sewer3d::cli::kExitUsage;
+    return sewer3d::cli::ParseErrorExit(e.what());
   }
   if (const auto [option, problem] = sewer3d::cli::BadValue(app); option != nullptr) {
     fmt::print(stderr, "sewer3d: error: invalid value: {}: {}\n", option->get_name(), problem);

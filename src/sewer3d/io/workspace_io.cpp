@@ -60,6 +60,8 @@ WorkspaceRecord WorkspaceFromJson(const std::string& text, const std::filesystem
       stage.done_utc = reader.Text(s, "done_utc", prefix, "");
     stage.software_version = reader.Text(s, "software_version", prefix, "");
     stage.seconds = reader.Number(s, "seconds", prefix, 0.0);
+    if (!(stage.seconds >= 0.0 && stage.seconds <= 1e9))  // a wall time: 0 .. 30 years
+      reader.Fail(prefix + "seconds", "must be 0 to 1e9 (a wall time in seconds)");
     for (const auto& [key, value] : reader.Object(s, "notes", prefix).items()) {
       if (!value.is_string()) reader.Fail(prefix + "notes." + std::string(key), "must be a string");
       stage.notes[key] = value.get<std::string>();

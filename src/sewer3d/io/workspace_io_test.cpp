@@ -76,6 +76,14 @@ TEST(WorkspaceIo, MalformedFilesNameTheField) {
     EXPECT_NE(std::string(e.what()).find("stages.rgbd.options"), std::string::npos) << e.what();
   }
   EXPECT_THROW(WorkspaceFromJson(R"({"format":"other","version":1,"run":"r"})", path), FileError);
+  try {  // an edited wall time is not printed back
+    WorkspaceFromJson(R"({"format":"sewer3d-workspace","version":1,"run":"r",
+                          "stages":{"rgbd":{"options":{},"seconds":-5}}})",
+                      path);
+    FAIL() << "expected FileError";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("stages.rgbd.seconds"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(ReadWorkspaceRecord("/nonexistent/workspace.json"), FileError);
 }
 
