@@ -3,7 +3,10 @@
 #include <fmt/core.h>
 
 #include <filesystem>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <vector>
 
 #include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
@@ -15,6 +18,24 @@
 #include "sewer3d/triangulate/reconstruct_frame.hpp"
 
 namespace sewer3d::cli {
+namespace {
+
+// For a frame that decoded poorly: a question when --image is a colour picture (its channels
+// differ), which a pattern image is not; "" otherwise.
+std::string ColourHint(const std::string& image_file) {
+  const cv::Mat image = ReadImage(image_file, cv::IMREAD_UNCHANGED, kMaxCameraPixels);
+  if (image.channels() < 3) return "";
+  std::vector<cv::Mat> channels;
+  cv::split(image, channels);
+  if (cv::norm(channels[0], channels[1], cv::NORM_INF) == 0 &&
+      cv::norm(channels[1], channels[2], cv::NORM_INF) == 0) {
+    return "";
+  }
+  return "; it is a colour image, and --image takes the grey pattern image: are --image and "
+         "--texture swapped?";
+}
+
+}  // namespace
 
 Command AddReconstructCommand(CLI::App& app) {
   struct Args {
@@ -68,6 +89,19 @@ Command AddReconstructCommand(CLI::App& app) {
         const FrameReconstruction frame =
             ReconstructFrame(module, loaded.pattern, constraints, image,
                              texture.empty() ? nullptr : &texture, options);
+        // A failure writes nothing (the outputs of a frame belong together).
+        if (frame.report.not_of_module) {
+          fmt::print(stderr, "sewer3d: error: {}: {}\n", args->image,
+                     NotOfModuleReason(frame.report));
+          return 1;
+        }
+        if (frame.points.empty()) {
+          fmt::print(stderr,
+                     "sewer3d: error: {}: no spot pattern decoded ({} spots found, {} decoded){}\n",
+                     args->image, frame.report.spots_found, frame.report.spots_decoded,
+                     ColourHint(args->image));
+          return 1;
+        }
         const std::filesystem::path out = args->out;
         WriteFrameReconstruction(out, frame, args->image);
         fmt::print(
@@ -75,19 +109,10 @@ Command AddReconstructCommand(CLI::App& app) {
             "report.json\n",
             frame.report.spots_found, frame.report.spots_decoded, frame.points.size(),
             out.string());
-        if (frame.report.not_of_module) {
-          fmt::print(stderr, "sewer3d: error: {}: {} (see {}/report.json)\n", args->image,
-                     NotOfModuleReason(frame.report), out.string());
-          return 1;
-        }
         if (const std::string doubt = FrameDoubt(frame.report, frame.points.size());
-            !doubt.empty() && !frame.points.empty()) {
-          fmt::print(stderr, "sewer3d: warning: {}: {}\n", args->image, doubt);
-        }
-        if (frame.points.empty()) {
-          fmt::print(stderr, "sewer3d: error: {}: no spot pattern decoded (see {}/report.json)\n",
-                     args->image, out.string());
-          return 1;
+            !doubt.empty()) {
+          fmt::print(stderr, "sewer3d: warning: {}: {}{}\n", args->image, doubt,
+                     ColourHint(args->image));
         }
         return 0;
       }};
