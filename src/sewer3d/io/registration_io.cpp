@@ -189,7 +189,13 @@ std::optional<PairRecord> ReadPairRecord(const std::filesystem::path& path) {
 RgbdPairInput ReadRgbdForRegistration(const std::filesystem::path& rgbd_folder, int module,
                                       int counter) {
   const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, module, counter);
-  const cv::Mat color = ReadImage(files.color, cv::IMREAD_COLOR);
+  // As written: grey (a pattern image put in its place) is no colour to texture the model with.
+  const cv::Mat color = ReadImage(files.color, cv::IMREAD_UNCHANGED);
+  if (color.type() != CV_8UC3) {
+    throw FileError(files.color, "not an 8-bit colour image (" + std::to_string(color.channels()) +
+                                     " channel(s) of " + std::to_string(color.elemSize1() * 8) +
+                                     " bits): rgbd writes 8-bit RGB; run rgbd --force");
+  }
   const cv::Mat depth = ReadImage(files.depth, cv::IMREAD_UNCHANGED);
   if (depth.type() != CV_32FC1) throw FileError(files.depth, "not a float32 depth map");
   if (color.size() != depth.size())

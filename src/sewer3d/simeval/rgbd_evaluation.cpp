@@ -12,6 +12,7 @@
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/pipeline/acquisition_images.hpp"
 #include "sewer3d/sim/pipe_world.hpp"
@@ -77,11 +78,12 @@ struct Images {
 };
 
 Images ReadImages(const CaptureRun& run, const fs::path& rgbd, const Acquisition& a) {
-  const RgbdFiles files = RgbdAcquisitionFiles(rgbd, a.module, a.counter);
   Images im;
   im.captured = ReadLinearTexture(run, a, ImageKind::kTextureBefore);
-  im.colour = LinearFromSrgb8(ReadImage(files.color, cv::IMREAD_COLOR));
-  im.depth = ReadImage(files.depth, cv::IMREAD_UNCHANGED);
+  // Colour and depth checked as registration reads them (types, one size).
+  const RgbdPairInput stage = ReadRgbdForRegistration(rgbd, a.module, a.counter);
+  im.colour = LinearFromSrgb8(stage.color_bgr);
+  im.depth = stage.depth_mm;
   return im;
 }
 
