@@ -97,6 +97,33 @@ std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows) {
   return "";
 }
 
+std::string PoseTravelProblem(std::vector<RegistrationPoseRow> rows,
+                              const std::vector<OdometryReading>& readings) {
+  constexpr double kMinOdometryMm = 20.0, kFactor = 5.0;
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
+    return std::tie(a.module, a.time_s) < std::tie(b.module, b.time_s);
+  });
+  for (std::size_t first = 0; first < rows.size();) {
+    std::size_t last = first;
+    while (last + 1 < rows.size() && rows[last + 1].module == rows[first].module) ++last;
+    const RegistrationPoseRow &a = rows[first], &b = rows[last];
+    first = last + 1;
+    const auto from = OdometryDistanceAt(readings, a.time_s);
+    const auto to = OdometryDistanceAt(readings, b.time_s);
+    if (!from || !to || std::abs(*to - *from) < kMinOdometryMm) continue;
+    const double odometry_mm = std::abs(*to - *from);
+    const double poses_mm =
+        (b.world_from_camera.translation - a.world_from_camera.translation).norm();
+    if (poses_mm * kFactor >= odometry_mm && poses_mm <= kFactor * odometry_mm) continue;
+    return fmt::format(
+        "module {}'s camera moves {:.4g} mm from acquisition {} to {}, the odometry {:.4g} mm "
+        "over the same time: poses in other units than mm, or of another run? run register "
+        "again",
+        a.module, poses_mm, a.counter, b.counter, odometry_mm);
+  }
+  return "";
+}
+
 int RegistrationVertexId(int module, int counter) { return module * 1000000 + counter; }
 
 void WriteRegistrationEdges(const std::filesystem::path& path,

@@ -15,6 +15,7 @@
 
 #include "sewer3d/core/rigid3.hpp"
 #include "sewer3d/posegraph/pose_graph.hpp"
+#include "sewer3d/run/odometry.hpp"
 
 namespace sewer3d {
 
@@ -35,6 +36,13 @@ std::vector<RegistrationPoseRow> ReadRegistrationPoses(const std::filesystem::pa
 /// difference): an edited poses.csv or a registration gone wrong, which would stretch the model
 /// over the gap.
 std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows);
+
+/// Why `rows` disagree with the run's odometry (`readings`, sorted by time), or "": a module
+/// whose camera travels between its first and last acquisition under a fifth or over five times
+/// the odometry's distance over the same time, when that is 20 mm or more (poses in metres, or
+/// of another run). Slipping wheels and a slack cable stay far within the factor.
+std::string PoseTravelProblem(std::vector<RegistrationPoseRow> rows,
+                              const std::vector<OdometryReading>& readings);
 
 /// The vertex id of an acquisition in graph.g2o and edges.csv: module · 10⁶ + counter.
 int RegistrationVertexId(int module, int counter);

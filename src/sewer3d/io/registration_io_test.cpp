@@ -40,5 +40,20 @@ TEST(PoseJumpProblem, AcceptsARunAndRefusesAPoseFarFromItsNeighbours) {
   EXPECT_EQ(PoseJumpProblem(rows), problem);
 }
 
+TEST(PoseTravelProblem, ComparesEachModulesTravelWithTheOdometry) {
+  std::vector<OdometryReading> odometry;
+  for (int k = 0; k <= 50; ++k) odometry.push_back({0.1 * k, 2.0 * k, k + 2});  // 20 mm/s
+  auto rows = SteadyRun();  // 90 mm in 4.5 s, as the odometry says
+  EXPECT_EQ(PoseTravelProblem(rows, odometry), "");
+  for (auto& row : rows) row.world_from_camera.translation /= 1000.0;  // written in metres
+  const std::string problem = PoseTravelProblem(rows, odometry);
+  EXPECT_NE(problem.find("module 0's camera moves 0.09 mm from acquisition 0 to 9, the odometry "
+                         "90 mm"),
+            std::string::npos)
+      << problem;
+  // Without odometry over the acquisitions' times there is nothing to compare.
+  EXPECT_EQ(PoseTravelProblem(rows, {}), "");
+}
+
 }  // namespace
 }  // namespace sewer3d

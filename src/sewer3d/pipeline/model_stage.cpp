@@ -49,8 +49,10 @@ std::vector<ModelAcquisition> RegisteredAcquisitions(
     throw FileError(poses_file, "missing: run the register stage first");
   std::vector<ModelAcquisition> acquisitions;
   const std::vector<RegistrationPoseRow> rows = ReadRegistrationPoses(poses_file);
-  if (const std::string problem = PoseJumpProblem(rows); !problem.empty())
-    throw FileError(poses_file, problem);
+  for (const std::string& problem :
+       {PoseJumpProblem(rows), PoseTravelProblem(rows, run.odometry)}) {
+    if (!problem.empty()) throw FileError(poses_file, problem);
+  }
   for (const RegistrationPoseRow& row : rows) {
     if (row.module < 0 || row.module >= static_cast<int>(run.rig.modules.size()))
       throw FileError(poses_file, "module " + std::to_string(row.module) + " is not in the rig");
