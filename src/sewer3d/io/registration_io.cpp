@@ -75,11 +75,20 @@ std::vector<RegistrationPoseRow> ReadRegistrationPoses(const std::filesystem::pa
   return rows;
 }
 
-std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows) {
-  constexpr double kSlackMm = 500.0, kMaxSpeedMmS = 2000.0;
+namespace {
+
+// Each module's rows together, in time order (the counter breaks ties).
+void SortByModuleAndTime(std::vector<RegistrationPoseRow>& rows) {
   std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
     return std::tie(a.module, a.time_s, a.counter) < std::tie(b.module, b.time_s, b.counter);
   });
+}
+
+}  // namespace
+
+std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows) {
+  constexpr double kSlackMm = 500.0, kMaxSpeedMmS = 2000.0;
+  SortByModuleAndTime(rows);
   for (std::size_t i = 1; i < rows.size(); ++i) {
     const RegistrationPoseRow &a = rows[i - 1], &b = rows[i];
     if (a.module != b.module) continue;
@@ -100,9 +109,7 @@ std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows) {
 std::string PoseTravelProblem(std::vector<RegistrationPoseRow> rows,
                               const std::vector<OdometryReading>& readings) {
   constexpr double kMinOdometryMm = 20.0, kFactor = 5.0;
-  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
-    return std::tie(a.module, a.time_s) < std::tie(b.module, b.time_s);
-  });
+  SortByModuleAndTime(rows);
   for (std::size_t first = 0; first < rows.size();) {
     std::size_t last = first;
     while (last + 1 < rows.size() && rows[last + 1].module == rows[first].module) ++last;
