@@ -94,6 +94,13 @@ std::string RegisterStageReportToJson(const RegisterStageReport& report) {
         {"rms_translation_mm", s.rms_translation_mm},
         {"rms_rotation_deg", s.rms_rotation_deg}};
   }
+  json module_pairs = json::array();
+  for (const ModulePairAgreement& p : report.module_pairs) {
+    module_pairs.push_back({{"modules", {p.module_a, p.module_b}},
+                            {"edges", p.edges},
+                            {"rejected", p.rejected},
+                            {"median_rejected_offset_mm", p.median_rejected_offset_mm}});
+  }
   const CarrierOffsetEstimate& c = report.carrier_offset;
   const json j = {
       {"stage", "register"},
@@ -130,7 +137,9 @@ std::string RegisterStageReportToJson(const RegisterStageReport& report) {
         {"gate_rounds", report.fusion.gate_rounds},
         {"first_solve", SolveJson(report.fusion.first_solve)},
         {"final_solve", SolveJson(report.fusion.final_solve)},
-        {"by_type", by_type}}},
+        {"by_type", by_type},
+        {"module_pairs", module_pairs},
+        {"rig_warnings", report.rig_warnings}}},
       {"seconds",
        {{"stage", report.seconds},
         {"per_pair", report.seconds_per_pair},

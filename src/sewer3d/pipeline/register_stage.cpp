@@ -13,6 +13,7 @@
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pipeline/register_outputs.hpp"
+#include "sewer3d/pipeline/register_warnings.hpp"
 #include "sewer3d/register/depth_geometry.hpp"
 
 namespace sewer3d {
@@ -67,86 +68,6 @@ CarrierOffsetEstimate FirstInstantOffset(const std::vector<AcquisitionNode>& nod
     walls.push_back({n.module, SampleDepthPoints(in.depth_mm, camera, options.wall_step_px)});
   }
   return EstimateCarrierOffset(run.rig, walls, options.carrier_offset);
-}
-
-constexpr double kMaxCarrierSpeedMmS = 2000.0;
-
-/// The odometry's problems (CaptureRun::odometry_findings) in words, naming the file, its
-/// lines and the acquisitions they concern.
-std::vector<std::string> OdometryWarnings(const CaptureRun& run,
-                                          const std::vector<AcquisitionNode>& nodes) {
-  const std::string file = (run.folder / "odometry.csv").string();
-  const OdometryFindings& f = run.odometry_findings;
-  std::vector<std::string> lines;
-  for (const OdometryReversal& r : f.reversals) {
-    lines.push_back(fmt::format(
-        "{}: line{} {}: the distance goes back from {:.1f} mm to {:.1f} mm (more than {} mm): "
-        "{} reading{} dropped, a cable counter only counts forward",
-        file, r.first_line == r.last_line ? "" : "s",
-        r.first_line == r.last_line ? std::to_string(r.first_line)
-                                    : fmt::format("{}-{}", r.first_line, r.last_line),
-        r.before_mm, r.lowest_mm, f.options.reversal_tolerance_mm, r.readings,
-        r.readings == 1 ? "" : "s"));
-  }
-  if (!run.odometry.empty()) {
-    const double first = run.odometry.front().time_s, last = run.odometry.back().time_s;
-    const auto outside = std::count_if(nodes.begin(), nodes.end(), [&](const AcquisitionNode& n) {
-      return n.time_s < first || n.time_s > last;
-    });
-    if (outside > 0) {
-      lines.push_back(fmt::format(
-          "{}: the readings cover {:.3f}-{:.3f} s, but {} of {} acquisitions lie outside that "
-          "span: they got the nearest reading's distance, so the odometry does not place them",
-          file, first, last, outside, nodes.size()));
-    }
-    const auto [low, high] =
-        std::minmax_element(run.odometry.begin(), run.odometry.end(),
-                            [](const OdometryReading& a, const OdometryReading& b) {
-                              return a.distance_mm < b.distance_mm;
-                            });
-    // A crawler moves at most a few hundred mm/s; a jump far faster is a counter glitch or a
-    // reading in other units, and places the acquisitions around it wrongly.
-    for (std::size_t i = 1; i < run.odometry.size(); ++i) {
-      const OdometryReading &a = run.odometry[i - 1], &b = run.odometry[i];
-      const double speed = (b.distance_mm - a.distance_mm) / (b.time_s - a.time_s);
-      if (speed > kMaxCarrierSpeedMmS) {
-        lines.push_back(fmt::format(
-            "{}: lines {}-{}: the distance jumps {:.1f} mm in {:.3f} s ({:.0f} mm/s, more than a "
-            "carrier's {:.0f} mm/s): a counter glitch or other units; acquisitions around it are "
-            "placed by it",
-            file, a.line, b.line, b.distance_mm - a.distance_mm, b.time_s - a.time_s, speed,
-            kMaxCarrierSpeedMmS));
-        break;  // the first one: the cause is the same for the others
-      }
-    }
-    if (run.odometry.size() >= 2 && high->distance_mm - low->distance_mm < 1.0) {
-      lines.push_back(fmt::format(
-          "{}: the distance stays at {:.1f} mm in all {} readings: the carrier did not move or "
-          "the counter is stuck, so the odometry separates no acquisitions",
-          file, low->distance_mm, run.odometry.size()));
-    }
-  }
-  for (const OdometryGap& g : f.gaps) {
-    std::string inside;
-    double sigma = 0.0;
-    int count = 0;
-    for (const AcquisitionNode& n : nodes) {
-      if (n.time_s <= g.from_s || n.time_s >= g.to_s) continue;
-      if (count++ < 6)
-        inside += fmt::format("{}m{} counter {}", inside.empty() ? "" : ", ", n.module, n.counter);
-      sigma = std::max(sigma, n.distance_sigma_mm);
-    }
-    if (count > 6) inside += fmt::format(" and {} more", count - 6);
-    lines.push_back(fmt::format(
-        "{}: no reading between line {} ({:.3f} s) and line {} ({:.3f} s), {:.2f} s (more than "
-        "{} s): {}",
-        file, g.from_line, g.from_s, g.to_line, g.to_s, g.to_s - g.from_s, f.options.max_gap_s,
-        count == 0 ? std::string("no acquisition in it")
-                   : fmt::format("{} acquisition{} placed by interpolation with σ up to {:.1f} mm "
-                                 "along the pipe ({})",
-                                 count, count == 1 ? "" : "s", sigma, inside)));
-  }
-  return lines;
 }
 
 }  // namespace
@@ -230,6 +151,8 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
 
   const FusionResult fused = FuseRegistration(nodes, edges, options.fusion);
   report.fusion = fused.report;
+  report.module_pairs = ModulePairAgreements(nodes, edges, fused);
+  report.rig_warnings = RigWarnings(run, report.module_pairs);
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   report.seconds_per_node = report.seconds / report.nodes;
   // A resumed stage that registered nothing new and fused the same poses changes nothing

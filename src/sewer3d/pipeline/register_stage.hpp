@@ -18,6 +18,7 @@
 #include "sewer3d/pipeline/register_pairs.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/register/fusion.hpp"
+#include "sewer3d/register/module_agreement.hpp"
 #include "sewer3d/run/capture_run.hpp"
 
 namespace sewer3d {
@@ -59,6 +60,10 @@ struct RegisterStageReport {
   int feature_edges = 0, projection_edges = 0, degenerate_edges = 0;
   int prior_edges = 0;
   FusionReport fusion;
+  /// Per pair of modules with registrations between them: how many the gate rejected.
+  std::vector<ModulePairAgreement> module_pairs;
+  /// One line per pair of modules whose registrations contradict rig.json (RigWarnings).
+  std::vector<std::string> rig_warnings;
   double seconds = 0.0;           ///< the whole stage now, wall clock
   double seconds_per_pair = 0.0;  ///< mean over the pairs registered now (one worker)
   double seconds_per_node = 0.0;  ///< seconds / nodes

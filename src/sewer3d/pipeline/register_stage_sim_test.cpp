@@ -117,6 +117,29 @@ TEST_F(RegisterStageTiny, CameraCentresAgreeWithTheTruth) {
   EXPECT_LT(e.edges.at("feature").mean_nees, 36.0);
 }
 
+// rig.json with m2's position on the carrier in metres (z 0.084 for 84 mm): the rig edges hold
+// m2 there and the gate rejects its registrations with its neighbours; the stage says so.
+TEST_F(RegisterStageTiny, ARigThatContradictsTheImagesIsWarnedOf) {
+  EXPECT_TRUE(report_.rig_warnings.empty());
+  const fs::path copy = dir_ / "ws_rig";
+  fs::remove_all(copy);
+  fs::copy(dir_ / "ws", copy, fs::copy_options::recursive);
+  CaptureRun wrong = run_;
+  wrong.rig.modules[2].carrier_from_camera.translation.z() /= 1000.0;
+  RegisterStageOptions options;
+  options.force = true;
+  options.threads = 2;
+  Workspace ws(copy, run_.folder);
+  const RegisterStageReport r = RunRegisterStage(wrong, ws, options);
+  for (const ModulePairAgreement& p : r.module_pairs) {
+    RecordProperty("m" + std::to_string(p.module_a) + "-m" + std::to_string(p.module_b),
+                   std::to_string(p.rejected) + " of " + std::to_string(p.edges));
+  }
+  ASSERT_FALSE(r.rig_warnings.empty());
+  EXPECT_NE(r.rig_warnings.front().find("m2"), std::string::npos) << r.rig_warnings.front();
+  EXPECT_NE(r.rig_warnings.front().find("rig.json"), std::string::npos);
+}
+
 TEST_F(RegisterStageTiny, AnInterruptedStageResumesWithoutRedoingFinishedPairs) {
   const fs::path copy = dir_ / "ws_resume";
   fs::remove_all(copy);

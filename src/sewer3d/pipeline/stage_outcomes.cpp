@@ -61,6 +61,7 @@ StageOutcome RegisterOutcome(const RegisterStageReport& report,
       report.pairs_failed, report.prior_edges, report.fusion.rejected, report.seconds,
       report.seconds_per_pair);
   for (const std::string& w : report.odometry_warnings) o.details.push_back("warning: " + w);
+  for (const std::string& w : report.rig_warnings) o.details.push_back("warning: " + w);
   for (const LeftOutAcquisition& l : report.left_out)
     o.details.push_back(fmt::format("left out: m{} counter {}: {}", l.module, l.counter, l.reason));
   if (report.nodes == 0) {

@@ -1,0 +1,28 @@
+#pragma once
+/// \file
+/// What the registration stage warns of, in words that name the run's file: the odometry's
+/// problems (CaptureRun::odometry_findings, readings outside the images' times, jumps, a stuck
+/// counter) and pairs of modules whose registrations contradict rig.json
+/// (register/module_agreement.hpp).
+
+#include <string>
+#include <vector>
+
+#include "sewer3d/register/initial_poses.hpp"
+#include "sewer3d/register/module_agreement.hpp"
+#include "sewer3d/run/capture_run.hpp"
+
+namespace sewer3d {
+
+/// One line per problem of the run's odometry.csv, naming its lines and the acquisitions they
+/// concern.
+std::vector<std::string> OdometryWarnings(const CaptureRun& run,
+                                          const std::vector<AcquisitionNode>& nodes);
+
+/// One line per pair of modules whose registrations the gate rejected (nearly) all of
+/// (DisagreesWithRig), naming rig.json, the two modules and how far apart the rejected
+/// registrations put them; a module in two such pairs is named as the likely one.
+std::vector<std::string> RigWarnings(const CaptureRun& run,
+                                     const std::vector<ModulePairAgreement>& pairs);
+
+}  // namespace sewer3d
