@@ -3,8 +3,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 
 namespace sewer3d::cli {
@@ -123,6 +127,28 @@ void CheckNotInARun(const std::filesystem::path& folder, const char* flag) {
 void CheckFileNotInARun(const std::filesystem::path& file, const char* flag) {
   const std::filesystem::path folder = file.parent_path();
   CheckNotInARun(folder.empty() ? std::filesystem::path(".") : folder, flag);
+}
+
+void CheckNotAModuleFile(const std::filesystem::path& out, const char* flag,
+                         const std::string& writes) {
+  constexpr std::uintmax_t kMaxModuleBytes = 1 << 20;  // a module file is a few kB
+  if (!IsRegularFile(out)) return;
+  bool module = out.filename() == "module.json";
+  std::error_code ec;
+  if (!module && std::filesystem::file_size(out, ec) < kMaxModuleBytes && !ec) {
+    const nlohmann::json j = nlohmann::json::parse(ReadTextFile(out), nullptr, false);
+    module = j.is_object() && j.contains("projector");
+  }
+  if (!module) return;
+  throw InvalidValue(flag, out.string() + " is a module description; this command writes " +
+                               writes + ", which would replace it: write it elsewhere");
+}
+
+void CheckWorkspaceExists(const std::filesystem::path& folder, const std::string& stage) {
+  if (std::filesystem::is_directory(folder)) return;
+  throw FileError(folder, "workspace folder not found: `sewer3d " + stage +
+                              "` continues the workspace of `sewer3d rgbd` (or of `sewer3d "
+                              "process`); is --out mistyped?");
 }
 
 }  // namespace sewer3d::cli

@@ -38,4 +38,15 @@ void CheckNotInARun(const std::filesystem::path& folder, const char* flag);
 /// name).
 void CheckFileNotInARun(const std::filesystem::path& file, const char* flag);
 
+/// Throws InvalidValue naming `flag` when the existing file `out` is a module description
+/// (module.json, or JSON with a "projector"): a result of another kind written over it would
+/// lose the module. `writes` says what the command writes ("a camera calibration").
+void CheckNotAModuleFile(const std::filesystem::path& out, const char* flag,
+                         const std::string& writes);
+
+/// Throws FileError when the workspace `folder` of a stage that continues one (`stage`:
+/// register, model, inspect, report) does not exist, before anything creates it: a mistyped
+/// --out gets an error and no new folder.
+void CheckWorkspaceExists(const std::filesystem::path& folder, const std::string& stage);
+
 }  // namespace sewer3d::cli

@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -128,6 +129,16 @@ void PrintModuleCalibration(const ModuleCalibrationResult& r, const std::vector<
   for (size_t v = 0; v < used.size(); ++v) {
     fmt::print("  {}  camera {:.4f} px  projector {:.4f} px\n", used[v], r.view_camera_rms_px[v],
                r.view_projector_rms_px[v]);
+  }  // Three views fix the focal lengths and centres, but not the lenses' distortion: a fit from
+  // 3 of 6 simulated poses put the projector's k at (-0.125, 0.281, -0.433) for the true
+  // (-0.08, 0.015, 0), and a plane at 140 mm then gave 161 of 731 spots.
+  constexpr std::size_t kFewPoses = 6;
+  if (used.size() < kFewPoses) {
+    std::fflush(stdout);
+    fmt::print(stderr,
+               "sewer3d: warning: calibrated from {} poses only: fewer than {} leave the lens "
+               "distortion (k) poorly determined; capture more poses, tilted differently\n",
+               used.size(), kFewPoses);
   }
 }
 

@@ -32,6 +32,7 @@ int RunCamera(const CameraArgs& a) {
   const auto board_size = ParseSize(a.board);
   CheckFileNotInARun(a.out, "--out");
   CheckOutputFile(a.out);
+  CheckNotAModuleFile(a.out, "--out", "a camera calibration");
   for (const std::string& image : a.images) CheckNotAnInput(a.out, image, "--images");
   CameraCalibrationFile file;
   file.board_cols = board_size->first;

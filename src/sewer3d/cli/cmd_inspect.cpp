@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
@@ -62,6 +63,7 @@ Command AddInspectCommand(CLI::App& app) {
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
   return {sub, [args] {
+            CheckWorkspaceExists(args->out, "inspect");
             args->options.Check();
             const CaptureRun run = LoadRun(args->run);
             ProgressBar bar(args->quiet);

@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
@@ -70,6 +71,7 @@ Command AddModelCommand(CLI::App& app) {
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
   return {sub, [args] {
+            CheckWorkspaceExists(args->out, "model");
             try {
               args->options.Check();
             } catch (const InvalidValue& e) {  // in the command line's terms

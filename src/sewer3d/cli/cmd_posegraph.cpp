@@ -10,6 +10,7 @@
 
 #include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/posegraph_summary.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/g2o_io.hpp"
@@ -29,52 +30,6 @@ std::optional<double> ParseRobust(const std::string& text) {
   if (number.empty() || *end != '\0' || !(delta > 0.0) || !std::isfinite(delta))
     return std::nullopt;
   return delta;
-}
-
-void PrintCertificate(const PoseGraphReport& r) {
-  if (!r.certificate_applicable) {
-    fmt::print("certificate not applicable: {}\n",
-               r.certificate_reason.empty() ? "LM failed" : r.certificate_reason);
-    return;
-  }
-  if (!std::isfinite(r.lower_bound)) {
-    fmt::print("certificate failed: {}\n", r.certificate_reason);
-    return;
-  }
-  fmt::print(
-      "certificate lower bound {:.7g} (relaxation rank {}{}{}, {:.3f} s){}\n", r.lower_bound,
-      r.relaxation_rank, r.relaxation_solved ? "" : ", not solved: bound is loose",
-      r.dominated_relaxation ? fmt::format(", information lowered on {} edges", r.dominated_edges)
-                             : "",
-      r.certificate_seconds, r.certificate_improved ? "; its solution was lower and is taken" : "");
-  fmt::print("            final cost is within {:.2g} % of the global optimum (relative gap){}\n",
-             100.0 * std::max(0.0, r.RelativeGap()), r.RelativeGap() <= 1e-4 ? ": certified" : "");
-}
-
-// Edges whose information matches their noise give a χ² (2 × cost) of about 6 each; the
-// noisiest public benchmark (sphere_bignoise) has 342. Far above, edges or fixed nodes
-// contradict each other and the optimum is a compromise no measurement supports.
-void WarnOfDisagreement(const std::string& in, double final_cost, size_t edges) {
-  constexpr double kMaxChi2PerEdge = 1e4;
-  if (edges == 0) return;
-  const double chi2 = 2.0 * final_cost / static_cast<double>(edges);
-  if (!(chi2 > kMaxChi2PerEdge)) return;
-  std::fflush(stdout);
-  fmt::print(stderr,
-             "sewer3d: warning: {}: the edges contradict each other or the fixed nodes: χ² "
-             "{:.3g} per edge at the optimum (about 6 when the information matches the noise)\n",
-             in, chi2);
-}
-
-// Why the optimised poses are no result, or "": the optimisation failed, or some poses have no
-// chain of edges to a fixed node and are whatever the file said.
-std::string WhyNotWritten(const PoseGraphReport& r) {
-  if (!r.usable)
-    return fmt::format("optimisation did not give a usable solution ({})", r.termination);
-  if (r.unanchored_nodes == 0) return "";
-  return fmt::format(
-      "{} of {} nodes have no chain of edges to a fixed node, so their poses are not determined",
-      r.unanchored_nodes, r.nodes);
 }
 
 }  // namespace
@@ -123,28 +78,12 @@ Command AddPoseGraphCommand(CLI::App& app) {
             CheckOutputFile(args->out);
             CheckNotAnInput(args->out, args->in, "--in");
             PoseGraph graph = ReadG2o(args->in);
-            // The certificate's time grows with about the cube of the poses (2 cores: 1 s at
-            // 2 000, 12 s at 5 000, 160 s at 10 000): beyond, it would run for hours.
-            constexpr size_t kMaxCertifiedPoses = 10000;
-            if (options.certify && graph.nodes().size() > kMaxCertifiedPoses) {
-              throw InvalidValue("--certify",
-                                 fmt::format("{} has {} poses; the certificate is computed for "
-                                             "graphs of up to {} (its time grows with about the "
-                                             "cube of the size)",
-                                             args->in, graph.nodes().size(), kMaxCertifiedPoses));
-            }
+            if (options.certify) CheckCertifiable(args->in, graph.nodes().size());
             fmt::print("{}: {} poses, {} edges, cost at its poses {:.7g}\n", args->in,
                        graph.nodes().size(), graph.edges().size(), GraphCost(graph));
             std::fflush(stdout);
             const PoseGraphReport r = OptimisePoseGraph(graph, options);
-            fmt::print("init        {} (initial cost {:.7g}, {:.3f} s)\n", r.init_used,
-                       r.initial_cost, r.init_seconds);
-            fmt::print("final cost  {:.7g} after {} iterations, {:.3f} s, {} thread(s)\n",
-                       r.final_cost, r.iterations, r.solve_seconds, options.num_threads);
-            fmt::print("termination {}\n", r.termination);
-            // Poses without a chain of edges to a fixed node are whatever the file said.
-            fmt::print("usable      {}\n", r.usable && r.unanchored_nodes == 0 ? "yes" : "no");
-            if (options.certify) PrintCertificate(r);
+            PrintPoseGraphReport(r, options);
             if (const std::string why = WhyNotWritten(r); !why.empty()) {
               std::fflush(stdout);  // a file at --out would pass for a result
               fmt::print(stderr, "sewer3d: error: {}: {}; {} not written\n", args->in, why,

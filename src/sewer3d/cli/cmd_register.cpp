@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
@@ -48,6 +49,7 @@ Command AddRegisterCommand(CLI::App& app) {
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
   return {sub, [args] {
+            CheckWorkspaceExists(args->out, "register");
             if (args->edges.size() > 1 &&
                 std::find(args->edges.begin(), args->edges.end(), "none") != args->edges.end())
               throw InvalidValue("--edges", "none cannot be combined with other edge types");

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/io/file_error.hpp"
@@ -29,8 +30,7 @@ Command AddReportCommand(CLI::App& app) {
   sub->add_option("--out", args->out, "Processing workspace folder WS")->required();
   sub->add_flag("--quiet", args->quiet, "Print only where the report is");
   return {sub, [args] {
-            if (!std::filesystem::is_directory(args->out))
-              throw FileError(args->out, "workspace folder not found");
+            CheckWorkspaceExists(args->out, "report");
             const CaptureRun run = LoadRun(args->run);
             ReportStageReport r;
             try {

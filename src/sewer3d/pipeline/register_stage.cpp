@@ -153,6 +153,9 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   report.fusion = fused.report;
   report.module_pairs = ModulePairAgreements(nodes, edges, fused);
   report.rig_warnings = RigWarnings(run, report.module_pairs);
+  if (const std::string along = AlongWarning(run, AlongAgreement(nodes, edges, fused));
+      !along.empty())
+    report.odometry_warnings.push_back(along);
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   report.seconds_per_node = report.seconds / report.nodes;
   // A resumed stage that registered nothing new and fused the same poses changes nothing

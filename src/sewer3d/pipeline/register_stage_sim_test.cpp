@@ -140,6 +140,26 @@ TEST_F(RegisterStageTiny, ARigThatContradictsTheImagesIsWarnedOf) {
   EXPECT_NE(r.rig_warnings.front().find("rig.json"), std::string::npos);
 }
 
+// odometry.csv in inches (distances / 25.4): the odometry edges pull the acquisitions of each
+// module together and the gate rejects the registrations along the pipe; the stage says so.
+TEST_F(RegisterStageTiny, OdometryInOtherUnitsIsWarnedOf) {
+  const fs::path copy = dir_ / "ws_inches";
+  fs::remove_all(copy);
+  fs::copy(dir_ / "ws", copy, fs::copy_options::recursive);
+  CaptureRun inches = run_;
+  for (OdometryReading& r : inches.odometry) r.distance_mm /= 25.4;
+  RegisterStageOptions options;
+  options.force = true;
+  options.threads = 2;
+  Workspace ws(copy, run_.folder);
+  const RegisterStageReport r = RunRegisterStage(inches, ws, options);
+  ASSERT_FALSE(r.odometry_warnings.empty());
+  EXPECT_NE(r.odometry_warnings.back().find("registrations along the pipe"), std::string::npos)
+      << r.odometry_warnings.back();
+  for (const std::string& w : report_.odometry_warnings)
+    EXPECT_EQ(w.find("along the pipe"), std::string::npos) << w;  // the sound run: none
+}
+
 TEST_F(RegisterStageTiny, AnInterruptedStageResumesWithoutRedoingFinishedPairs) {
   const fs::path copy = dir_ / "ws_resume";
   fs::remove_all(copy);

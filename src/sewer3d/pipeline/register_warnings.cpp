@@ -93,13 +93,13 @@ std::vector<std::string> RigWarnings(const CaptureRun& run,
   const std::string file = (run.folder / "rig.json").string();
   std::map<int, int> flagged;  // module → pairs that disagree
   for (const ModulePairAgreement& p : pairs) {
-    if (!DisagreesWithRig(p)) continue;
+    if (!Disagrees(p)) continue;
     ++flagged[p.module_a];
     ++flagged[p.module_b];
   }
   std::vector<std::string> lines;
   for (const ModulePairAgreement& p : pairs) {
-    if (!DisagreesWithRig(p)) continue;
+    if (!Disagrees(p)) continue;
     std::string likely = "one of the two";
     if (flagged[p.module_a] > 1 && flagged[p.module_b] == 1) likely = fmt::format("m{}", p.module_a);
     if (flagged[p.module_b] > 1 && flagged[p.module_a] == 1) likely = fmt::format("m{}", p.module_b);
@@ -111,6 +111,17 @@ std::vector<std::string> RigWarnings(const CaptureRun& run,
         file, p.module_a, p.module_b, p.rejected, p.edges, p.median_rejected_offset_mm, likely));
   }
   return lines;
+}
+
+std::string AlongWarning(const CaptureRun& run, const ModulePairAgreement& along) {
+  if (!Disagrees(along)) return {};
+  return fmt::format(
+      "{}: the gate rejected {} of the {} registrations along the pipe (between acquisitions of "
+      "one module), which put the cameras {:.1f} mm (median) from where the odometry has them: "
+      "is distance_mm in millimetres (not inches, metres or another scale)? The poses follow the "
+      "odometry, not the images",
+      (run.folder / "odometry.csv").string(), along.rejected, along.edges,
+      along.median_rejected_offset_mm);
 }
 
 }  // namespace sewer3d

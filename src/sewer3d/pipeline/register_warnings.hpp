@@ -3,7 +3,7 @@
 /// What the registration stage warns of, in words that name the run's file: the odometry's
 /// problems (CaptureRun::odometry_findings, readings outside the images' times, jumps, a stuck
 /// counter) and pairs of modules whose registrations contradict rig.json
-/// (register/module_agreement.hpp).
+/// (register/module_agreement.hpp), or the odometry along the pipe.
 
 #include <string>
 #include <vector>
@@ -20,9 +20,13 @@ std::vector<std::string> OdometryWarnings(const CaptureRun& run,
                                           const std::vector<AcquisitionNode>& nodes);
 
 /// One line per pair of modules whose registrations the gate rejected (nearly) all of
-/// (DisagreesWithRig), naming rig.json, the two modules and how far apart the rejected
+/// (Disagrees), naming rig.json, the two modules and how far apart the rejected
 /// registrations put them; a module in two such pairs is named as the likely one.
 std::vector<std::string> RigWarnings(const CaptureRun& run,
                                      const std::vector<ModulePairAgreement>& pairs);
+
+/// A line when the gate rejected (nearly) all registrations along the pipe (Disagrees on
+/// AlongAgreement): odometry.csv in other units or scale; "" otherwise.
+std::string AlongWarning(const CaptureRun& run, const ModulePairAgreement& along);
 
 }  // namespace sewer3d

@@ -2,15 +2,20 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "sewer3d/core/check.hpp"
 
 namespace sewer3d {
 
-std::vector<ModulePairAgreement> ModulePairAgreements(const std::vector<AcquisitionNode>& nodes,
-                                                      const std::vector<RegistrationEdge>& edges,
-                                                      const FusionResult& fused) {
+namespace {
+
+/// The pairwise edges tallied per key (`key` of the two modules; nullopt: not counted).
+template <typename Key>
+std::vector<ModulePairAgreement> Tally(const std::vector<AcquisitionNode>& nodes,
+                                       const std::vector<RegistrationEdge>& edges,
+                                       const FusionResult& fused, const Key& key) {
   SEWER3D_VALIDATE(fused.accepted.size() == edges.size(), "fused",
                    "has " << fused.accepted.size() << " edges' outcomes for " << edges.size()
                           << " edges");
@@ -25,12 +30,11 @@ std::vector<ModulePairAgreement> ModulePairAgreements(const std::vector<Acquisit
     if (!IsPairwiseEdge(e.type)) continue;
     SEWER3D_VALIDATE(e.a >= 0 && e.a < n && e.b >= 0 && e.b < n, "edges",
                      "edge " << e.a << " → " << e.b << " with " << n << " nodes");
-    const int ma = nodes[e.a].module, mb = nodes[e.b].module;
-    if (ma == mb) continue;
-    const std::pair<int, int> key = std::minmax(ma, mb);
-    ModulePairAgreement& p = pairs[key];
-    p.module_a = key.first;
-    p.module_b = key.second;
+    const std::optional<std::pair<int, int>> which = key(nodes[e.a].module, nodes[e.b].module);
+    if (!which) continue;
+    ModulePairAgreement& p = pairs[*which];
+    p.module_a = which->first;
+    p.module_b = which->second;
     ++p.edges;
     if (fused.accepted[k]) continue;
     ++p.rejected;
@@ -38,11 +42,11 @@ std::vector<ModulePairAgreement> ModulePairAgreements(const std::vector<Acquisit
     pose_edge.a_from_b = e.a_from_b;
     const Vector6d r =
         EdgeResidual(pose_edge, fused.world_from_camera[e.a], fused.world_from_camera[e.b]);
-    offsets[key].push_back(r.head<3>().norm());
+    offsets[*which].push_back(r.head<3>().norm());
   }
   std::vector<ModulePairAgreement> out;
-  for (auto& [key, p] : pairs) {
-    std::vector<double>& v = offsets[key];
+  for (auto& [which, p] : pairs) {
+    std::vector<double>& v = offsets[which];
     if (!v.empty()) {
       std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
       p.median_rejected_offset_mm = v[v.size() / 2];
@@ -52,7 +56,32 @@ std::vector<ModulePairAgreement> ModulePairAgreements(const std::vector<Acquisit
   return out;
 }
 
-bool DisagreesWithRig(const ModulePairAgreement& pair, int min_rejected, double min_fraction,
+}  // namespace
+
+std::vector<ModulePairAgreement> ModulePairAgreements(const std::vector<AcquisitionNode>& nodes,
+                                                      const std::vector<RegistrationEdge>& edges,
+                                                      const FusionResult& fused) {
+  return Tally(nodes, edges, fused, [](int a, int b) -> std::optional<std::pair<int, int>> {
+    if (a == b) return std::nullopt;
+    return std::minmax(a, b);
+  });
+}
+
+ModulePairAgreement AlongAgreement(const std::vector<AcquisitionNode>& nodes,
+                                   const std::vector<RegistrationEdge>& edges,
+                                   const FusionResult& fused) {
+  const std::vector<ModulePairAgreement> all =
+      Tally(nodes, edges, fused, [](int a, int b) -> std::optional<std::pair<int, int>> {
+        if (a != b) return std::nullopt;
+        return std::make_pair(-1, -1);
+      });
+  if (!all.empty()) return all.front();
+  ModulePairAgreement none;
+  none.module_a = none.module_b = -1;
+  return none;
+}
+
+bool Disagrees(const ModulePairAgreement& pair, int min_rejected, double min_fraction,
                       double min_offset_mm) {
   return pair.rejected >= min_rejected &&
          pair.rejected >= min_fraction * static_cast<double>(pair.edges) &&

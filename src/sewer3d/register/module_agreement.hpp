@@ -7,7 +7,8 @@
 /// rejects the registrations between that module and its neighbours, nearly all of them, while
 /// a chance outlier costs a pair one registration of many. This file counts, per pair of
 /// modules, the pairwise edges and those the gate rejected, and how far apart the rejected
-/// ones put the cameras at the fused poses.
+/// ones put the cameras at the fused poses; and the same for the registrations along the pipe,
+/// which the odometry edges hold.
 
 #include <vector>
 
@@ -31,11 +32,18 @@ std::vector<ModulePairAgreement> ModulePairAgreements(const std::vector<Acquisit
                                                       const std::vector<RegistrationEdge>& edges,
                                                       const FusionResult& fused);
 
-/// True when the pair's registrations say the rig is wrong for one of the two modules: at
+/// The registrations along the pipe (between acquisitions of one module), all modules
+/// together, module_a = module_b = −1. The odometry edges predict them; when odometry.csv is in
+/// other units (inches, a wrong scale) the gate rejects (nearly) all of them instead.
+ModulePairAgreement AlongAgreement(const std::vector<AcquisitionNode>& nodes,
+                                   const std::vector<RegistrationEdge>& edges,
+                                   const FusionResult& fused);
+
+/// True when the pair's registrations contradict the rig (or, along, the odometry): at
 /// least `min_rejected` rejected, at least `min_fraction` of them, and `min_offset_mm` off (the
 /// median). A sound simulated run (compact preset) has pairs with up to half of their
 /// registrations rejected, about 1 mm off; a module 84 mm out rejects all of them, 84 mm off.
-bool DisagreesWithRig(const ModulePairAgreement& pair, int min_rejected = 2,
+bool Disagrees(const ModulePairAgreement& pair, int min_rejected = 2,
                       double min_fraction = 0.75, double min_offset_mm = 5.0);
 
 }  // namespace sewer3d

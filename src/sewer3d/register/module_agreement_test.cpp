@@ -68,14 +68,14 @@ TEST_F(ModuleAgreementTest, CountsPairwiseEdgesBetweenModulesAndTheRejectedOnesO
   EXPECT_EQ(pairs[0].edges, 2);
   EXPECT_EQ(pairs[0].rejected, 0);
   EXPECT_EQ(pairs[0].median_rejected_offset_mm, 0.0);
-  EXPECT_FALSE(DisagreesWithRig(pairs[0]));
+  EXPECT_FALSE(Disagrees(pairs[0]));
   EXPECT_EQ(pairs[1].module_a, 1);
   EXPECT_EQ(pairs[1].module_b, 2);
   EXPECT_EQ(pairs[1].edges, 4);
   EXPECT_EQ(pairs[1].rejected, 3);
   // The residual's translation is the measurement's error (identity rotations): 80, 85, 90.
   EXPECT_NEAR(pairs[1].median_rejected_offset_mm, 85.0, 1e-9);
-  EXPECT_TRUE(DisagreesWithRig(pairs[1]));  // 3 of 4 ≥ 75 %
+  EXPECT_TRUE(Disagrees(pairs[1]));  // 3 of 4 ≥ 75 %
 }
 
 TEST_F(ModuleAgreementTest, OneRejectedRegistrationAMinorityOrAFewMillimetresDoNotFlagThePair) {
@@ -83,14 +83,31 @@ TEST_F(ModuleAgreementTest, OneRejectedRegistrationAMinorityOrAFewMillimetresDoN
   p.edges = 1;
   p.rejected = 1;
   p.median_rejected_offset_mm = 80.0;
-  EXPECT_FALSE(DisagreesWithRig(p));  // one chance outlier
+  EXPECT_FALSE(Disagrees(p));  // one chance outlier
   p.edges = 10;
   p.rejected = 7;
-  EXPECT_FALSE(DisagreesWithRig(p));  // 70 % < 75 %
+  EXPECT_FALSE(Disagrees(p));  // 70 % < 75 %
   p.rejected = 8;
-  EXPECT_TRUE(DisagreesWithRig(p));
+  EXPECT_TRUE(Disagrees(p));
   p.median_rejected_offset_mm = 2.0;  // rejected, but only as far off as a sound run's
-  EXPECT_FALSE(DisagreesWithRig(p));
+  EXPECT_FALSE(Disagrees(p));
+}
+
+TEST_F(ModuleAgreementTest, AlongThePipeAllModulesCountTogether) {
+  using T = RegistrationEdgeType;
+  EXPECT_EQ(AlongAgreement(nodes_, edges_, fused_).edges, 0);  // none yet
+  Add(0, 1, T::kFeature, 96.0, false);  // m0 along, rejected (odometry 25 x too short)
+  Add(2, 3, T::kFeature, 95.0, false);  // m1 along, rejected
+  Add(4, 5, T::kFeature, 0.1, true);    // m2 along, accepted
+  Add(1, 2, T::kFeature, 0.1, true);    // m0-m1: not along
+  const ModulePairAgreement along = AlongAgreement(nodes_, edges_, fused_);
+  EXPECT_EQ(along.module_a, -1);
+  EXPECT_EQ(along.edges, 3);
+  EXPECT_EQ(along.rejected, 2);
+  EXPECT_NEAR(along.median_rejected_offset_mm, 96.0, 1e-9);  // of 95 and 96: the upper
+  EXPECT_FALSE(Disagrees(along));                             // 2 of 3 < 75 %
+  Add(4, 5, T::kProjection, 90.0, false);
+  EXPECT_TRUE(Disagrees(AlongAgreement(nodes_, edges_, fused_)));  // 3 of 4
 }
 
 TEST_F(ModuleAgreementTest, AFusionOfOtherEdgesIsRefused) {

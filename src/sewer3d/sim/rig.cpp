@@ -17,6 +17,13 @@ void RigOptions::Check() const {
   ValidateClockHours("first_clock_h", first_clock_h);
   ValidatePositive("carrier_diameter_mm", carrier_diameter_mm);
   ValidatePositive("carrier_length_mm", carrier_length_mm);
+  // The modules sit along the carrier: their span must fit in it (the baseline is checked
+  // with the module, in MakeRig).
+  const double span_mm = (modules - 1) * stagger_mm;
+  SEWER3D_VALIDATE(span_mm <= carrier_length_mm, "stagger_mm",
+                   stagger_mm << " mm puts the " << modules << " modules over " << span_mm
+                              << " mm, more than the carrier's length (" << carrier_length_mm
+                              << " mm)");
 }
 
 Rig MakeRig(const ModuleDescription& module, const RigOptions& o) {

@@ -1,0 +1,26 @@
+#pragma once
+/// \file
+/// What `sewer3d posegraph` prints of an optimisation (cli/cmd_posegraph.cpp): the report's
+/// lines, the certificate, the warnings, and why a result is not written.
+
+#include <cstddef>
+#include <string>
+
+#include "sewer3d/posegraph/solver.hpp"
+
+namespace sewer3d::cli {
+
+/// Throws InvalidValue for --certify on a graph too large for the certificate.
+void CheckCertifiable(const std::string& in, std::size_t poses);
+
+/// init, final cost, termination, usable, and the certificate where asked for (stdout).
+void PrintPoseGraphReport(const PoseGraphReport& r, const PoseGraphOptions& options);
+
+/// A warning (stderr) when the edges contradict each other or the fixed nodes.
+void WarnOfDisagreement(const std::string& in, double final_cost, std::size_t edges);
+
+/// Why the optimised poses are no result, or "": the optimisation failed, or some poses have
+/// no chain of edges to a fixed node and are whatever the file said.
+std::string WhyNotWritten(const PoseGraphReport& r);
+
+}  // namespace sewer3d::cli
