@@ -68,8 +68,9 @@ int RunCamera(const CameraArgs& a) {
   if (views.size() < 3) {
     fmt::print(stderr,
                "sewer3d: error: the board was found in {} distinct poses of {} images; "
-               "calibration needs at least 3\n",
-               views.size(), a.images.size());
+               "calibration needs at least 3{}\n",
+               views.size(), a.images.size(),
+               views.empty() ? " (--board counts inner corners: 10 x 7 squares is 9x6)" : "");
     return 1;
   }
   file.result = CalibrateCamera(views, board, size.width, size.height);

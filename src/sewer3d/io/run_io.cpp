@@ -418,6 +418,8 @@ void CheckOdometrySpan(const fs::path& file, const std::vector<OdometryReading>&
 CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw FileError(folder, "is not a run folder");
+  if (!fs::exists(folder / "run.json", ec) && fs::exists(folder / "workspace.json", ec))
+    throw FileError(folder, "is a processing workspace (workspace.json), not a capture run");
   CaptureRun run;
   run.folder = folder;
   const JsonReader info_reader(folder / "run.json");

@@ -59,10 +59,14 @@ std::vector<std::string> OdometryWarnings(const CaptureRun& run,
       }
     }
     if (run.odometry.size() >= 2 && high->distance_mm - low->distance_mm < 1.0) {
+      const double span = high->distance_mm - low->distance_mm;
       lines.push_back(fmt::format(
-          "{}: the distance stays at {:.1f} mm in all {} readings: the carrier did not move or "
-          "the counter is stuck, so the odometry separates no acquisitions",
-          file, low->distance_mm, run.odometry.size()));
+          "{}: the distance {} in all {} readings: the carrier did not move, the counter is "
+          "stuck{}, so the odometry separates no acquisitions",
+          file,
+          span > 0.0 ? fmt::format("spans only {:.3g} mm", span)
+                     : fmt::format("stays at {:.1f} mm", low->distance_mm),
+          run.odometry.size(), span > 0.0 ? " or distance_mm is in metres" : ""));
     }
   }
   for (const OdometryGap& g : f.gaps) {
