@@ -129,6 +129,18 @@ void CheckFileNotInARun(const std::filesystem::path& file, const char* flag) {
   CheckNotInARun(folder.empty() ? std::filesystem::path(".") : folder, flag);
 }
 
+void CheckNotAModulesMatrix(const std::filesystem::path& out) {
+  if (out.filename() != "pattern.png") return;
+  const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
+  for (const char* owner : {"module.json", "rig.json"}) {
+    if (IsRegularFile(folder / owner)) {
+      throw InvalidValue("--out", out.string() + " is the pattern matrix of the " +
+                                      (folder / owner).string() +
+                                      " beside it; write the new pattern elsewhere");
+    }
+  }
+}
+
 void CheckNotAModuleFile(const std::filesystem::path& out, const char* flag,
                          const std::string& writes) {
   constexpr std::uintmax_t kMaxModuleBytes = 1 << 20;  // a module file is a few kB

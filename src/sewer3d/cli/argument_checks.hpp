@@ -38,6 +38,11 @@ void CheckNotInARun(const std::filesystem::path& folder, const char* flag);
 /// name).
 void CheckFileNotInARun(const std::filesystem::path& file, const char* flag);
 
+/// Throws InvalidValue naming --out when `out` is the pattern.png beside a module.json or a
+/// rig.json: it is their pattern matrix, and a new pattern written over it would make the module
+/// another one, its calibration no longer true.
+void CheckNotAModulesMatrix(const std::filesystem::path& out);
+
 /// Throws InvalidValue naming `flag` when the existing file `out` is a module description
 /// (module.json, or JSON with a "projector"): a result of another kind written over it would
 /// lose the module. `writes` says what the command writes ("a camera calibration").

@@ -2,7 +2,6 @@
 // compact run, processes it and judges the stages against the run's truth.
 
 #include <fmt/core.h>
-#include <sys/resource.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -14,6 +13,7 @@
 #include <utility>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/demo_summary.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
 #include "sewer3d/cli/process_command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
@@ -72,12 +72,6 @@ int SimulateUnlessDone(const fs::path& run, const DemoArgs& a, bool& simulated) 
   return arena.execute([&] { return RunRun(args); });
 }
 
-double PeakMemoryGb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1e6;  // kB on Linux
-}
-
 // The demo's folder holds a run and a workspace of its own: not inside a capture run (whose
 // folder must stay as captured) nor inside a workspace (whose --force would remove it).
 void CheckDemoFolder(const fs::path& dir) {
@@ -88,29 +82,6 @@ void CheckDemoFolder(const fs::path& dir) {
   }
   // A workspace of another run there would be refused only after the simulation.
   CheckWorkspaceOfRun(dir / "ws", dir / "run");
-}
-
-// The files to look at, each with what it shows.
-void PrintLookAt(const fs::path& dir, const fs::path& html) {
-  constexpr std::pair<const char*, const char*> kLookAt[] = {
-      {"ws/model/preview.png", "the unrolled pipe: texture over displacement"},
-      {"ws/model/mesh.glb", "the displaced 3D model (any glTF viewer)"},
-      {"ws/model/mesh.obj", "the textured cylinder (MeshLab, Blender)"},
-      {"ws/inspection/observations.csv", "EN 13508-2 observations (crops/: their maps)"},
-      {"ws/evaluation/model/error_map.png", "the model against the true wall"},
-      {"run/truth/overview.png", "the unrolled pipe and every image's footprint"},
-      {"ws/rgbd/m0/000000_color.png", "corrected colour at the pattern instant"},
-      {"ws/rgbd/m0/000000_depth_preview.png", "its depth map"},
-      {"ws/registration/graph.png", "the pose graph"},
-      {"ws/evaluation/rgbd/colour_montage.png", "captured | corrected | true albedo"},
-      {"ws/evaluation/*/evaluation.json", "the figures above"},
-      {"ws/workspace.json", "options, stages done, seconds"}};
-  size_t width = html.string().size();
-  for (const auto& item : kLookAt) width = std::max(width, (dir / item.first).string().size());
-  fmt::print("look at:\n  {:<{}}  the inspection report (any browser, offline)\n", html.string(),
-             width);
-  for (const auto& [path, what] : kLookAt)
-    fmt::print("  {:<{}}  {}\n", (dir / path).string(), width, what);
 }
 
 int RunDemo(const DemoArgs& a) {

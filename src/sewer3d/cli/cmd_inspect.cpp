@@ -63,7 +63,6 @@ Command AddInspectCommand(CLI::App& app) {
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
   return {sub, [args] {
-            CheckWorkspaceExists(args->out, "inspect");
             args->options.Check();
             const CaptureRun run = LoadRun(args->run);
             ProgressBar bar(args->quiet);
@@ -72,6 +71,7 @@ Command AddInspectCommand(CLI::App& app) {
             };
             InspectStageReport r;
             try {
+              CheckWorkspaceExists(args->out, "inspect");
               Workspace workspace(args->out, run);
               PrintRunFileChanges(workspace);
               r = RunInspectStage(run, workspace, args->options, progress);

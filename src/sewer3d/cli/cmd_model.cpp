@@ -71,7 +71,6 @@ Command AddModelCommand(CLI::App& app) {
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
   return {sub, [args] {
-            CheckWorkspaceExists(args->out, "model");
             try {
               args->options.Check();
             } catch (const InvalidValue& e) {  // in the command line's terms
@@ -96,6 +95,7 @@ Command AddModelCommand(CLI::App& app) {
             ModelStageReport r;
             std::string behind;  // rgbd outputs older than the run's images
             try {
+              CheckWorkspaceExists(args->out, "model");
               Workspace workspace(args->out, run);
               PrintRunFileChanges(workspace);
               behind = RgbdBehind(run, workspace);

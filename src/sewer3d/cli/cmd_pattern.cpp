@@ -19,24 +19,6 @@
 
 namespace sewer3d::cli {
 
-namespace {
-
-// A module's (or a capture run's) pattern.png is its pattern matrix: a new search written over
-// it would make the module another one, its calibration no longer true.
-void CheckNotAModulesMatrix(const std::filesystem::path& out) {
-  if (out.filename() != "pattern.png") return;
-  const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
-  for (const char* owner : {"module.json", "rig.json"}) {
-    if (IsRegularFile(folder / owner)) {
-      throw InvalidValue("--out", out.string() + " is the pattern matrix of the " +
-                                      (folder / owner).string() +
-                                      " beside it; write the new pattern elsewhere");
-    }
-  }
-}
-
-}  // namespace
-
 Command AddPatternCommand(CLI::App& app) {
   struct Args {
     std::string out;

@@ -49,7 +49,6 @@ Command AddRegisterCommand(CLI::App& app) {
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
   return {sub, [args] {
-            CheckWorkspaceExists(args->out, "register");
             if (args->edges.size() > 1 &&
                 std::find(args->edges.begin(), args->edges.end(), "none") != args->edges.end())
               throw InvalidValue("--edges", "none cannot be combined with other edge types");
@@ -72,6 +71,7 @@ Command AddRegisterCommand(CLI::App& app) {
             };
             RegisterStageReport report;
             try {
+              CheckWorkspaceExists(args->out, "register");
               Workspace workspace(args->out, run);
               PrintRunFileChanges(workspace);
               // rgbd outputs not of the run as it is now: registering them gives a model with
