@@ -105,8 +105,10 @@ std::vector<std::string> RigWarnings(const CaptureRun& run,
   for (const ModulePairAgreement& p : pairs) {
     if (!Disagrees(p)) continue;
     std::string likely = "one of the two";
-    if (flagged[p.module_a] > 1 && flagged[p.module_b] == 1) likely = fmt::format("m{}", p.module_a);
-    if (flagged[p.module_b] > 1 && flagged[p.module_a] == 1) likely = fmt::format("m{}", p.module_b);
+    if (flagged[p.module_a] > 1 && flagged[p.module_b] == 1)
+      likely = fmt::format("m{}", p.module_a);
+    if (flagged[p.module_b] > 1 && flagged[p.module_a] == 1)
+      likely = fmt::format("m{}", p.module_b);
     lines.push_back(fmt::format(
         "{}: modules m{} and m{}: the gate rejected {} of their {} registrations, which put the "
         "cameras {:.1f} mm (median) from where the rig has them: the carrier_from_camera of {} "

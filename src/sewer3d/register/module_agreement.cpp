@@ -16,12 +16,12 @@ template <typename Key>
 std::vector<ModulePairAgreement> Tally(const std::vector<AcquisitionNode>& nodes,
                                        const std::vector<RegistrationEdge>& edges,
                                        const FusionResult& fused, const Key& key) {
-  SEWER3D_VALIDATE(fused.accepted.size() == edges.size(), "fused",
-                   "has " << fused.accepted.size() << " edges' outcomes for " << edges.size()
-                          << " edges");
-  SEWER3D_VALIDATE(fused.world_from_camera.size() == nodes.size(), "fused",
-                   "has " << fused.world_from_camera.size() << " poses for " << nodes.size()
-                          << " nodes");
+  SEWER3D_VALIDATE(
+      fused.accepted.size() == edges.size(), "fused",
+      "has " << fused.accepted.size() << " edges' outcomes for " << edges.size() << " edges");
+  SEWER3D_VALIDATE(
+      fused.world_from_camera.size() == nodes.size(), "fused",
+      "has " << fused.world_from_camera.size() << " poses for " << nodes.size() << " nodes");
   std::map<std::pair<int, int>, ModulePairAgreement> pairs;
   std::map<std::pair<int, int>, std::vector<double>> offsets;
   const int n = static_cast<int>(nodes.size());
@@ -82,7 +82,7 @@ ModulePairAgreement AlongAgreement(const std::vector<AcquisitionNode>& nodes,
 }
 
 bool Disagrees(const ModulePairAgreement& pair, int min_rejected, double min_fraction,
-                      double min_offset_mm) {
+               double min_offset_mm) {
   return pair.rejected >= min_rejected &&
          pair.rejected >= min_fraction * static_cast<double>(pair.edges) &&
          pair.median_rejected_offset_mm >= min_offset_mm;

@@ -43,7 +43,7 @@ ModulePairAgreement AlongAgreement(const std::vector<AcquisitionNode>& nodes,
 /// least `min_rejected` rejected, at least `min_fraction` of them, and `min_offset_mm` off (the
 /// median). A sound simulated run (compact preset) has pairs with up to half of their
 /// registrations rejected, about 1 mm off; a module 84 mm out rejects all of them, 84 mm off.
-bool Disagrees(const ModulePairAgreement& pair, int min_rejected = 2,
-                      double min_fraction = 0.75, double min_offset_mm = 5.0);
+bool Disagrees(const ModulePairAgreement& pair, int min_rejected = 2, double min_fraction = 0.75,
+               double min_offset_mm = 5.0);
 
 }  // namespace sewer3d

@@ -105,7 +105,7 @@ TEST_F(ModuleAgreementTest, AlongThePipeAllModulesCountTogether) {
   EXPECT_EQ(along.edges, 3);
   EXPECT_EQ(along.rejected, 2);
   EXPECT_NEAR(along.median_rejected_offset_mm, 96.0, 1e-9);  // of 95 and 96: the upper
-  EXPECT_FALSE(Disagrees(along));                             // 2 of 3 < 75 %
+  EXPECT_FALSE(Disagrees(along));                            // 2 of 3 < 75 %
   Add(4, 5, T::kProjection, 90.0, false);
   EXPECT_TRUE(Disagrees(AlongAgreement(nodes_, edges_, fused_)));  // 3 of 4
 }
