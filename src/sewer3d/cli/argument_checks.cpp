@@ -115,18 +115,24 @@ CLI::Validator FileNameEnding(const std::string& extension, const std::string& w
           extension.substr(1)};
 }
 
-void CheckNotInARun(const std::filesystem::path& folder, const char* flag) {
-  if (const auto run = OwnerAbove(folder, {"run.json"}, true); !run.empty()) {
+void CheckNotInRunOrWorkspace(const std::filesystem::path& folder, const char* flag) {
+  const auto owner = OwnerAbove(folder, {"run.json", "workspace.json"}, true);
+  if (owner.empty()) return;
+  if (owner.filename() == "run.json") {
     throw InvalidValue(flag, folder.string() + " lies in the capture run " +
-                                 run.parent_path().string() +
+                                 owner.parent_path().string() +
                                  ": outputs there would mix with the run as captured; choose "
                                  "another folder");
   }
+  throw InvalidValue(flag, folder.string() + " lies in the processing workspace " +
+                               owner.parent_path().string() +
+                               ": outputs there would replace or mix with its stages' files; "
+                               "choose another folder");
 }
 
-void CheckFileNotInARun(const std::filesystem::path& file, const char* flag) {
+void CheckFileNotInRunOrWorkspace(const std::filesystem::path& file, const char* flag) {
   const std::filesystem::path folder = file.parent_path();
-  CheckNotInARun(folder.empty() ? std::filesystem::path(".") : folder, flag);
+  CheckNotInRunOrWorkspace(folder.empty() ? std::filesystem::path(".") : folder, flag);
 }
 
 void CheckNotAModulesMatrix(const std::filesystem::path& out) {

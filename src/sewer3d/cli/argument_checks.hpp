@@ -31,12 +31,13 @@ std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv);
 /// refusal says why (`why`: "the matrix is written losslessly as PNG").
 CLI::Validator FileNameEnding(const std::string& extension, const std::string& why);
 
-/// Throws InvalidValue naming `flag` when `folder` is a capture run's folder or lies inside one
-/// (a run.json there or above): outputs there would mix with the run as captured.
-void CheckNotInARun(const std::filesystem::path& folder, const char* flag);
-/// CheckNotInARun for the folder an output file `file` goes to (the working folder for a bare
-/// name).
-void CheckFileNotInARun(const std::filesystem::path& file, const char* flag);
+/// Throws InvalidValue naming `flag` when `folder` is a capture run's folder or a processing
+/// workspace, or lies inside one (a run.json or workspace.json there or above): outputs there
+/// would mix with the run as captured, or replace a stage's files behind the workspace's record.
+void CheckNotInRunOrWorkspace(const std::filesystem::path& folder, const char* flag);
+/// CheckNotInRunOrWorkspace for the folder an output file `file` goes to (the working folder for a
+/// bare name).
+void CheckFileNotInRunOrWorkspace(const std::filesystem::path& file, const char* flag);
 
 /// Throws InvalidValue naming --out when `out` is the pattern.png beside a module.json or a
 /// rig.json: it is their pattern matrix, and a new pattern written over it would make the module

@@ -30,7 +30,7 @@ struct CameraArgs {
 
 int RunCamera(const CameraArgs& a) {
   const auto board_size = ParseSize(a.board);
-  CheckFileNotInARun(a.out, "--out");
+  CheckFileNotInRunOrWorkspace(a.out, "--out");
   CheckOutputFile(a.out);
   CheckNotAModuleFile(a.out, "--out", "a camera calibration");
   for (const std::string& image : a.images) CheckNotAnInput(a.out, image, "--images");
@@ -129,7 +129,9 @@ Command AddCalibrateCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   AddBoardOption(*camera, args->board);
   AddSquareOption(*camera, args->square_mm);
-  camera->add_option("--out", args->out, "Result JSON (camera.json)")->required();
+  camera->add_option("--out", args->out, "Result JSON (camera.json)")
+      ->required()
+      ->check(FileNameEnding(".json", "the calibration is written as JSON text"));
   camera->add_flag("--no-pictures", args->no_pictures,
                    "Do not write the per-image corner pictures");
   const Command module = AddCalibrateModuleCommand(*sub);

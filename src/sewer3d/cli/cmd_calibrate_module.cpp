@@ -54,7 +54,7 @@ void CheckBoardFile(const fs::path& captures, const BoardLayout& layout) {
 
 int RunModule(const ModuleArgs& a) {
   const auto board_size = ParseSize(a.board);
-  CheckFileNotInARun(a.out, "--out");
+  CheckFileNotInRunOrWorkspace(a.out, "--out");
   CheckOutputFile(a.out);  // before minutes of work
   // pattern.png is written beside the module file: they must be two files.
   if (fs::path(a.out).filename() == "pattern.png")

@@ -101,7 +101,7 @@ Command AddModuleCommand(CLI::App& app) {
                                              e.field(), e.problem()));
             }
             const std::filesystem::path dir = args->out;
-            CheckNotInARun(dir, "--out");
+            CheckNotInRunOrWorkspace(dir, "--out");
             const BinaryArray pattern = DefaultPatternArray();
             const SubmapSearchOptions search = DefaultPatternSearchOptions();
             // A module the decoder cannot use is refused before anything is written.

@@ -97,7 +97,7 @@ Command AddPatternCommand(CLI::App& app) {
                                       {"max_moves", "--max-moves"}});
             }
             // Both outputs checked before the search: a refusal leaves neither written.
-            CheckFileNotInARun(args->out, "--out");
+            CheckFileNotInRunOrWorkspace(args->out, "--out");
             CheckNotAModulesMatrix(args->out);
             CheckOutputFile(args->out);
             CheckOutputFile(PatternSidecarPath(args->out));

@@ -74,7 +74,7 @@ Command AddPoseGraphCommand(CLI::App& app) {
                            : args->init == "chordal" ? PoseGraphInit::kChordal
                                                      : PoseGraphInit::kAuto;
             if (!args->robust.empty()) options.huber_delta = *ParseRobust(args->robust);
-            CheckFileNotInARun(args->out, "--out");
+            CheckFileNotInRunOrWorkspace(args->out, "--out");
             CheckOutputFile(args->out);
             CheckNotAnInput(args->out, args->in, "--in");
             PoseGraph graph = ReadG2o(args->in);

@@ -57,7 +57,7 @@ Command AddReconstructCommand(CLI::App& app) {
       sub, [args] {
         const LoadedModule loaded = LoadModule(args->module);
         const ModuleDescription& module = loaded.module;
-        CheckNotInARun(args->out, "--out");
+        CheckNotInRunOrWorkspace(args->out, "--out");
         for (const char* name : {"cloud.ply", "depth.tiff", "depth.png", "report.json"}) {
           const std::filesystem::path output = std::filesystem::path(args->out) / name;
           CheckNotAnInput(output, args->image, "--image");

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/simulate_commands.hpp"
 #include "sewer3d/core/check.hpp"
@@ -33,6 +34,7 @@ void CheckFrameFolder(const std::filesystem::path& out, const LoadedModule& load
                                     " holds a module, whose pattern.png the rendered "
                                     "image would replace; choose another folder");
   }
+  CheckNotInRunOrWorkspace(out, "--out");
 }
 
 int RunFrame(const FrameArgs& a, const CLI::App& frame) {

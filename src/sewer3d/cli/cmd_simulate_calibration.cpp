@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/calibrate_commands.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/progress_bar.hpp"
@@ -91,6 +92,7 @@ int RunCalibration(const CalibrationArgs& a) {
   }
   const std::filesystem::path out(a.out);
   PrepareCaptureFolder(out, a.poses);
+  CheckNotInRunOrWorkspace(out, "--out");
   ProgressBar progress(a.quiet);
   nlohmann::json truth;
   truth["board"] = {{"cols", board.cols}, {"rows", board.rows}, {"square_mm", board.square_mm}};

@@ -131,6 +131,54 @@ std::string PoseTravelProblem(std::vector<RegistrationPoseRow> rows,
   return "";
 }
 
+std::string PoseDirectionProblem(std::vector<RegistrationPoseRow> rows,
+                                 const std::vector<OdometryReading>& readings, const Rig& rig) {
+  constexpr double kMinStepMm = 20.0, kMinForward = 0.5;
+  SortByModuleAndTime(rows);
+  for (std::size_t first = 0; first < rows.size();) {
+    std::size_t last = first;
+    while (last + 1 < rows.size() && rows[last + 1].module == rows[first].module) ++last;
+    const int module = rows[first].module;
+    const std::size_t begin = first;
+    first = last + 1;
+    if (module < 0 || module >= static_cast<int>(rig.modules.size())) continue;
+    // The carrier axis in the camera's frame.
+    const Eigen::Vector3d axis =
+        rig.modules[module].carrier_from_camera.RotationMatrix().transpose().col(2);
+    int steps = 0, against = 0;
+    std::size_t shown = begin, shown_to = begin;
+    double shown_forward = 0.0, shown_odometry = 0.0;
+    for (std::size_t a = begin, b = begin + 1; b <= last; ++b) {
+      const auto from = OdometryDistanceAt(readings, rows[a].time_s);
+      const auto to = OdometryDistanceAt(readings, rows[b].time_s);
+      if (!from || !to) continue;
+      const double odometry_mm = *to - *from;
+      if (odometry_mm < kMinStepMm) continue;
+      const Rigid3d& pa = rows[a].world_from_camera;
+      const double forward = axis.dot(pa.RotationMatrix().transpose() *
+                                      (rows[b].world_from_camera.translation - pa.translation));
+      ++steps;
+      if (forward < kMinForward * odometry_mm) {
+        if (against++ == 0) {
+          shown = a;
+          shown_to = b;
+          shown_forward = forward;
+          shown_odometry = odometry_mm;
+        }
+      }
+      a = b;
+    }
+    if (steps == 0 || 2 * against <= steps) continue;
+    return fmt::format(
+        "module {}'s camera moves {:.4g} mm along the carrier axis from acquisition {} to {}, "
+        "the odometry {:.4g} mm forward ({} of its {} steps against the odometry): poses as "
+        "camera_from_world, or with an axis negated? run register again",
+        module, shown_forward, rows[shown].counter, rows[shown_to].counter, shown_odometry, against,
+        steps);
+  }
+  return "";
+}
+
 int RegistrationVertexId(int module, int counter) { return module * 1000000 + counter; }
 
 void WriteRegistrationEdges(const std::filesystem::path& path,

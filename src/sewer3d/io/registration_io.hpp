@@ -16,6 +16,7 @@
 #include "sewer3d/core/rigid3.hpp"
 #include "sewer3d/posegraph/pose_graph.hpp"
 #include "sewer3d/run/odometry.hpp"
+#include "sewer3d/run/rig.hpp"
 
 namespace sewer3d {
 
@@ -43,6 +44,14 @@ std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows);
 /// of another run). Slipping wheels and a slack cable stay far within the factor.
 std::string PoseTravelProblem(std::vector<RegistrationPoseRow> rows,
                               const std::vector<OdometryReading>& readings);
+
+/// Why `rows` move against the run's odometry (`readings`, sorted by time), or "": a module
+/// whose camera, over steps of 20 mm or more of odometry, moves along the carrier axis (the
+/// rig's, in the camera's frame at the step's start) less than half the odometry's distance
+/// forward in most of its steps: poses written as camera_from_world, or with the axis negated.
+/// Bends leave each step's direction as it is; modules the rig lacks are left to other checks.
+std::string PoseDirectionProblem(std::vector<RegistrationPoseRow> rows,
+                                 const std::vector<OdometryReading>& readings, const Rig& rig);
 
 /// The vertex id of an acquisition in graph.g2o and edges.csv: module · 10⁶ + counter.
 int RegistrationVertexId(int module, int counter);

@@ -55,5 +55,36 @@ TEST(PoseTravelProblem, ComparesEachModulesTravelWithTheOdometry) {
   EXPECT_EQ(PoseTravelProblem(rows, {}), "");
 }
 
+TEST(PoseDirectionProblem, ComparesEachStepsDirectionWithTheOdometry) {
+  std::vector<OdometryReading> odometry;
+  for (int k = 0; k <= 50; ++k) odometry.push_back({0.1 * k, 2.0 * k, k + 2});  // 20 mm/s
+  // The cameras look across the pipe: camera y along the carrier axis (z), as the rig has them.
+  const Eigen::Matrix3d looks_up =
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  ASSERT_TRUE(looks_up.col(1).isApprox(Eigen::Vector3d::UnitZ()));
+  Rig rig;
+  rig.modules.resize(2);
+  for (RigModule& m : rig.modules)
+    m.carrier_from_camera = Rigid3d(looks_up, Eigen::Vector3d::Zero());
+  auto rows = SteadyRun();  // 10 mm along z every 0.5 s, as the odometry says
+  for (auto& row : rows) row.world_from_camera.rotation = Eigen::Quaterniond(looks_up);
+  EXPECT_EQ(PoseDirectionProblem(rows, odometry, rig), "");
+  // z negated (another axis convention): every step goes back.
+  auto negated = rows;
+  for (auto& row : negated) row.world_from_camera.translation.z() *= -1.0;
+  const std::string problem = PoseDirectionProblem(negated, odometry, rig);
+  EXPECT_NE(problem.find("module 0's camera moves -20 mm along the carrier axis from acquisition "
+                         "0 to 2, the odometry 20 mm forward (4 of its 4 steps"),
+            std::string::npos)
+      << problem;
+  // Written as camera_from_world: the rotation inverted, the camera centres too.
+  auto inverted = rows;
+  for (auto& row : inverted) row.world_from_camera = row.world_from_camera.Inverse();
+  EXPECT_NE(PoseDirectionProblem(inverted, odometry, rig), "");
+  // A module the rig lacks is left to the model stage's own check; no odometry, no steps.
+  EXPECT_EQ(PoseDirectionProblem(negated, odometry, Rig{}), "");
+  EXPECT_EQ(PoseDirectionProblem(negated, {}, rig), "");
+}
+
 }  // namespace
 }  // namespace sewer3d

@@ -50,6 +50,18 @@ void WriteRgbdGeometry(const RgbdFiles& files, const FrameReconstruction& frame,
     nlohmann::json report = nlohmann::json::parse(ReadTextFile(temporary / "report.json"));
     report.merge_patch(nlohmann::json::parse(extra_json));
     WriteTextFileAtomically(files.geometry, report.dump(2) + "\n");
+  } catch (const FileError& e) {
+    std::error_code ignored;
+    std::filesystem::remove_all(temporary, ignored);
+    // A write into the temporary folder failed (a full disk): name the file it was to become.
+    if (e.path().parent_path() != temporary) throw;
+    const std::string problem = std::string(e.what()).substr(ShownPath(e.path()).size() + 2);
+    const std::string name = e.path().filename().string();
+    const std::filesystem::path target = name == "depth.tiff"  ? files.depth
+                                         : name == "depth.png" ? files.depth_preview
+                                         : name == "cloud.ply" ? files.cloud
+                                                               : files.geometry;
+    throw FileError(target, problem);
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove_all(temporary, ignored);

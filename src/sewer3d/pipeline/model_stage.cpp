@@ -49,8 +49,8 @@ std::vector<ModelAcquisition> RegisteredAcquisitions(
     throw FileError(poses_file, "missing: run the register stage first");
   std::vector<ModelAcquisition> acquisitions;
   const std::vector<RegistrationPoseRow> rows = ReadRegistrationPoses(poses_file);
-  for (const std::string& problem :
-       {PoseJumpProblem(rows), PoseTravelProblem(rows, run.odometry)}) {
+  for (const std::string& problem : {PoseJumpProblem(rows), PoseTravelProblem(rows, run.odometry),
+                                     PoseDirectionProblem(rows, run.odometry, run.rig)}) {
     if (!problem.empty()) throw FileError(poses_file, problem);
   }
   for (const RegistrationPoseRow& row : rows) {
