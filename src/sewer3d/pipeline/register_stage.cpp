@@ -156,6 +156,10 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   if (const std::string along = AlongWarning(run, AlongAgreement(nodes, edges, fused));
       !along.empty())
     report.odometry_warnings.push_back(along);
+  else if (const std::string fit = OdometryFitWarning(
+               run, fused.report.by_type[static_cast<int>(RegistrationEdgeType::kOdometry)]);
+           !fit.empty())
+    report.odometry_warnings.push_back(fit);
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   report.seconds_per_node = report.seconds / report.nodes;
   // A resumed stage that registered nothing new and fused the same poses changes nothing

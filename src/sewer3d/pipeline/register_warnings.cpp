@@ -130,4 +130,14 @@ std::string AlongWarning(const CaptureRun& run, const ModulePairAgreement& along
       along.median_rejected_offset_mm);
 }
 
+std::string OdometryFitWarning(const CaptureRun& run, const EdgeTypeStatistics& odometry) {
+  constexpr double kMaxMedianChi2 = 100.0;
+  if (odometry.accepted < 2 || !(odometry.median_chi2 > kMaxMedianChi2)) return {};
+  return fmt::format(
+      "{}: the odometry disagrees with the registrations: its edges' median χ² is {:.3g} at the "
+      "solution (about 6 when they agree), their residual {:.1f} mm RMS: is the counter's scale "
+      "right (drum or wheel calibration, units)? The poses are a compromise between the two",
+      (run.folder / "odometry.csv").string(), odometry.median_chi2, odometry.rms_translation_mm);
+}
+
 }  // namespace sewer3d

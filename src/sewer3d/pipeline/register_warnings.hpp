@@ -29,4 +29,9 @@ std::vector<std::string> RigWarnings(const CaptureRun& run,
 /// AlongAgreement): odometry.csv in other units or scale; "" otherwise.
 std::string AlongWarning(const CaptureRun& run, const ModulePairAgreement& along);
 
+/// A line when the odometry edges, kept by the fusion, disagree with the solution far beyond
+/// their noise (median χ² over 100 of at least 2 edges; about 6 when the odometry is right):
+/// a counter whose scale is wrong (a factor 2 measured 4296); "" otherwise.
+std::string OdometryFitWarning(const CaptureRun& run, const EdgeTypeStatistics& odometry);
+
 }  // namespace sewer3d
