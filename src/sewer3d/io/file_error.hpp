@@ -29,6 +29,22 @@ inline std::string ShownPath(const std::filesystem::path& path) {
   return shown;
 }
 
+/// Bytes of a file quoted in a message (a header line that may run into binary data): printable
+/// ASCII as it is, every other byte as \xNN, so the message stays one line of plain text.
+inline std::string ShownBytes(const std::string& bytes) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string shown;
+  for (const char c : bytes) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7f) {
+      shown += c;
+    } else {
+      shown += std::string("\\x") + kHex[u >> 4] + kHex[u & 15];
+    }
+  }
+  return shown;
+}
+
 class FileError : public std::runtime_error {
  public:
   FileError(const std::filesystem::path& path, const std::string& problem)

@@ -122,7 +122,7 @@ PlyHeader ReadPlyHeader(std::istream& file, const std::filesystem::path& path) {
     } else if (line.rfind(kPlyComment, 0) == 0) {
       header.frame = line.substr(std::string(kPlyComment).size());
     } else if (word != "comment" && word != "obj_info" && !word.empty()) {
-      throw FileError(path, "unknown PLY header line: " + line.substr(0, 60));
+      throw FileError(path, "unknown PLY header line: " + ShownBytes(line.substr(0, 60)));
     }
   }
   throw FileError(path, "PLY header has no end_header line");

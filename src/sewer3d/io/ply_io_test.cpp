@@ -160,6 +160,12 @@ TEST_F(PlyIoTest, BrokenFilesAreFileErrors) {
                 "ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar int x\n"
                 "end_header\n1 2\n");
   ExpectReadError(dir_ / "list.ply", "list property in vertex element");
+  // end_header without its newline runs into the binary body: the bytes are quoted as \xNN.
+  WriteTextFile(dir_ / "glued.ply",
+                std::string("ply\nformat binary_little_endian 1.0\nelement vertex 1\n"
+                            "property float x\nproperty float y\nproperty float z\nend_header") +
+                    std::string("\xd9\xaf\x01\x1bq\n", 6));
+  ExpectReadError(dir_ / "glued.ply", "unknown PLY header line: end_header\\xd9\\xaf\\x01\\x1bq");
 }
 
 // A count the body does not match is an error either way, never a silently shorter cloud, and
