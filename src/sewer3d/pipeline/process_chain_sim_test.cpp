@@ -12,12 +12,14 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/model_io.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
+#include "sewer3d/pipeline/report_stage.hpp"
 #include "sewer3d/simio/simulate_run.hpp"
 #include "sewer3d/testing/small_module.hpp"
 
@@ -146,6 +148,22 @@ TEST(ProcessChainTiny, LeavesOutBadAcquisitionsResumesAndSkipsWhatIsDone) {
   EXPECT_EQ(
       ReadWorkspaceRecord(dir / "ws" / "workspace.json").stages.at("process").notes.at("skipped"),
       "rgbd register model inspect report");
+
+  // An observation edited to 250 m, far beyond the model's stations: the report refuses it.
+  const fs::path observations = dir / "ws" / "inspection" / "observations.json";
+  nlohmann::json o = nlohmann::json::parse(ReadTextFile(observations));
+  ASSERT_FALSE(o.at("observations").empty());  // the tiny run's joint, at least
+  o["observations"][0]["station_mm"] = 250000.0;
+  WriteTextFile(observations, o.dump(1));
+  {
+    Workspace ws(dir / "ws", run.folder);
+    try {
+      RunReportStage(run, ws, true);
+      ADD_FAILURE() << "an observation at 250 m was reported";
+    } catch (const FileError& e) {
+      EXPECT_TRUE(Contains(e.what(), "lies outside the model's stations")) << e.what();
+    }
+  }
   if (!std::getenv("SEWER3D_KEEP")) fs::remove_all(dir);
 }
 

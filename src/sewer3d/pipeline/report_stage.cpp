@@ -1,9 +1,12 @@
 #include "sewer3d/pipeline/report_stage.hpp"
 
+#include <fmt/core.h>
+
 #include <chrono>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/inspection_io.hpp"
+#include "sewer3d/io/model_io.hpp"
 #include "sewer3d/report/workspace_inputs.hpp"
 
 namespace sewer3d {
@@ -30,6 +33,30 @@ void CheckStageFile(const Workspace& workspace, const char* stage,
   }
 }
 
+// Observations must lie on the model they were found on: one far beyond its stations (a hand
+// edit, or another model's observations.json) would be listed as this pipe's.
+void CheckObservationStations(const std::vector<Observation>& observations,
+                              const std::filesystem::path& model_json,
+                              const std::filesystem::path& observations_json) {
+  constexpr double kMarginMm = 100.0;  // an observation's centre may lie past the last cell
+  if (observations.empty() || !std::filesystem::exists(model_json)) return;
+  MapGrid grid;
+  try {
+    grid = ReadModelJson(model_json).grid;
+  } catch (const FileError&) {
+    return;  // the page says the model cannot be read
+  }
+  const double first = grid.station0_mm, last = grid.station0_mm + grid.rows * grid.resolution_mm;
+  for (const Observation& o : observations) {
+    if (o.station_mm >= first - kMarginMm && o.station_mm <= last + kMarginMm) continue;
+    throw FileError(observations_json,
+                    fmt::format("observation {}: station_mm {:g} lies outside the model's stations "
+                                "{:.1f} to {:.1f} mm ({}): edited, or another model's? run "
+                                "`sewer3d inspect` again with --force",
+                                o.id, o.station_mm, first, last, model_json.string()));
+  }
+}
+
 }  // namespace
 
 ReportStageReport RunReportStage(const CaptureRun& run, Workspace& workspace, bool force) {
@@ -52,6 +79,9 @@ ReportStageReport RunReportStage(const CaptureRun& run, Workspace& workspace, bo
     if (std::filesystem::exists(files.profile_csv)) in.profile = ReadProfileCsv(files.profile_csv);
     if (std::filesystem::exists(files.observations_json))
       in.observations = ReadObservationsJson(files.observations_json);
+    if (in.observations)
+      CheckObservationStations(*in.observations, ws / "model" / "model.json",
+                               files.observations_json);
   }
   if (NotDone(workspace, "model")) {
     in.notes.push_back(
