@@ -78,6 +78,7 @@ Command AddPoseGraphCommand(CLI::App& app) {
             CheckOutputFile(args->out);
             CheckNotAnInput(args->out, args->in, "--in");
             PoseGraph graph = ReadG2o(args->in);
+            WarnOfUnitMismatch(args->in, graph);
             if (options.certify) CheckCertifiable(args->in, graph.nodes().size());
             fmt::print("{}: {} poses, {} edges, cost at its poses {:.7g}\n", args->in,
                        graph.nodes().size(), graph.edges().size(), GraphCost(graph));

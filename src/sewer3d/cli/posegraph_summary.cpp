@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "sewer3d/core/check.hpp"
 
@@ -47,6 +48,26 @@ void WarnOfDisagreement(const std::string& in, double final_cost, size_t edges) 
              "sewer3d: warning: {}: the edges contradict each other or the fixed nodes: χ² "
              "{:.3g} per edge at the optimum (about 6 when the information matches the noise)\n",
              in, chi2);
+}
+
+void WarnOfUnitMismatch(const std::string& in, const PoseGraph& graph) {
+  constexpr double kFactor = 100.0;
+  std::vector<double> ratios;
+  for (const PoseEdge& e : graph.edges()) {
+    const double poses = (graph.node(e.to).translation - graph.node(e.from).translation).norm();
+    const double edge = e.a_from_b.translation.norm();
+    if (poses > 0.0 && edge > 0.0) ratios.push_back(edge / poses);
+  }
+  if (ratios.size() < 2) return;
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  const double ratio = ratios[ratios.size() / 2];
+  if (ratio < kFactor && ratio > 1.0 / kFactor) return;
+  std::fflush(stdout);
+  fmt::print(stderr,
+             "sewer3d: warning: {}: the edges' translations are {:.3g} times the distances of "
+             "the poses they join (median): one in metres, the other in millimetres? The result "
+             "follows the edges\n",
+             in, ratio);
 }
 
 std::string WhyNotWritten(const PoseGraphReport& r) {

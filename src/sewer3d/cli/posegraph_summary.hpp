@@ -19,6 +19,11 @@ void PrintPoseGraphReport(const PoseGraphReport& r, const PoseGraphOptions& opti
 /// A warning (stderr) when the edges contradict each other or the fixed nodes.
 void WarnOfDisagreement(const std::string& in, double final_cost, std::size_t edges);
 
+/// A warning (stderr) when the edges' translations and the file's poses differ by a factor of
+/// 100 or more (median over the edges whose poses lie apart): one of them in metres, the other
+/// in millimetres. Graphs whose poses all sit at one place (no initial guess) are left alone.
+void WarnOfUnitMismatch(const std::string& in, const PoseGraph& graph);
+
 /// Why the optimised poses are no result, or "": the optimisation failed, or some poses have
 /// no chain of edges to a fixed node and are whatever the file said.
 std::string WhyNotWritten(const PoseGraphReport& r);
