@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <tuple>
 #include <utility>
 
 #include "sewer3d/io/atomic_file.hpp"
@@ -73,110 +72,6 @@ std::vector<RegistrationPoseRow> ReadRegistrationPoses(const std::filesystem::pa
     rows.push_back(r);
   }
   return rows;
-}
-
-namespace {
-
-// Each module's rows together, in time order (the counter breaks ties).
-void SortByModuleAndTime(std::vector<RegistrationPoseRow>& rows) {
-  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
-    return std::tie(a.module, a.time_s, a.counter) < std::tie(b.module, b.time_s, b.counter);
-  });
-}
-
-}  // namespace
-
-std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows) {
-  constexpr double kSlackMm = 500.0, kMaxSpeedMmS = 2000.0;
-  SortByModuleAndTime(rows);
-  for (std::size_t i = 1; i < rows.size(); ++i) {
-    const RegistrationPoseRow &a = rows[i - 1], &b = rows[i];
-    if (a.module != b.module) continue;
-    const double apart_mm =
-        (b.world_from_camera.translation - a.world_from_camera.translation).norm();
-    const double dt_s = b.time_s - a.time_s;
-    if (!(apart_mm <= kSlackMm + kMaxSpeedMmS * dt_s)) {
-      return fmt::format(
-          "module {}'s acquisitions {} and {} lie {:.4g} m apart, {:.3g} s apart in time: faster "
-          "than a crawler moves (an edited file, or a registration gone wrong); run register "
-          "again",
-          a.module, a.counter, b.counter, apart_mm / 1000.0, dt_s);
-    }
-  }
-  return "";
-}
-
-std::string PoseTravelProblem(std::vector<RegistrationPoseRow> rows,
-                              const std::vector<OdometryReading>& readings) {
-  constexpr double kMinOdometryMm = 20.0, kFactor = 5.0;
-  SortByModuleAndTime(rows);
-  for (std::size_t first = 0; first < rows.size();) {
-    std::size_t last = first;
-    while (last + 1 < rows.size() && rows[last + 1].module == rows[first].module) ++last;
-    const RegistrationPoseRow &a = rows[first], &b = rows[last];
-    first = last + 1;
-    const auto from = OdometryDistanceAt(readings, a.time_s);
-    const auto to = OdometryDistanceAt(readings, b.time_s);
-    if (!from || !to || std::abs(*to - *from) < kMinOdometryMm) continue;
-    const double odometry_mm = std::abs(*to - *from);
-    const double poses_mm =
-        (b.world_from_camera.translation - a.world_from_camera.translation).norm();
-    if (poses_mm * kFactor >= odometry_mm && poses_mm <= kFactor * odometry_mm) continue;
-    return fmt::format(
-        "module {}'s camera moves {:.4g} mm from acquisition {} to {}, the odometry {:.4g} mm "
-        "over the same time: poses in other units than mm, or of another run? run register "
-        "again",
-        a.module, poses_mm, a.counter, b.counter, odometry_mm);
-  }
-  return "";
-}
-
-std::string PoseDirectionProblem(std::vector<RegistrationPoseRow> rows,
-                                 const std::vector<OdometryReading>& readings, const Rig& rig) {
-  constexpr double kMinStepMm = 20.0, kMinForward = 0.5;
-  SortByModuleAndTime(rows);
-  for (std::size_t first = 0; first < rows.size();) {
-    std::size_t last = first;
-    while (last + 1 < rows.size() && rows[last + 1].module == rows[first].module) ++last;
-    const int module = rows[first].module;
-    const std::size_t begin = first;
-    first = last + 1;
-    if (module < 0 || module >= static_cast<int>(rig.modules.size())) continue;
-    // The carrier axis in the camera's frame.
-    const Eigen::Vector3d axis =
-        rig.modules[module].carrier_from_camera.RotationMatrix().transpose().col(2);
-    int steps = 0, against = 0;
-    std::size_t shown = begin, shown_to = begin;
-    double shown_forward = 0.0, shown_odometry = 0.0;
-    for (std::size_t a = begin, b = begin + 1; b <= last; ++b) {
-      const auto from = OdometryDistanceAt(readings, rows[a].time_s);
-      const auto to = OdometryDistanceAt(readings, rows[b].time_s);
-      if (!from || !to) continue;
-      const double odometry_mm = *to - *from;
-      if (odometry_mm < kMinStepMm) continue;
-      const Rigid3d& pa = rows[a].world_from_camera;
-      const double forward = axis.dot(pa.RotationMatrix().transpose() *
-                                      (rows[b].world_from_camera.translation - pa.translation));
-      ++steps;
-      if (forward < kMinForward * odometry_mm) {
-        if (against++ == 0) {
-          shown = a;
-          shown_to = b;
-          shown_forward = forward;
-          shown_odometry = odometry_mm;
-        }
-      }
-      a = b;
-    }
-    if (steps == 0 || 2 * against <= steps) continue;
-    return fmt::format(
-        "module {}'s camera moves {:.4g} mm along the carrier axis from acquisition {} to {}, "
-        "the odometry {:.4g} mm forward ({} of its {} steps against the odometry): poses as "
-        "camera_from_world, or with an axis negated? run register again",
-        module, shown_forward, rows[shown].counter, rows[shown_to].counter, shown_odometry, against,
-        steps);
-  }
-  return "";
 }
 
 int RegistrationVertexId(int module, int counter) { return module * 1000000 + counter; }

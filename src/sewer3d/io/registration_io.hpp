@@ -15,8 +15,6 @@
 
 #include "sewer3d/core/rigid3.hpp"
 #include "sewer3d/posegraph/pose_graph.hpp"
-#include "sewer3d/run/odometry.hpp"
-#include "sewer3d/run/rig.hpp"
 
 namespace sewer3d {
 
@@ -31,27 +29,6 @@ struct RegistrationPoseRow {
 void WriteRegistrationPoses(const std::filesystem::path& path,
                             const std::vector<RegistrationPoseRow>& rows);
 std::vector<RegistrationPoseRow> ReadRegistrationPoses(const std::filesystem::path& path);
-
-/// Why `rows` cannot be one run's poses, or "": two acquisitions of a module, next to each other
-/// in time, whose cameras lie farther apart than a crawler moves (0.5 m plus 2 m/s of their time
-/// difference): an edited poses.csv or a registration gone wrong, which would stretch the model
-/// over the gap.
-std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows);
-
-/// Why `rows` disagree with the run's odometry (`readings`, sorted by time), or "": a module
-/// whose camera travels between its first and last acquisition under a fifth or over five times
-/// the odometry's distance over the same time, when that is 20 mm or more (poses in metres, or
-/// of another run). Slipping wheels and a slack cable stay far within the factor.
-std::string PoseTravelProblem(std::vector<RegistrationPoseRow> rows,
-                              const std::vector<OdometryReading>& readings);
-
-/// Why `rows` move against the run's odometry (`readings`, sorted by time), or "": a module
-/// whose camera, over steps of 20 mm or more of odometry, moves along the carrier axis (the
-/// rig's, in the camera's frame at the step's start) less than half the odometry's distance
-/// forward in most of its steps: poses written as camera_from_world, or with the axis negated.
-/// Bends leave each step's direction as it is; modules the rig lacks are left to other checks.
-std::string PoseDirectionProblem(std::vector<RegistrationPoseRow> rows,
-                                 const std::vector<OdometryReading>& readings, const Rig& rig);
 
 /// The vertex id of an acquisition in graph.g2o and edges.csv: module · 10⁶ + counter.
 int RegistrationVertexId(int module, int counter);

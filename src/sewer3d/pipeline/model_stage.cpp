@@ -12,6 +12,7 @@
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/model_io.hpp"
+#include "sewer3d/io/pose_checks.hpp"
 #include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -50,7 +51,8 @@ std::vector<ModelAcquisition> RegisteredAcquisitions(
   std::vector<ModelAcquisition> acquisitions;
   const std::vector<RegistrationPoseRow> rows = ReadRegistrationPoses(poses_file);
   for (const std::string& problem : {PoseJumpProblem(rows), PoseTravelProblem(rows, run.odometry),
-                                     PoseDirectionProblem(rows, run.odometry, run.rig)}) {
+                                     PoseDirectionProblem(rows, run.odometry, run.rig),
+                                     PoseRigProblem(rows, run.odometry, run.rig)}) {
     if (!problem.empty()) throw FileError(poses_file, problem);
   }
   for (const RegistrationPoseRow& row : rows) {

@@ -1,7 +1,7 @@
 // The model stage over the tiny simulated run (2 acquisitions × 6 modules, 648 × 486, 100 mm of
 // travel past a joint offset 4 mm toward 12 o'clock): the centreline's diameter, the maps'
 // displacement on the round wall and across the joint, the files of the workspace contract,
-// and a resumed stage that keeps what it wrote.
+// a resumed stage that keeps what it wrote, and poses edited by hand refused.
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,10 @@
 #include <vector>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
+#include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/model_io.hpp"
+#include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
@@ -170,6 +173,32 @@ TEST_F(ModelStageTiny, ARefusedNominalDiameterLeavesTheEarlierModel) {
   EXPECT_THROW(RunModelStage(run_, ws, options), InvalidValue);
   ASSERT_TRUE(fs::exists(model_json));
   EXPECT_EQ(ReadTextFile(model_json), before);
+}
+
+TEST_F(ModelStageTiny, APoseMovedByHandIsRefused) {
+  // One acquisition's pose 60 mm along the pipe, as a hand edit of poses.csv would put it: the
+  // other five modules and the rig put the carrier where it was (within 0.5 mm here).
+  const fs::path poses_csv = dir_ / "ws" / "registration" / "poses.csv";
+  const std::string before = ReadTextFile(poses_csv);
+  std::vector<RegistrationPoseRow> rows = ReadRegistrationPoses(poses_csv);
+  const auto moved = std::find_if(rows.begin(), rows.end(), [](const RegistrationPoseRow& r) {
+    return r.module == 1 && r.counter == 1;
+  });
+  ASSERT_NE(moved, rows.end());
+  moved->world_from_camera.translation.z() += 60.0;
+  WriteRegistrationPoses(poses_csv, rows);
+  ModelStageOptions options = options_;
+  options.force = true;
+  try {
+    Workspace ws(dir_ / "ws", run_.folder);
+    RunModelStage(run_, ws, options);
+    ADD_FAILURE() << "the moved pose was used";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("module 1's acquisition 1 puts the carrier"),
+              std::string::npos)
+        << e.what();
+  }
+  WriteTextFileAtomically(poses_csv, before);
 }
 
 }  // namespace

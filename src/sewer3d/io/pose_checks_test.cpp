@@ -1,4 +1,4 @@
-#include "sewer3d/io/registration_io.hpp"
+#include "sewer3d/io/pose_checks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -84,6 +84,56 @@ TEST(PoseDirectionProblem, ComparesEachStepsDirectionWithTheOdometry) {
   // A module the rig lacks is left to the model stage's own check; no odometry, no steps.
   EXPECT_EQ(PoseDirectionProblem(negated, odometry, Rig{}), "");
   EXPECT_EQ(PoseDirectionProblem(negated, {}, rig), "");
+}
+
+TEST(PoseRigProblem, RefusesAnAcquisitionAwayFromWhereTheOtherModulesPutTheCarrier) {
+  std::vector<OdometryReading> odometry;
+  for (int k = 0; k <= 50; ++k) odometry.push_back({0.1 * k, 20.0 * k, k + 2});  // 200 mm/s
+  // Four modules 100 mm apart along the carrier axis (z), each 80 mm off it, looking out;
+  // two trigger groups 20 ms apart, every 0.5 s; the carrier moves 100 mm per 0.5 s along z.
+  Rig rig;
+  rig.modules.resize(4);
+  std::vector<RegistrationPoseRow> rows;
+  for (int m = 0; m < 4; ++m) {
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(M_PI / 2 * m, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    rig.modules[m].carrier_from_camera =
+        Rigid3d(turn, turn * Eigen::Vector3d(80.0, 0.0, 0.0) + Eigen::Vector3d(0, 0, 100.0 * m));
+    for (int counter = 0; counter < 6; ++counter) {
+      const double t = 0.5 * counter + 0.02 * (m % 2);
+      const Rigid3d world_from_carrier(Eigen::Matrix3d::Identity(),
+                                       Eigen::Vector3d(0.0, 0.0, 200.0 * t));
+      rows.push_back({m, counter, t, world_from_carrier * rig.modules[m].carrier_from_camera});
+    }
+  }
+  EXPECT_EQ(PoseRigProblem(rows, odometry, rig), "");
+  // The registration's few millimetres and a slipping counter (odometry 30 % short) pass.
+  auto loose = rows;
+  for (std::size_t i = 0; i < loose.size(); ++i)
+    loose[i].world_from_camera.translation.x() += (i % 3) * 3.0;
+  auto slipping = odometry;
+  for (auto& reading : slipping) reading.distance_mm *= 0.7;
+  EXPECT_EQ(PoseRigProblem(loose, slipping, rig), "");
+  // One pose moved 60 mm along the pipe by hand (module 1, acquisition 3).
+  auto moved = rows;
+  moved[6 + 3].world_from_camera.translation.z() += 60.0;
+  const std::string problem = PoseRigProblem(moved, odometry, rig);
+  EXPECT_NE(problem.find("module 1's acquisition 3 puts the carrier 60 mm or more"), std::string::npos)
+      << problem;
+  EXPECT_NE(problem.find("3 of the 3 other modules"), std::string::npos) << problem;
+  // The same move, 15 mm: within the registration's slack.
+  moved = rows;
+  moved[6 + 3].world_from_camera.translation.z() += 15.0;
+  EXPECT_EQ(PoseRigProblem(moved, odometry, rig), "");
+  // rig.json changed since the registration: module 2 put 100 mm further along the carrier.
+  Rig changed = rig;
+  changed.modules[2].carrier_from_camera.translation.z() += 100.0;
+  EXPECT_NE(PoseRigProblem(rows, odometry, changed).find("module 2's acquisition 0"),
+            std::string::npos);
+  // Without odometry, 2 m/s over 20 ms (40 mm) is allowed besides the slack: 80 mm still shows.
+  moved = rows;
+  moved[6 + 3].world_from_camera.translation.z() += 80.0;
+  EXPECT_NE(PoseRigProblem(moved, {}, rig), "");
 }
 
 }  // namespace
