@@ -118,7 +118,8 @@ TEST(PoseRigProblem, RefusesAnAcquisitionAwayFromWhereTheOtherModulesPutTheCarri
   auto moved = rows;
   moved[6 + 3].world_from_camera.translation.z() += 60.0;
   const std::string problem = PoseRigProblem(moved, odometry, rig);
-  EXPECT_NE(problem.find("module 1's acquisition 3 puts the carrier 60 mm or more"), std::string::npos)
+  EXPECT_NE(problem.find("module 1's acquisition 3 puts the carrier 60 mm or more"),
+            std::string::npos)
       << problem;
   EXPECT_NE(problem.find("3 of the 3 other modules"), std::string::npos) << problem;
   // The same move, 15 mm: within the registration's slack.
