@@ -49,7 +49,6 @@ double CarrierTravelBound(const std::vector<OdometryReading>& readings, double t
   return kMaxSpeedMmS * std::abs(t1 - t0);
 }
 
-
 }  // namespace
 
 std::string PoseJumpProblem(std::vector<RegistrationPoseRow> rows) {
@@ -144,7 +143,6 @@ std::string PoseDirectionProblem(std::vector<RegistrationPoseRow> rows,
   }
   return "";
 }
-
 
 std::string PoseRigProblem(const std::vector<RegistrationPoseRow>& rows,
                            const std::vector<OdometryReading>& readings, const Rig& rig) {
