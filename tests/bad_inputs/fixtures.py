@@ -6,6 +6,7 @@ struct, so every fixture is exactly the malformed thing its name says.
 """
 import os
 import math
+import random
 import struct
 import sys
 import zlib
@@ -63,6 +64,11 @@ def main(out):
     with open(j("huge_header.png"), "wb") as f:
         f.write(png(60000, 60000, 8, zlib.compress(b"\x00" * 100)))
     # A 1 x 1 grey image.
+    # A 200 x 6 matrix (the default's size) of coin flips: windows unique, spots touching.
+    flips = random.Random(7)
+    with open(j("coin_spots.png"), "wb") as f:
+        f.write(png(200, 6, 8, zlib.compress(b"".join(
+            b"\x00" + bytes(255 * flips.randrange(2) for _ in range(200)) for _ in range(6)))))
     with open(j("one_pixel.png"), "wb") as f:
         f.write(png(1, 1, 8, zlib.compress(b"\x00\x80")))
     # Valid chunk CRCs over bad image data: rows short, a row too many, a bad filter type.

@@ -35,11 +35,11 @@ StageOutcome RgbdOutcome(const RgbdStageReport& report, const std::filesystem::p
     const RgbdAcquisitionResult* first = report.FirstFailure();
     o.details.clear();  // the error names the first failure and the report that lists them all
     o.ok = false;
-    o.error =
-        fmt::format("no acquisition could be processed: all {} failed (first: {}: {}; see {})",
-                    report.failed, first->file, first->reason, o.output.string());
-    // What the inputs showed (a pattern matrix that cannot decode) often says why.
-    if (!report.warnings.empty()) o.error += "; " + report.warnings.front();
+    // What the inputs showed (a pattern matrix that cannot decode) often says why: it leads.
+    const std::string cause = report.warnings.empty() ? "" : "; " + report.warnings.front();
+    o.error = fmt::format(
+        "no acquisition could be processed: all {} failed{} (first failure: {}: {}; see {})",
+        report.failed, cause, first->file, first->reason, o.output.string());
   } else if (report.acquisitions == 0) {
     o.ok = false;
     o.error = "the run has no acquisition";
