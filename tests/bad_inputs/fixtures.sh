@@ -322,3 +322,11 @@ with open('metres.ply', 'w') as f:
 } >square_far.g2o
 python3 -c "import json; s = json.load(open('scenario_two.json')); s['module'] = 'm/module.json'; \
 json.dump(s, open('module_and_width.json', 'w'))"
+# Session 34 (probe 20): a straight chain of 12 poses 1 m apart with its edges i→i+1 and
+# i→i+2 measured exactly (information 1/mm², 1/rad²), as a registration writes it.
+python3 -c "
+edge = 'EDGE_SE3:QUAT %d %d %g 0 0 0 0 0 1 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n'
+with open('chain_loop.g2o', 'w') as f:
+    f.writelines('VERTEX_SE3:QUAT %d %d 0 0 0 0 0 1\n' % (i, 1000 * i) for i in range(12))
+    f.writelines(edge % (i, i + k, 1000 * k) for k in (1, 2) for i in range(12 - k))
+    f.write('FIX 0\n')"

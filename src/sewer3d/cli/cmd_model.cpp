@@ -108,7 +108,7 @@ Command AddModelCommand(CLI::App& app) {
               throw InvalidValue("--nominal-diameter-mm", e.problem());
             }
             const StageOutcome outcome = ModelOutcome(r, args->out);
-            fmt::print("{}\n", outcome.summary);
+            PrintStageOutcome(outcome);
             if (!outcome.ok) {
               fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);
               return 1;

@@ -79,6 +79,7 @@ Command AddPoseGraphCommand(CLI::App& app) {
             CheckNotAnInput(args->out, args->in, "--in");
             PoseGraph graph = ReadG2o(args->in);
             WarnOfUnitMismatch(args->in, graph);
+            WarnOfSwappedEdges(args->in, graph);
             if (options.certify) CheckCertifiable(args->in, graph.nodes().size());
             fmt::print("{}: {} poses, {} edges, cost at its poses {:.7g}\n", args->in,
                        graph.nodes().size(), graph.edges().size(), GraphCost(graph));
@@ -99,6 +100,7 @@ Command AddPoseGraphCommand(CLI::App& app) {
                          args->in, options.max_iterations);
             }
             WarnOfDisagreement(args->in, r.final_cost, graph.edges().size());
+            WarnOfOutlierEdge(args->in, graph);
             WriteG2o(args->out, graph);
             fmt::print("wrote {}\n", args->out);
             return 0;

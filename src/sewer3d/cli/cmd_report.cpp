@@ -42,6 +42,7 @@ Command AddReportCommand(CLI::App& app) {
               return 2;
             }
             const StageOutcome o = ReportOutcome(r);
+            for (const std::string& w : r.warnings) fmt::print(stderr, "sewer3d: warning: {}\n", w);
             if (!r.summary.maps_problem.empty())
               fmt::print(stderr, "sewer3d: warning: report without maps: {}\n",
                          r.summary.maps_problem);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <vector>
 
 #include "sewer3d/core/check.hpp"
@@ -68,6 +69,33 @@ void WarnOfUnitMismatch(const std::string& in, const PoseGraph& graph) {
              "the poses they join (median): one in metres, the other in millimetres? The result "
              "follows the edges\n",
              in, ratio);
+}
+
+void WarnOfSwappedEdges(const std::string& in, const PoseGraph& graph) {
+  constexpr double kFactor = 100.0;
+  const double as_written = GraphCost(graph), inverted = GraphCostEdgesInverted(graph);
+  // Far from the poses either way (no initial guess, or a noisy one): nothing to tell.
+  if (!(as_written > kFactor * inverted) ||
+      !(as_written > static_cast<double>(graph.edges().size())))
+    return;
+  std::fflush(stdout);
+  fmt::print(stderr,
+             "sewer3d: warning: {}: the edges fit the file's poses far better the other way round "
+             "(cost {:.4g} as written, {:.4g} with each edge inverted): from and to swapped "
+             "(another tool's convention)? The result follows the edges as written\n",
+             in, as_written, inverted);
+}
+
+void WarnOfOutlierEdge(const std::string& in, const PoseGraph& optimised) {
+  const std::optional<OutlierEdge> outlier = FindOutlierEdge(optimised);
+  if (!outlier) return;
+  const PoseEdge& e = optimised.edges()[outlier->index];
+  std::fflush(stdout);
+  fmt::print(stderr,
+             "sewer3d: warning: {}: edge {} {} has χ² {:.3g} at the optimum, {:.3g} times the "
+             "median edge's: the other edges contradict it (in other units, or a wrong match?) "
+             "and the poses around it are a compromise\n",
+             in, e.from, e.to, outlier->chi2, outlier->chi2 / std::max(outlier->median_chi2, 1.0));
 }
 
 std::string WhyNotWritten(const PoseGraphReport& r) {

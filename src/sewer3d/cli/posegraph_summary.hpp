@@ -24,6 +24,14 @@ void WarnOfDisagreement(const std::string& in, double final_cost, std::size_t ed
 /// in millimetres. Graphs whose poses all sit at one place (no initial guess) are left alone.
 void WarnOfUnitMismatch(const std::string& in, const PoseGraph& graph);
 
+/// A warning (stderr) when the edges, each inverted, fit the file's poses 100 times better
+/// than as written (GraphCostEdgesInverted): from and to swapped.
+void WarnOfSwappedEdges(const std::string& in, const PoseGraph& graph);
+
+/// Warns (stderr) of the optimised graph's edge whose χ² stands out from the others'
+/// (FindOutlierEdge): one measurement the rest contradict.
+void WarnOfOutlierEdge(const std::string& in, const PoseGraph& optimised);
+
 /// Why the optimised poses are no result, or "": the optimisation failed, or some poses have
 /// no chain of edges to a fixed node and are whatever the file said.
 std::string WhyNotWritten(const PoseGraphReport& r);

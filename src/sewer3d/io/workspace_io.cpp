@@ -1,6 +1,8 @@
 #include "sewer3d/io/workspace_io.hpp"
 
+#include <map>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_stamp_json.hpp"
@@ -10,6 +12,25 @@
 namespace sewer3d {
 
 using nlohmann::json;
+
+namespace {
+
+// The object `key` of `parent`: file name -> stamp.
+std::map<std::string, FileStamp> Stamps(const JsonReader& reader, const json& parent,
+                                        const char* key, const std::string& prefix) {
+  std::map<std::string, FileStamp> stamps;
+  for (const auto& [name, stamp] : reader.Object(parent, key, prefix).items()) {
+    try {
+      stamps[name] = StampFromJson(stamp);
+    } catch (const std::exception&) {
+      reader.Fail(prefix + key + "." + std::string(name),
+                  "must be {\"bytes\": N, \"mtime_ns\": N, \"hash\": \"hex\"}");
+    }
+  }
+  return stamps;
+}
+
+}  // namespace
 
 std::string WorkspaceToJson(const WorkspaceRecord& record) {
   json stages = json::object();
@@ -23,6 +44,11 @@ std::string WorkspaceToJson(const WorkspaceRecord& record) {
     stage["software_version"] = s.software_version;
     stage["seconds"] = s.seconds;
     stage["notes"] = s.notes;
+    if (!s.outputs.empty()) {
+      json outputs = json::object();
+      for (const auto& [name, stamp] : s.outputs) outputs[name] = StampToJson(stamp);
+      stage["outputs"] = outputs;
+    }
     stages[name] = stage;
   }
   json j = {{"format", "sewer3d-workspace"},
@@ -66,18 +92,10 @@ WorkspaceRecord WorkspaceFromJson(const std::string& text, const std::filesystem
       if (!value.is_string()) reader.Fail(prefix + "notes." + std::string(key), "must be a string");
       stage.notes[key] = value.get<std::string>();
     }
+    if (s.contains("outputs")) stage.outputs = Stamps(reader, s, "outputs", prefix);
     record.stages[name] = stage;
   }
-  if (j.contains("run_files")) {
-    for (const auto& [name, stamp] : reader.Object(j, "run_files", "").items()) {
-      try {
-        record.run_files[name] = StampFromJson(stamp);
-      } catch (const std::exception&) {
-        reader.Fail("run_files." + std::string(name),
-                    "must be {\"bytes\": N, \"mtime_ns\": N, \"hash\": \"hex\"}");
-      }
-    }
-  }
+  if (j.contains("run_files")) record.run_files = Stamps(reader, j, "run_files", "");
   return record;
 }
 

@@ -28,6 +28,9 @@ struct WorkspaceStage {
   /// Wall time (s) of the invocation that last finished the stage (done or not); 0 before.
   double seconds = 0.0;
   std::map<std::string, std::string> notes;  ///< facts about the outputs, e.g. "color"
+  /// The stage's key outputs as it wrote them (path relative to the workspace), recorded when
+  /// it ends done: a later stage can tell them from files edited or copied in since.
+  std::map<std::string, FileStamp> outputs;
 };
 
 /// The whole workspace.json.

@@ -108,6 +108,11 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
                     "(failed, interrupted, or its registration redone since): run `sewer3d "
                     "model` first");
   }
+  if (const std::string changed = workspace.ChangedOutput("model"); !changed.empty()) {
+    throw FileError(changed,
+                    "not the file the model stage wrote in this workspace (edited, or copied from "
+                    "another workspace): run `sewer3d model` again with --force");
+  }
   const PipeModelInfo info = ReadModelJson(model_dir / "model.json");
   const double limit = options.inspect.max_map_cell_mm;
   if (info.grid.resolution_mm > limit * (1.0 + 1e-9)) {

@@ -40,6 +40,20 @@ int RegisteredNodes(const std::filesystem::path& ws) {
   }
 }
 
+/// Refuses poses.csv left by an earlier registration: workspace.json records the register stage
+/// as not done (stale after rgbd redid acquisitions or the run's files changed, failed or
+/// interrupted).
+void CheckRegistrationDone(const Workspace& workspace) {
+  const auto it = workspace.record().stages.find("register");
+  const std::filesystem::path poses = workspace.StageFolder("registration") / "poses.csv";
+  if (it == workspace.record().stages.end() || it->second.done || !IsRegularFile(poses)) return;
+  throw FileError(poses, std::string("left by an earlier registration: workspace.json records the "
+                                     "register stage as ") +
+                             (it->second.stale ? "stale (rgbd or the run's files changed since)"
+                                               : "not done (failed or interrupted)") +
+                             ": run `sewer3d register` first, or `sewer3d process`");
+}
+
 /// The registered acquisitions, each with its fit samples (model frame).
 std::vector<ModelAcquisition> RegisteredAcquisitions(
     const CaptureRun& run, const std::filesystem::path& ws, int samples_per_acquisition,
@@ -217,6 +231,12 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
   ModelStageReport report;
   report.threads = options.threads;
 
+  CheckRegistrationDone(workspace);
+  if (const std::string changed = workspace.ChangedOutput("register"); !changed.empty()) {
+    report.warnings.push_back(changed +
+                              ": not the file the register stage wrote (edited, or copied from "
+                              "another workspace); the model follows it as it is now");
+  }
   std::vector<std::vector<Eigen::Vector3d>> samples;
   std::vector<ModelAcquisition> acquisitions = RegisteredAcquisitions(
       run, ws, options.fit_samples_per_acquisition, options.threads, samples, progress);

@@ -58,8 +58,11 @@ struct ModelStageOptions {
 std::string ModelOptionsJson(const ModelStageOptions& options);
 
 struct ModelStageReport {
-  bool ok = false;       ///< false: the model could not be made (message says why)
-  std::string message;   ///< why not, one line
+  bool ok = false;      ///< false: the model could not be made (message says why)
+  std::string message;  ///< why not, one line
+  /// What the stage found doubtful in its inputs but used (one line each), e.g. a poses.csv
+  /// that is not the one the register stage wrote.
+  std::vector<std::string> warnings;
   int acquisitions = 0;  ///< registered ones with depth
   int fit_points = 0;
   CentrelineFitReport centreline;

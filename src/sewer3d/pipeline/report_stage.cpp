@@ -89,6 +89,14 @@ ReportStageReport RunReportStage(const CaptureRun& run, Workspace& workspace, bo
         "registration redone since): the maps shown, if any, are an earlier model's.");
   }
   ReportStageReport r;
+  for (const char* stage : {"model", "inspect"}) {
+    if (const std::string changed = workspace.ChangedOutput(stage); !changed.empty()) {
+      r.warnings.push_back(changed + ": not the file the " + stage +
+                           " stage wrote in this workspace (edited, or copied from another "
+                           "workspace); shown as it is now");
+      in.notes.push_back(r.warnings.back());
+    }
+  }
   r.html = workspace.StageFolder("report") / "index.html";
   r.summary = WriteReport(in, r.html);
   r.observations = in.observations ? static_cast<int>(in.observations->size()) : -1;

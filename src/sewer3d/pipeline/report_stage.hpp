@@ -18,6 +18,8 @@ namespace sewer3d {
 struct ReportStageReport {
   ReportSummary summary;
   std::filesystem::path html;
+  /// Stage outputs shown that are not the files their stage wrote (one line each).
+  std::vector<std::string> warnings;
   int observations = -1;  ///< −1: none computed
   int profile_rows = -1;
   double seconds = 0.0;

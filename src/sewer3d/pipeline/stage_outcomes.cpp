@@ -99,6 +99,7 @@ StageOutcome ModelOutcome(const ModelStageReport& r, const std::filesystem::path
       r.grid.rows, r.grid.cols, r.grid.resolution_mm, r.tiles, r.tiles_from_earlier_run,
       100.0 * r.measured_fraction, 100.0 * r.filled_fraction, r.displaced_vertices,
       r.displaced_step_mm, r.seconds, r.seconds_per_acquisition);
+  for (const std::string& w : r.warnings) o.details.push_back("warning: model: " + w);
   return o;
 }
 

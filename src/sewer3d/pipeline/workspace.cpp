@@ -136,6 +136,18 @@ std::string OutputFolderName(const std::string& stage) {
   return stage;
 }
 
+namespace {
+
+// The outputs a later stage reads, by stage (paths relative to the workspace).
+std::vector<std::string> KeyOutputs(const std::string& stage) {
+  if (stage == "register") return {"registration/poses.csv"};
+  if (stage == "model") return {"model/model.json"};
+  if (stage == "inspect") return {"inspection/observations.json"};
+  return {};
+}
+
+}  // namespace
+
 const std::vector<std::string>& WorkspaceStageOrder() {
   static const std::vector<std::string> order = {"rgbd", "register", "model", "inspect", "report"};
   return order;
@@ -205,12 +217,29 @@ void Workspace::FinishStage(const std::string& stage, bool done,
   it->second.done = done;
   it->second.done_utc = done ? UtcNow() : std::string();
   it->second.notes = notes;
+  it->second.outputs.clear();
+  for (const std::string& name : done ? KeyOutputs(stage) : std::vector<std::string>{}) {
+    try {
+      it->second.outputs[name] = StampFile(folder_ / name);
+    } catch (const FileError&) {
+      // not written (a stage with nothing to write): nothing to compare later
+    }
+  }
   const auto begun = begun_.find(stage);
   SEWER3D_CHECK(begun != begun_.end(), "FinishStage without BeginStage: " + stage);
   it->second.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begun->second).count();
   if (changed) MarkLaterStagesStale(stage);
   WriteWorkspaceRecord(RecordFile(), record_);
+}
+
+std::string Workspace::ChangedOutput(const std::string& stage) const {
+  const auto it = record_.stages.find(stage);
+  if (it == record_.stages.end()) return "";
+  for (const auto& [name, stamp] : it->second.outputs) {
+    if (!StillStamped(stamp, folder_ / name)) return (folder_ / name).string();
+  }
+  return "";
 }
 
 void Workspace::MarkLaterStagesStale(const std::string& stage) {

@@ -109,6 +109,12 @@ class Workspace {
   void FinishStage(const std::string& stage, bool done,
                    const std::map<std::string, std::string>& notes, bool changed = true);
 
+  /// The first of `stage`'s key outputs (registration/poses.csv, model/model.json,
+  /// inspection/observations.json) that is no longer the file the stage wrote when it ended
+  /// done (edited, or copied in from another workspace), as its path; "" when each is as
+  /// written, or none was recorded (not done, or a workspace from before outputs were stamped).
+  std::string ChangedOutput(const std::string& stage) const;
+
   /// Records the entry `name` of a command that runs several stages (`process`): the options
   /// it was given, whether every stage ended done, its wall time and notes. Replaces what was
   /// recorded under `name` and is never refused (each stage checks its own options); the

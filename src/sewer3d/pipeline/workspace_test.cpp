@@ -103,6 +103,31 @@ CaptureRun FakeRun(const fs::path& folder) {
   return run;
 }
 
+TEST_F(WorkspaceTest, AKeyOutputEditedOrCopiedInIsToldFromTheOneTheStageWrote) {
+  const fs::path poses = dir_ / "ws" / "registration" / "poses.csv";
+  {
+    Workspace ws(dir_ / "ws", dir_ / "run");
+    ws.BeginStage("register", "{}", false);
+    WriteTextFile(poses, "module,counter\n0,0\n");
+    ws.FinishStage("register", true, {});
+    EXPECT_EQ(ws.ChangedOutput("register"), "");
+    EXPECT_EQ(ws.ChangedOutput("model"), "");  // not recorded
+  }
+  Workspace again(dir_ / "ws", dir_ / "run");  // the stamp is read back from workspace.json
+  EXPECT_EQ(again.ChangedOutput("register"), "");
+  // The same bytes written again (a copy with a new time) are still the stage's file.
+  WriteTextFile(poses, "module,counter\n0,0\n");
+  EXPECT_EQ(again.ChangedOutput("register"), "");
+  WriteTextFile(poses, "module,counter\n0,1\n");  // edited, or another workspace's
+  EXPECT_EQ(again.ChangedOutput("register"), poses.string());
+  fs::remove(poses);
+  EXPECT_EQ(again.ChangedOutput("register"), poses.string());
+  // A stage that did not end done stamps nothing.
+  again.BeginStage("register", "{}", true);
+  again.FinishStage("register", false, {});
+  EXPECT_EQ(again.ChangedOutput("register"), "");
+}
+
 TEST_F(WorkspaceTest, AChangedRunFileMakesTheStagesThatUseItStale) {
   const CaptureRun run = FakeRun(dir_ / "run");
   {

@@ -1,6 +1,9 @@
 #include "sewer3d/posegraph/pose_graph.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
+#include <cstddef>
+#include <vector>
 
 #include "sewer3d/core/check.hpp"
 
@@ -59,6 +62,36 @@ double GraphCost(const PoseGraph& graph) {
     cost += 0.5 * r.dot(e.information * r);
   }
   return cost;
+}
+
+double GraphCostEdgesInverted(const PoseGraph& graph) {
+  double cost = 0.0;
+  for (PoseEdge e : graph.edges()) {
+    e.a_from_b = e.a_from_b.Inverse();
+    const auto r = EdgeResidual(e, graph.node(e.from), graph.node(e.to));
+    cost += 0.5 * r.dot(e.information * r);
+  }
+  return cost;
+}
+
+std::optional<OutlierEdge> FindOutlierEdge(const PoseGraph& graph, double factor, double min_chi2) {
+  const std::vector<PoseEdge>& edges = graph.edges();
+  if (edges.size() < 3) return std::nullopt;
+  std::vector<double> chi2(edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const PoseEdge& e = edges[i];
+    const auto r = EdgeResidual(e, graph.node(e.from), graph.node(e.to));
+    chi2[i] = r.dot(e.information * r);
+  }
+  const auto worst = std::max_element(chi2.begin(), chi2.end());
+  OutlierEdge outlier{static_cast<std::size_t>(worst - chi2.begin()), *worst, 0.0};
+  std::vector<double> sorted = chi2;
+  const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), middle, sorted.end());
+  outlier.median_chi2 = *middle;
+  if (!(outlier.chi2 > min_chi2 && outlier.chi2 > factor * std::max(outlier.median_chi2, 1.0)))
+    return std::nullopt;
+  return outlier;
 }
 
 }  // namespace sewer3d

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <vector>
@@ -73,6 +74,24 @@ Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& wo
 /// ½ Σ rᵀ Ω r over all edges (no robust loss): the cost convention of Ceres' example and of
 /// the published benchmark values.
 double GraphCost(const PoseGraph& graph);
+
+/// GraphCost with every edge's measurement inverted (b_from_a in place of a_from_b): far below
+/// GraphCost when the edges were written with from and to swapped.
+double GraphCostEdgesInverted(const PoseGraph& graph);
+
+/// An edge whose χ² (rᵀ Ω r at the graph's poses) stands out from the others'.
+struct OutlierEdge {
+  std::size_t index = 0;  ///< in graph.edges()
+  double chi2 = 0.0;
+  double median_chi2 = 0.0;  ///< over all edges
+};
+
+/// The edge of largest χ² when it is over `min_chi2` and over `factor` times the median edge's
+/// (the median taken as at least 1): one measurement the others contradict, such as an edge in
+/// other units or a false loop closure. With Gaussian noise the largest of 10⁵ edges is about
+/// 8 times the median. nullopt when none stands out or there are fewer than 3 edges.
+std::optional<OutlierEdge> FindOutlierEdge(const PoseGraph& graph, double factor = 100.0,
+                                           double min_chi2 = 1000.0);
 
 /// True when `m` is symmetric (to 1e-9 relative) and positive definite.
 bool IsSymmetricPositiveDefinite(const Matrix6d& m);

@@ -170,6 +170,54 @@ TEST(Optimise, HuberLossResistsAWrongRegistration) {
   EXPECT_LT(robust, plain / 20.0) << "plain " << plain;
 }
 
+// A straight run of 20 poses 100 mm apart, measured with 0.1 mm and 1 mrad of noise and
+// information to match, so the χ² of a sound edge is a few units.
+PoseGraph NoisyRun(unsigned seed) {
+  std::vector<Rigid3d> truth;
+  for (int i = 0; i < 20; ++i)
+    truth.push_back({Eigen::Quaterniond::Identity(), Eigen::Vector3d(100.0 * i, 0.0, 0.0)});
+  std::mt19937 rng(seed);
+  return RingGraph(truth, rng, 0.001, 0.1, [](std::mt19937&) {
+    Matrix6d information = Matrix6d::Zero();
+    information.diagonal() << 100, 100, 100, 2.5e5, 2.5e5, 2.5e5;  // σ 0.1 mm, 2 mrad (2 vec)
+    return information;
+  });
+}
+
+TEST(OutlierEdge, FindsTheOneMeasurementTheOthersContradict) {
+  PoseGraph sound = NoisyRun(7);
+  OptimisePoseGraph(sound, {});
+  EXPECT_FALSE(FindOutlierEdge(sound).has_value());
+  // One registration (σ 1 mm) written in metres (1.0 for 1000 mm): the optimum is a compromise
+  // that leaves most of its 1 m on that edge.
+  PoseGraph metres = NoisyRun(7);
+  PoseEdge wrong;
+  wrong.information.diagonal() << 1, 1, 1, 2500, 2500, 2500;
+  wrong.from = 2;
+  wrong.to = 12;
+  wrong.a_from_b = {Eigen::Quaterniond::Identity(), Eigen::Vector3d(1.0, 0.0, 0.0)};
+  metres.AddEdge(wrong);
+  OptimisePoseGraph(metres, {});
+  const std::optional<OutlierEdge> outlier = FindOutlierEdge(metres);
+  ASSERT_TRUE(outlier.has_value());
+  EXPECT_EQ(outlier->index, metres.edges().size() - 1);
+  EXPECT_GT(outlier->chi2, 1e5);  // hundreds of mm left on an edge of σ 1 mm
+  EXPECT_LT(outlier->median_chi2, 1e3);
+}
+
+TEST(GraphCost, EdgesWrittenTheOtherWayRoundFitTheirInverse) {
+  PoseGraph graph = NoisyRun(8);
+  const double as_written = GraphCost(graph), inverted = GraphCostEdgesInverted(graph);
+  EXPECT_LT(as_written, 10.0 * static_cast<double>(graph.edges().size()));
+  EXPECT_GT(inverted, 1e4 * as_written);
+  // From and to swapped, measurement kept: the same numbers change roles.
+  PoseGraph swapped = graph;
+  for (PoseEdge& e : swapped.mutable_edges()) std::swap(e.from, e.to);
+  // (the noise, measured in the other node's frame, weighs a little differently).
+  EXPECT_LT(GraphCostEdgesInverted(swapped), 3.0 * inverted / 1e4 + 10.0 * as_written);
+  EXPECT_GT(GraphCost(swapped), 100.0 * GraphCostEdgesInverted(swapped));
+}
+
 TEST(PoseGraph, RegularisationEdgeKeepsAStraightPipeStraight) {
   // Odometry-like chain whose edges all carry the same small yaw bias: the chain curls.
   // A regularisation edge first -> last ("the pipe is straight") pulls it back.

@@ -120,6 +120,32 @@ void PipeWorld::Check() const {
                            << f.height_mm);
     }
   }
+  double smallest = sections.front().diameter_mm;
+  for (const PipeSection& s : sections) smallest = std::min(smallest, s.diameter_mm);
+  CheckFeaturesApart(0.5 * smallest);
+}
+
+void PipeWorld::CheckFeaturesApart(double radius_mm) const {
+  // Two features of a kind in one place render as one, while the truth lists both: a feature
+  // copied without moving it. Two connections cannot share a hole in the wall.
+  for (size_t j = 0; j < features.size(); ++j) {
+    for (size_t i = 0; i < j; ++i) {
+      const PipeFeature &a = features[i], &b = features[j];
+      if (a.type != b.type) continue;
+      const double turn_h = std::abs(std::remainder(a.clock_h - b.clock_h, 12.0));
+      const double along = std::abs(a.station_mm - b.station_mm);
+      const double apart = std::hypot(along, radius_mm * turn_h * std::numbers::pi / 6.0);
+      const bool same_place = along <= 1.0 && turn_h <= 0.05;
+      const bool holes_meet = a.type == PipeFeature::Type::kConnection &&
+                              apart < 0.5 * (a.diameter_mm + b.diameter_mm) + a.wall_mm + b.wall_mm;
+      SEWER3D_VALIDATE(!same_place && !holes_meet, "features[" + std::to_string(j) + "]",
+                       "'" << b.id << "' lies " << apart << " mm from '" << a.id << "' (features["
+                           << i << "]) on the wall, "
+                           << (holes_meet ? "and two connections cannot share a hole"
+                                          : "a feature of the same type in the same place")
+                           << ": copied without moving it? change its station_mm or clock_h");
+    }
+  }
 }
 
 void PipeWorld::CheckUniqueIds() const {

@@ -57,6 +57,9 @@ struct PipeWorld {
   void Check() const;
   /// Every joint and feature id differs (truth files name them by id).
   void CheckUniqueIds() const;
+  /// No two features of a type in one place (within 1 mm and 0.05 h), no two connections whose
+  /// holes (with their walls) meet on a wall of `radius_mm`.
+  void CheckFeaturesApart(double radius_mm) const;
   double LengthMm() const;
 };
 
