@@ -2,6 +2,9 @@
 // a cloud (cmd_evaluate_surface.cpp); rgbd, registration, model and inspection judge a stage
 // on a simulated run (cmd_evaluate_rgbd.cpp, cmd_evaluate_registration.cpp, ...).
 
+#include <fmt/core.h>
+
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -9,10 +12,32 @@
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/workspace_io.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/simeval/rgbd_evaluation.hpp"
 
 namespace sewer3d::cli {
+namespace {
+
+// Evaluating outputs that workspace.json records as stale or not done judges an earlier run of
+// the stage, not the one the workspace now stands for: said on stderr, then evaluated.
+void WarnOfStageNotDone(const std::filesystem::path& workspace, const std::string& kind) {
+  const std::string stage = kind == "registration" ? "register"
+                            : kind == "inspection" ? "inspect"
+                                                   : kind;
+  const std::filesystem::path record_file = workspace / "workspace.json";
+  if (!std::filesystem::is_regular_file(record_file)) return;
+  const WorkspaceRecord record = ReadWorkspaceRecord(record_file);
+  const auto it = record.stages.find(stage);
+  if (it == record.stages.end() || it->second.done) return;
+  fmt::print(stderr,
+             "sewer3d: warning: {}: records the {} stage as {}: evaluating the outputs an earlier "
+             "run of it left (run `sewer3d process` to bring it up to date)\n",
+             record_file.string(), stage,
+             it->second.stale ? "stale" : "not done (failed or interrupted)");
+}
+
+}  // namespace
 
 Command AddEvaluateCommand(CLI::App& app) {
   struct Args {
@@ -74,8 +99,10 @@ Command AddEvaluateCommand(CLI::App& app) {
                 throw InvalidValue(name, "does not apply to evaluate " + args->surface);
               }
             }
-            if (of_workspace && !args->run.empty() && !args->workspace.empty())
+            if (of_workspace && !args->run.empty() && !args->workspace.empty()) {
               CheckWorkspaceOfRun(args->workspace, args->run);
+              WarnOfStageNotDone(args->workspace, args->surface);
+            }
             if (of_workspace && !args->run.empty() && !args->out.empty())
               CheckOutsideTheRun(args->out, args->run, "the evaluation's folder (--out)");
             if (args->surface == "rgbd") {

@@ -112,8 +112,9 @@ std::vector<std::string> RigWarnings(const CaptureRun& run,
     lines.push_back(fmt::format(
         "{}: modules m{} and m{}: the gate rejected {} of their {} registrations, which put the "
         "cameras {:.1f} mm (median) from where the rig has them: the carrier_from_camera of {} "
-        "is wrong (units? clock position?) or their image folders are swapped; the model there "
-        "follows the rig, not the images",
+        "is wrong (units? clock position?), their image folders are swapped, or its times in "
+        "acquisitions.csv are off (a module clock); the model there follows the rig, not the "
+        "images",
         file, p.module_a, p.module_b, p.rejected, p.edges, p.median_rejected_offset_mm, likely));
   }
   return lines;
