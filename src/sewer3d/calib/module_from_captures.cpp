@@ -20,6 +20,18 @@ void ModuleCalibratorOptions::Check() const {
                    "lens models must be unset: the second pass sets them");
 }
 
+namespace {
+
+TriangulationOptions TileTolerance(const ModuleCalibratorOptions& options,
+                                   const ModuleDescription& nominal, const BinaryArray& pattern) {
+  TriangulationOptions o = options.triangulation;
+  const double between_tiles = nominal.pattern.pitch_px * std::min(pattern.rows, pattern.cols);
+  o.max_reprojection_px = std::min(o.max_reprojection_px, 0.25 * between_tiles);
+  return o;
+}
+
+}  // namespace
+
 ModuleCalibrator::ModuleCalibrator(const ModuleDescription& nominal, const BinaryArray& pattern,
                                    const PatternConstraints& constraints, const BoardLayout& board,
                                    const ModuleCalibratorOptions& options)
@@ -27,7 +39,7 @@ ModuleCalibrator::ModuleCalibrator(const ModuleDescription& nominal, const Binar
       board_(board),
       options_(options),
       decoder_(nominal, pattern, constraints, options.decoder),
-      triangulator_(nominal, pattern.rows, pattern.cols, options.triangulation) {
+      triangulator_(nominal, pattern.rows, pattern.cols, TileTolerance(options, nominal, pattern)) {
   board_.Check();
   options_.Check();
 }

@@ -29,7 +29,15 @@ struct BoardLayout {
 /// Options of the decoding and corner transfer; the defaults are `sewer3d calibrate module`'s.
 struct ModuleCalibratorOptions {
   DecoderOptions decoder;              ///< decoding the pattern images
-  TriangulationOptions triangulation;  ///< picking each spot's pattern tile
+  /// Picking each spot's pattern tile with the nominal module, whose geometry is rough (a
+  /// projector millimetres off its design place, so spots lie pixels off their nominal
+  /// epipolar lines). max_reprojection_px is capped at a quarter of the distance between
+  /// tiles (the default pattern: 6 rows of 8 px), so the tile stays unambiguous.
+  TriangulationOptions triangulation = [] {
+    TriangulationOptions o;
+    o.max_reprojection_px = 12.0;
+    return o;
+  }();
   /// Both passes' corner transfer; its lens models must be unset (the second pass sets them).
   CornerTransferOptions corner_transfer;
   void Check() const;

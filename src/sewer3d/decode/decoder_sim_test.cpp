@@ -81,6 +81,20 @@ TEST(Decoder, Dn300CylinderDecodesTheTruePositions) {
   EXPECT_EQ(o.wrong, 0);
 }
 
+// A projector set a little in front of or behind the camera (a calibrated module is never
+// exactly coplanar) shifts spots along v with depth too: the lattice bends with it.
+TEST(Decoder, ProjectorOffsetAlongTheOpticalAxisDecodesTheTruePositions) {
+  Scene plane;
+  plane.distance_mm = 150.0;
+  for (const double dz : {0.5, 5.0}) {
+    ModuleDescription module = testing::SmallDefaultModule(648);
+    module.projector_from_camera.translation.z() += dz;
+    const Outcome o = DecodeRender(module, plane, 3);
+    EXPECT_GT(o.decoded, 0.95 * o.spots) << dz;
+    EXPECT_EQ(o.wrong, 0) << dz;
+  }
+}
+
 // Thresholds are relative to the image's range: 12-bit captures and 8-bit levels stretched over
 // the full 16-bit range decode like 8-bit ones (they used to give nothing: a 4-level contrast
 // floor is noise at 12 bits).

@@ -2,7 +2,8 @@
 /// \file
 /// The pose-graph residual as a Ceres auto-differentiated functor (paper eq. for the pose
 /// graph; Ceres' examples/slam/pose_graph_3d): parameters p_a (3), q_a (4, x y z w),
-/// p_b (3), q_b (4); residual sqrt(Ω) [R_aᵀ (p_b − p_a) − p̂_ab ; 2 vec(q̂_ab (q_a⁻¹ q_b)⁻¹)].
+/// p_b (3), q_b (4); residual sqrt(Ω) [R_aᵀ (p_b − p_a) − p̂_ab ; ±2 vec(q̂_ab (q_a⁻¹ q_b)⁻¹)], the sign
+/// making the error quaternion's w non-negative.
 
 #include <ceres/autodiff_cost_function.h>
 
@@ -31,7 +32,10 @@ class EdgeCost {
     const Eigen::Quaternion<T> delta_q = q_ab_.template cast<T>() * q_ab_estimated.conjugate();
     Eigen::Map<Eigen::Matrix<T, 6, 1>> residuals(residuals_ptr);
     residuals.template head<3>() = p_ab_estimated - p_ab_.template cast<T>();
-    residuals.template tail<3>() = T(2.0) * delta_q.vec();
+    // q and -q are the same rotation: take the error quaternion with w >= 0, so that a file
+    // (or a solver step) writing either sign gets the same cost.
+    const T sign = delta_q.w() < T(0) ? T(-2.0) : T(2.0);
+    residuals.template tail<3>() = sign * delta_q.vec();
     residuals.applyOnTheLeft(sqrt_information_.template cast<T>());
     return true;
   }

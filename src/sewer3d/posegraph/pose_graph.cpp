@@ -51,7 +51,7 @@ Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& wo
   Eigen::Matrix<double, 6, 1> r;
   r.head<3>() = q_a_inverse * (world_from_b.translation - world_from_a.translation) -
                 edge.a_from_b.translation;
-  r.tail<3>() = 2.0 * delta.vec();
+  r.tail<3>() = (delta.w() < 0.0 ? -2.0 : 2.0) * delta.vec();
   return r;
 }
 

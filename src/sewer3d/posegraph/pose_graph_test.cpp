@@ -51,6 +51,29 @@ TEST(EdgeCost, AgreesWithEdgeResidualAndVanishesAtTheMeasurement) {
   EXPECT_LT((r - sqrt_info * EdgeResidual(edge, a, b)).norm(), 1e-12);
 }
 
+TEST(EdgeCost, TheSignOfAQuaternionDoesNotChangeTheCostOrTheOptimum) {
+  // q and -q are one rotation; g2o files and solver steps may write either. With full 6x6
+  // information (translation-rotation cross terms) a sign-dependent residual would move
+  // the optimum.
+  std::mt19937 rng(9);
+  std::vector<Rigid3d> truth;
+  for (int i = 0; i < 12; ++i) truth.push_back(RandomPose(rng, 100.0));
+  PoseGraph graph = RingGraph(truth, rng, 0.01, 0.5);
+  for (PoseEdge& e : graph.mutable_edges()) e.information = RandomInformation(rng);
+  PoseGraph negated = graph;
+  for (PoseEdge& e : negated.mutable_edges()) e.a_from_b.rotation.coeffs() *= -1.0;
+  for (int i = 0; i < 12; i += 2) negated.mutable_node(i).rotation.coeffs() *= -1.0;
+  EXPECT_NEAR(GraphCost(negated), GraphCost(graph), 1e-9 * GraphCost(graph));
+  PoseGraphOptions options;
+  options.init = PoseGraphInit::kGiven;
+  ASSERT_TRUE(OptimisePoseGraph(graph, options).usable);
+  ASSERT_TRUE(OptimisePoseGraph(negated, options).usable);
+  for (int i = 0; i < 12; ++i) {
+    EXPECT_LT((negated.node(i).translation - graph.node(i).translation).norm(), 1e-4) << i;
+    EXPECT_LT(RotationErrorDeg(negated.node(i), graph.node(i)), 1e-5) << i;
+  }
+}
+
 TEST(Optimise, ConvergesFromLargePerturbationsToTheOptimumNearTheTruth) {
   std::mt19937 rng(3);
   std::vector<Rigid3d> truth;

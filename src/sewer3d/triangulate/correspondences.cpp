@@ -102,7 +102,7 @@ std::vector<TriangulatedPoint> Triangulator::Triangulate(
         const Eigen::Vector2d centre = layout.ElementCentre(r, c);
         const Eigen::Vector2d* projector_xy = Element(r, c);
         if (!projector_xy) continue;
-        const auto x = TriangulateDlt(*xy, *projector_xy, p_projector_);
+        const auto x = TriangulateOnProjectorRay(*xy, *projector_xy, p_projector_);
         if (!x || x->z() < options.z_min_mm || x->z() > options.z_max_mm) continue;
         const auto back_camera = camera_.Project(*x);
         const auto back_projector =

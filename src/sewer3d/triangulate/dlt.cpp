@@ -51,4 +51,20 @@ std::optional<Eigen::Vector3d> TriangulateDlt(const Eigen::Vector2d& camera_xy,
   return point;
 }
 
+std::optional<Eigen::Vector3d> TriangulateOnProjectorRay(
+    const Eigen::Vector2d& camera_xy, const Eigen::Vector2d& projector_xy,
+    const Eigen::Matrix<double, 3, 4>& p_projector) {
+  // Projector centre C = -Rᵀt and ray direction D = Rᵀ(x, y, 1) in the camera frame; their
+  // images span the epipolar line l = C × D (homogeneous, normalised camera coordinates).
+  const Eigen::Matrix3d r_transpose = p_projector.leftCols<3>().transpose();
+  const Eigen::Vector3d centre = -r_transpose * p_projector.col(3);
+  const Eigen::Vector3d direction = r_transpose * projector_xy.homogeneous();
+  const Eigen::Vector3d line = centre.cross(direction);
+  const double normal2 = line.head<2>().squaredNorm();
+  if (!(normal2 > 0.0)) return std::nullopt;  // the ray passes through the camera centre
+  const double distance = line.dot(camera_xy.homogeneous()) / normal2;
+  const Eigen::Vector2d on_line = camera_xy - distance * line.head<2>();
+  return TriangulateDlt(on_line, projector_xy, p_projector);
+}
+
 }  // namespace sewer3d

@@ -23,4 +23,15 @@ std::optional<Eigen::Vector3d> TriangulateDlt(const Eigen::Vector2d& camera_xy,
                                               const Eigen::Vector2d& projector_xy,
                                               const Eigen::Matrix<double, 3, 4>& p_projector);
 
+/// The point on the ray of a projector element (its position `projector_xy` is exact: a
+/// design position) whose camera image lies nearest the measured `camera_xy`: the camera
+/// point moved perpendicularly onto the element's epipolar line, then intersected. The DLT
+/// splits a mismatch between both views, and once the epipolar lines are not parallel to the
+/// element rows (a projector in front of or behind the camera) a fraction of a pixel across
+/// them moves the point along the ray by millimetres; here only the along-line coordinate
+/// sets the depth, as the stereo geometry says it should.
+std::optional<Eigen::Vector3d> TriangulateOnProjectorRay(
+    const Eigen::Vector2d& camera_xy, const Eigen::Vector2d& projector_xy,
+    const Eigen::Matrix<double, 3, 4>& p_projector);
+
 }  // namespace sewer3d

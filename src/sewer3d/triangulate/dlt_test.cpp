@@ -85,5 +85,40 @@ TEST(Dlt, RejectsPointsBehindTheCamera) {
   EXPECT_FALSE(TriangulateDlt(p.head<2>() / p.z(), q.head<2>() / q.z(), m.projector_from_camera));
 }
 
+TEST(OnProjectorRay, DepthIgnoresCameraErrorAcrossTheEpipolarLine) {
+  // A projector 2 mm in front of the camera tilts the epipolar lines. A camera spot 0.3 px
+  // off the element's epipolar line keeps its depth; the DLT moves the point along the ray.
+  ModuleDescription m = MakeDefaultModule({});
+  m.projector_from_camera.translation.z() += 2.0;
+  Eigen::Matrix<double, 3, 4> p_projector;
+  p_projector << m.projector_from_camera.RotationMatrix(), m.projector_from_camera.translation;
+  const double f = m.camera.fx;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> xy(-0.6, 0.6), z(75.0, 225.0);
+  double dlt_worst_mm = 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const double depth = z(rng);
+    const Eigen::Vector3d p(xy(rng) * depth, (xy(rng) + 0.25) * depth, depth);
+    const Eigen::Vector3d q = m.projector_from_camera * p;
+    const Eigen::Vector2d camera = p.head<2>() / p.z(), projector = q.head<2>() / q.z();
+    const auto exact = TriangulateOnProjectorRay(camera, projector, p_projector);
+    ASSERT_TRUE(exact.has_value());
+    EXPECT_LT((*exact - p).norm(), 1e-9 * depth);
+    // The element's epipolar line in the camera image runs along D_xy − x D_z, D the
+    // projector ray's direction in the camera frame.
+    const Eigen::Vector3d ray = m.projector_from_camera.rotation.conjugate() * q;
+    const Eigen::Vector2d along = ray.head<2>() - camera * ray.z();
+    const Eigen::Vector2d across = Eigen::Vector2d(-along.y(), along.x()).normalized();
+    const Eigen::Vector2d camera_off = camera + 0.3 / f * across;
+    const auto off_line = TriangulateOnProjectorRay(camera_off, projector, p_projector);
+    ASSERT_TRUE(off_line.has_value());
+    EXPECT_LT(std::abs(off_line->z() - depth), 1e-3) << depth;
+    const auto dlt = TriangulateDlt(camera_off, projector, p_projector);
+    ASSERT_TRUE(dlt.has_value());
+    dlt_worst_mm = std::max(dlt_worst_mm, std::abs(dlt->z() - depth));
+  }
+  EXPECT_GT(dlt_worst_mm, 0.1);  // what the move onto the line removes
+}
+
 }  // namespace
 }  // namespace sewer3d

@@ -132,6 +132,21 @@ TEST(ReconstructFrame, Dn300Cylinder) {
   EXPECT_EQ(o.colour_mismatches, 0);
 }
 
+// A projector set in front of or behind the camera (no calibrated module is exactly coplanar)
+// tilts the epipolar lines: spots move along projector v with depth as well as along u.
+TEST(ReconstructFrame, ProjectorOffsetAlongTheOpticalAxis) {
+  Scene plane;
+  plane.distance_mm = 150.0;
+  for (const double dz : {0.5, -2.0, 5.0}) {
+    ModuleDescription module = testing::SmallDefaultModule(648);
+    module.projector_from_camera.translation.z() += dz;
+    const Outcome o = ReconstructRender(module, plane, 4);
+    EXPECT_GT(o.points, 0.93 * o.spots) << dz;
+    EXPECT_EQ(o.wrong, 0) << dz;
+    EXPECT_LT(o.rms_to_truth_mm, 0.2) << dz;
+  }
+}
+
 // A mirrored or flipped pattern image decodes windows by chance, and a few of those land on
 // their epipolar line: the frame is refused as a whole rather than giving those points.
 TEST(ReconstructFrame, MirroredImagesGiveNoPoints) {
