@@ -52,6 +52,10 @@ module_with m/tiny_pitch.json 'pattern.pitch_px=0.001'
 module_with m/huge_matrix.json 'pattern.matrix="../huge_matrix.png"'
 module_with m/huge_header.json 'pattern.matrix="../huge_header.png"'
 module_with m/fifo_matrix.json 'pattern.matrix="../fifo"'
+# A capture whose image lies 8 px to the right of where the module says (cx + 8).
+module_with m/cx8.json "camera.cx=$(python3 -c "import json; print(json.load(open('m/module.json'))['camera']['cx'] + 8)")"
+"$S" simulate frame --module m/cx8.json --scene plane --distance-mm 110 --supersampling 1 \
+  --out frame_cx8 >/dev/null
 # A pattern capture of the small module, 8- and 12-bit.
 "$S" simulate frame --module m/module.json --scene plane --distance-mm 110 --supersampling 1 \
   --out frame8 >/dev/null
@@ -128,6 +132,8 @@ broken_run crlf acquisitions.csv 's/$/\r/'
 broken_run rig_v2 rig.json 'version=2'
 broken_run clock_typo rig.json 'modules.0.clock_hh=3'
 scenario_with slip_beyond.json 'odometry={"slips": [{"station_mm": 1e6, "length_mm": 10, "fraction": 0.5}]}'
+scenario_with slips_overlap.json 'odometry={"slips": [{"station_mm": 300, "length_mm": 20, "fraction": 0.7}, {"station_mm": 310, "length_mm": 20, "fraction": 0.6}]}'
+scenario_with deposit_crown.json 'pipe.features.0={"id": "D1", "type": "deposit", "station_mm": 300, "clock_h": 12, "length_mm": 100, "height_mm": 10}'
 # Scene files: a frame's scene.json with its render options or features broken.
 "$S" simulate frame --module m/module.json --scene pipe-wall --supersampling 1 --out fpw >/dev/null
 json_with frame8/scene.json scene_bits16.json 'render.bits=16'

@@ -96,10 +96,8 @@ Command AddReconstructCommand(CLI::App& app) {
           return 1;
         }
         if (frame.points.empty()) {
-          fmt::print(stderr,
-                     "sewer3d: error: {}: no spot pattern decoded ({} spots found, {} decoded){}\n",
-                     args->image, frame.report.spots_found, frame.report.spots_decoded,
-                     ColourHint(args->image));
+          fmt::print(stderr, "sewer3d: error: {}: {}{}\n", args->image,
+                     NoPointsReason(frame.report), ColourHint(args->image));
           return 1;
         }
         const std::filesystem::path out = args->out;

@@ -60,9 +60,13 @@ RgbdAcquisitionResult RgbdGeometryPass(const CaptureRun& run, const Acquisition&
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (frame.report.points == 0) {
       result.warnings.push_back(fmt::format(
-          "{}: no depth: {} spots found, none decoded into a point (a blank, blown-out or "
-          "foreign pattern image?); its texture is placed by the pipe prior alone",
-          pattern_file.string(), frame.report.spots_found));
+          "{}: no depth: {}; its texture is placed by the pipe prior alone",
+          pattern_file.string(),
+          frame.report.spots_decoded == 0
+              ? fmt::format("{} spots found, none decoded (a blank, blown-out or foreign "
+                            "pattern image?)",
+                            frame.report.spots_found)
+              : NoPointsReason(frame.report)));
     } else if (const std::string doubt = FrameDoubt(frame.report, frame.points.size());
                !doubt.empty()) {
       result.warnings.push_back(pattern_file.string() + ": doubtful depth: " + doubt);

@@ -22,6 +22,19 @@ void OdometryOptions::Check() const {
     SEWER3D_VALIDATE(slips[i].fraction >= 0.0 && slips[i].fraction <= 1.0, field + "fraction",
                      "must be 0..1, got " << slips[i].fraction);
   }
+  // Where stretches overlap their fractions add up; more than all of the motion lost would run
+  // the counter backwards. The sum is largest at some stretch's start.
+  for (size_t i = 0; i < slips.size(); ++i) {
+    const double at = slips[i].station_mm;
+    double sum = 0.0;
+    for (const OdometrySlip& s : slips) {
+      if (s.station_mm <= at && at < s.station_mm + s.length_mm) sum += s.fraction;
+    }
+    SEWER3D_VALIDATE(sum <= 1.0 + 1e-9, "slips[" + std::to_string(i) + "].station_mm",
+                     "overlapping slips lose fractions summing to "
+                         << sum << " of the motion at " << at
+                         << " mm, more than all of it: the counter would run backwards");
+  }
 }
 
 double SlipLossMm(const std::vector<OdometrySlip>& slips, double start, double station) {

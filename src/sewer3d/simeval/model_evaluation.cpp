@@ -21,6 +21,8 @@ namespace sewer3d {
 void ModelEvaluationOptions::Check() const {
   ValidateNotNegative("stride", stride);
   ValidatePositive("target_cells", static_cast<double>(target_cells));
+  SEWER3D_VALIDATE(max_cells >= target_cells, "max_cells",
+                   "must be at least target_cells (" << target_cells << "), got " << max_cells);
   ValidatePositive("station_bin_mm", station_bin_mm);
   ValidatePositive("axis_outlier_mm", axis_outlier_mm);
   SEWER3D_VALIDATE(circumference_directions >= 8, "circumference_directions",
@@ -87,6 +89,21 @@ std::optional<Eigen::Vector2d> AxisOffset(const std::vector<RowCell>& cells, int
 int AutomaticStride(const PipeMaps& maps, std::int64_t target_cells) {
   const auto covered = static_cast<double>(cv::countNonZero(maps.coverage));
   return std::max(1, static_cast<int>(std::ceil(std::sqrt(covered / target_cells))));
+}
+
+/// The stride asked for, or the automatic one; refuses one that evaluates more than max_cells.
+int ChooseStride(const PipeMaps& maps, const ModelEvaluationOptions& options) {
+  if (options.stride == 0) return AutomaticStride(maps, options.target_cells);
+  const auto covered = static_cast<double>(cv::countNonZero(maps.coverage));
+  const double cells = covered / (static_cast<double>(options.stride) * options.stride);
+  SEWER3D_VALIDATE(cells <= static_cast<double>(options.max_cells), "stride",
+                   options.stride << " evaluates " << std::llround(cells / 1e6)
+                                  << " M cells of the map, more than "
+                                  << options.max_cells / 1'000'000
+                                  << " M (about 1 GB of error buffers); use a stride of at least "
+                                  << AutomaticStride(maps, options.max_cells)
+                                  << ", or 0 (automatic)");
+  return options.stride;
 }
 
 /// Perimeter of the closed polygon of radii r[k] at clock angles a[k] (one plane).
@@ -161,7 +178,7 @@ ModelEvaluation EvaluatePipeModel(const PipeModel& model, const PipeGeometry& tr
   ModelEvaluation e;
   e.grid = grid;
   e.truth_from_model = truth_from_model;
-  e.stride = options.stride > 0 ? options.stride : AutomaticStride(maps, options.target_cells);
+  e.stride = ChooseStride(maps, options);
   const int s = e.stride, first = s / 2;
   const int out_rows = grid.rows > first ? (grid.rows - first + s - 1) / s : 0;
   const int out_cols = grid.cols > first ? (grid.cols - first + s - 1) / s : 0;

@@ -32,6 +32,9 @@ struct ModelEvaluationOptions {
   /// stride that checks at most target_cells covered cells.
   int stride = 0;
   std::int64_t target_cells = 3'000'000;
+  /// A given stride may evaluate at most this many covered cells: each costs ~32 bytes of
+  /// error buffers (1 GB here), on top of the model's maps.
+  std::int64_t max_cells = 30'000'000;
   double station_bin_mm = 10.0;        ///< circumference: one cross-section per bin
   int circumference_directions = 720;  ///< clock directions per cross-section
   /// Axis offset per row: cells with |error| above this (joint gaps) are left out of the fit.

@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <opencv2/core.hpp>
 
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/model_io.hpp"
 #include "sewer3d/simeval/model_evaluation.hpp"
 
@@ -136,6 +138,30 @@ TEST(ModelEvaluation, StrideSubsamplesTheCellsAndAWrongAlignmentShowsAsError) {
   EXPECT_NEAR(off.axis_offset.max_abs_mm, 1.0, 0.01);
   EXPECT_NEAR(off.after_axis_offset_by_material.at("plastic").max_abs_mm, 0.0, 0.01);
   EXPECT_NEAR(off.after_axis_offset_by_material.at("concrete").mean_mm, kPlanted_mm, 0.01);
+}
+
+TEST(ModelEvaluation, AStrideThatEvaluatesTooManyCellsIsRefused) {
+  // Memory grows with the cells evaluated: a stride of 1 on a fine map is refused with the
+  // smallest stride that fits, not evaluated into gigabytes.
+  const Rigid3d identity;
+  const PipeGeometry truth(TwoSections());
+  const PipeModel model = SyntheticModel(identity);
+  const auto covered = static_cast<std::int64_t>(cv::countNonZero(model.maps.coverage));
+  ModelEvaluationOptions options;
+  options.stride = 1;
+  options.target_cells = covered / 8;
+  options.max_cells = covered / 4 + 1;  // stride 2 evaluates covered / 4
+  try {
+    EvaluatePipeModel(model, truth, identity, options);
+    FAIL() << "stride 1 passed";
+  } catch (const InvalidValue& e) {
+    EXPECT_EQ(e.field(), "stride");
+    EXPECT_NE(std::string(e.what()).find("at least 2"), std::string::npos) << e.what();
+  }
+  options.stride = 2;
+  EXPECT_EQ(EvaluatePipeModel(model, truth, identity, options).stride, 2);
+  options.stride = 0;
+  EXPECT_EQ(EvaluatePipeModel(model, truth, identity, options).stride, 3);  // ceil(sqrt 8)
 }
 
 TEST(ModelEvaluation, FiguresOfNothingMeasuredAreNullNotZero) {

@@ -47,6 +47,18 @@ std::string NotOfModuleReason(const FrameReport& r) {
          " windows decode: the image is mirrored or flipped, or not of this module's pattern";
 }
 
+std::string NoPointsReason(const FrameReport& r) {
+  const std::string counts = std::to_string(r.spots_found) + " spots found, " +
+                             std::to_string(r.spots_decoded) + " decoded";
+  if (r.spots_decoded == 0) return "no spot pattern decoded (" + counts + ")";
+  const FrameReport::Rejected& x = r.rejected;
+  return counts + ", none gave a point (" + std::to_string(x.no_tile_on_epipolar_line) +
+         " fit no tile on their epipolar line, " + std::to_string(x.several_tiles_fit) +
+         " several, " + std::to_string(x.depth_outlier_or_isolated) +
+         " depth outliers or isolated): is the image shifted, rotated or scaled against the "
+         "module's calibration, or of another module?";
+}
+
 std::string FrameDoubt(const FrameReport& r, std::size_t points) {
   if (points >= 3 && r.depth_pixels == 0) {
     return std::to_string(points) +

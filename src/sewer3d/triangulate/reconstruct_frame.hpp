@@ -93,6 +93,11 @@ struct FrameReconstruction {
 /// Why a frame with FrameReport::not_of_module was refused, in words.
 std::string NotOfModuleReason(const FrameReport& report);
 
+/// Why a frame gave no point, in words: no spot decoded ("no spot pattern decoded (N spots
+/// found, 0 decoded)"), or decoded spots of which none fit a tile on its epipolar line (an
+/// image shifted, rotated or scaled against the module's calibration, or of another module).
+std::string NoPointsReason(const FrameReport& report);
+
 /// What makes a frame's points doubtful though some were made, in words (empty: nothing):
 /// points but no pixel of depth (the longest triangle edge allowed is too short),
 /// fewer than half of 50 or more spots decoded (spots too small or too close for the camera),
