@@ -28,7 +28,7 @@ struct BoardLayout {
 
 /// Options of the decoding and corner transfer; the defaults are `sewer3d calibrate module`'s.
 struct ModuleCalibratorOptions {
-  DecoderOptions decoder;              ///< decoding the pattern images
+  DecoderOptions decoder;  ///< decoding the pattern images
   /// Picking each spot's pattern tile with the nominal module, whose geometry is rough (a
   /// projector millimetres off its design place, so spots lie pixels off their nominal
   /// epipolar lines). max_reprojection_px is capped at a quarter of the distance between

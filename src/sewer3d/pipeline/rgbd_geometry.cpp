@@ -60,8 +60,7 @@ RgbdAcquisitionResult RgbdGeometryPass(const CaptureRun& run, const Acquisition&
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (frame.report.points == 0) {
       result.warnings.push_back(fmt::format(
-          "{}: no depth: {}; its texture is placed by the pipe prior alone",
-          pattern_file.string(),
+          "{}: no depth: {}; its texture is placed by the pipe prior alone", pattern_file.string(),
           frame.report.spots_decoded == 0
               ? fmt::format("{} spots found, none decoded (a blank, blown-out or foreign "
                             "pattern image?)",

@@ -2,8 +2,8 @@
 /// \file
 /// The pose-graph residual as a Ceres auto-differentiated functor (paper eq. for the pose
 /// graph; Ceres' examples/slam/pose_graph_3d): parameters p_a (3), q_a (4, x y z w),
-/// p_b (3), q_b (4); residual sqrt(Ω) [R_aᵀ (p_b − p_a) − p̂_ab ; ±2 vec(q̂_ab (q_a⁻¹ q_b)⁻¹)], the sign
-/// making the error quaternion's w non-negative.
+/// p_b (3), q_b (4); residual sqrt(Ω) [R_aᵀ (p_b − p_a) − p̂_ab ; ±2 vec(q̂_ab (q_a⁻¹ q_b)⁻¹)], the
+/// sign making the error quaternion's w non-negative.
 
 #include <ceres/autodiff_cost_function.h>
 

@@ -109,9 +109,10 @@ void PipeWorld::Check() const {
     ValidateClockHours(field + "clock_h", f.clock_h);
     // Sediment settles where gravity takes it: the invert (clock 6), give or take a pipe
     // laid with a cross fall or a bed pushed aside by the flow.
-    SEWER3D_VALIDATE(f.type != T::kDeposit || std::abs(std::remainder(f.clock_h - 6.0, 12.0)) <= 1.5,
-                     field + "clock_h",
-                     "a deposit settles at the invert: must be within 6 ± 1.5 h, got " << f.clock_h);
+    SEWER3D_VALIDATE(
+        f.type != T::kDeposit || std::abs(std::remainder(f.clock_h - 6.0, 12.0)) <= 1.5,
+        field + "clock_h",
+        "a deposit settles at the invert: must be within 6 ± 1.5 h, got " << f.clock_h);
     SEWER3D_VALIDATE(f.station_mm >= 0.0 && f.station_mm <= LengthMm(), field + "station_mm",
                      "must be on the pipe, 0.." << LengthMm() << ", got " << f.station_mm);
     for (const PipeSection& s : sections) {

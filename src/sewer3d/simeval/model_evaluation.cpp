@@ -96,13 +96,12 @@ int ChooseStride(const PipeMaps& maps, const ModelEvaluationOptions& options) {
   if (options.stride == 0) return AutomaticStride(maps, options.target_cells);
   const auto covered = static_cast<double>(cv::countNonZero(maps.coverage));
   const double cells = covered / (static_cast<double>(options.stride) * options.stride);
-  SEWER3D_VALIDATE(cells <= static_cast<double>(options.max_cells), "stride",
-                   options.stride << " evaluates " << std::llround(cells / 1e6)
-                                  << " M cells of the map, more than "
-                                  << options.max_cells / 1'000'000
-                                  << " M (about 1 GB of error buffers); use a stride of at least "
-                                  << AutomaticStride(maps, options.max_cells)
-                                  << ", or 0 (automatic)");
+  SEWER3D_VALIDATE(
+      cells <= static_cast<double>(options.max_cells), "stride",
+      options.stride << " evaluates " << std::llround(cells / 1e6)
+                     << " M cells of the map, more than " << options.max_cells / 1'000'000
+                     << " M (about 1 GB of error buffers); use a stride of at least "
+                     << AutomaticStride(maps, options.max_cells) << ", or 0 (automatic)");
   return options.stride;
 }
 

@@ -36,10 +36,14 @@ Triangulator::Triangulator(const ModuleDescription& module, int array_rows, int 
                      Eigen::Vector2d::Constant(std::nan("")));
   for (int r = 0; r < element_rows_; ++r) {
     for (int c = 0; c < element_cols_; ++c) {
+      // Only elements whose whole disk the projector shows: the image edge cuts the others,
+      // and a cut spot's centroid lies off its element's centre (a row of them along the
+      // edge measured 0.8 mm deep once a calibrated geometry brought the edge into view).
       const Eigen::Vector2d centre = layout.ElementCentre(r, c);
-      const bool inside = centre.x() >= -0.5 && centre.y() >= -0.5 &&
-                          centre.x() <= module.projector.width - 0.5 &&
-                          centre.y() <= module.projector.height - 0.5;
+      const double radius = 0.5 * layout.spot_diameter_px;
+      const bool inside = centre.x() - radius >= -0.5 && centre.y() - radius >= -0.5 &&
+                          centre.x() + radius <= module.projector.width - 0.5 &&
+                          centre.y() + radius <= module.projector.height - 0.5;
       if (!inside) continue;
       if (const auto xy = projector_.Unproject(centre))
         element_xy_[static_cast<size_t>(r) * element_cols_ + c] = *xy;
