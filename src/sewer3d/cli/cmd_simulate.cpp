@@ -41,6 +41,7 @@ int RunFrame(const FrameArgs& a, const CLI::App& frame) {
   const LoadedModule loaded = LoadModule(a.module);
   CheckFrameFolder(a.out, loaded);
   RenderOptions options = a.render;
+  options.spot_errors = *RealismProfile(a.realism);
   const Scene scene = FrameScene(a, frame, options);
   if (a.ideal) {
     const RenderOptions ideal = RenderOptions::Ideal();
@@ -115,6 +116,12 @@ Command AddSimulateCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1000.0));
   frame->add_flag("--ideal", args->ideal, "No noise, defocus, ambient light or vignetting");
+  frame
+      ->add_option("--realism", args->realism,
+                   "Error sources of a real projector and wall: ideal (none) or paper (spot "
+                   "placement and power, laser speckle: the paper's accuracy)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"ideal", "paper"}));
   AddRunCommand(*sim, *run_args);
   AddCalibrationCommand(*sim, *calibration_args);
   return {sim, [args, run_args, calibration_args, frame] {

@@ -123,6 +123,7 @@ Scene FileScene(const FrameArgs& a, const CLI::App& frame, RenderOptions& option
     if (frame.count("--bits")) options.sensor.bits = a.render.sensor.bits;
     if (frame.count("--speed-mm-s")) options.speed_mm_s = a.render.speed_mm_s;
     if (frame.count("--exposure-ms")) options.exposure_ms = a.render.exposure_ms;
+    if (frame.count("--realism")) options.spot_errors = *RealismProfile(a.realism);
   }
   WarnOfOtherModule(file, a.module);  // once the file is known good: an error is one line
   return scene;

@@ -19,6 +19,7 @@ struct FrameArgs {
   std::vector<double> decentre{0.0, 0.0};
   std::vector<double> axis{0.0, 1.0, 0.0};
   bool ideal = false;
+  std::string realism = "ideal";  ///< the projector's and wall's error sources (spot_errors.hpp)
   RenderOptions render;
 };
 

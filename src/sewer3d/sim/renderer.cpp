@@ -49,7 +49,8 @@ struct Setup {
     corner_rays.create(m.camera.height + 1, m.camera.width + 1);
     for (int v = 0; v <= m.camera.height; ++v) {
       for (int u = 0; u <= m.camera.width; ++u) {
-        const auto xy = camera.Unproject({u - 0.5, v - 0.5});
+        const Eigen::Vector2d corner(u - 0.5, v - 0.5);
+        const auto xy = camera.Unproject(corner + LensResidualPx(o.spot_errors, m.camera, corner, 0));
         corner_rays(v, u) = xy ? cv::Vec2d(xy->x(), xy->y()) : cv::Vec2d(NAN, NAN);
       }
     }
@@ -59,7 +60,7 @@ struct Setup {
   double SpotProfile(const Eigen::Vector2d& uv, double sigma_px) const {
     const PatternLayout& layout = module.pattern;
     const double radius = 0.5 * layout.spot_diameter_px;
-    const double reach = radius + 4.0 * sigma_px;
+    const double reach = radius + 4.0 * sigma_px + 4.0 * o.spot_errors.placement_sigma_px;
     const int c_lo = static_cast<int>(
         std::floor((uv.x() - layout.offset_px.x() + 0.5 - reach) / layout.pitch_px - 0.5));
     const int c_hi = static_cast<int>(
@@ -73,13 +74,16 @@ struct Setup {
     for (int r = r_lo; r <= r_hi; ++r) {
       for (int c = c_lo; c <= c_hi; ++c) {
         if (!pattern.tiled(r, c)) continue;
-        const double rho2 = (uv - layout.ElementCentre(r, c)).squaredNorm();
+        const Eigen::Vector2d centre =
+            layout.ElementCentre(r, c) + ElementOffset(o.spot_errors, r, c);
+        const double rho2 = (uv - centre).squaredNorm();
         if (rho2 > reach * reach) continue;  // erfc below 3e-8
         const double rho = std::sqrt(rho2);
-        value += 0.5 * std::erfc((rho - radius) * inv);  // disk edge convolved with a Gaussian
+        // Disk edge convolved with a Gaussian.
+        value += ElementGain(o.spot_errors, r, c) * 0.5 * std::erfc((rho - radius) * inv);
       }
     }
-    return std::min(value, 1.0);
+    return value;  // overlapping spots add up (none do at the default pitch)
   }
 };
 
@@ -102,10 +106,18 @@ Eigen::Vector3d RingLight(const RenderOptions& o, double cos_theta) {
 Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
              const Eigen::Vector3d& rig_shift, double cos_alpha) {
   Sample out;
-  const auto hit = s.surface.Intersect(origin, direction);
+  auto hit = s.surface.Intersect(origin, direction);
   if (!hit) return out;
   out.hits = 1;
   const RenderOptions& o = s.o;
+  if (o.spot_errors.relief_mm > 0.0) {
+    // The micro-relief as a height field over the smooth wall: the ray meets it h / cos θ
+    // earlier along the ray (slopes of the relief are small).
+    const double h = WallRelief(o.spot_errors, s.surface.MaterialSeed(), hit->surface_mm);
+    const Eigen::Vector3d d = direction.normalized();
+    const double cos_theta = std::max(0.2, std::abs(hit->normal.dot(d)));
+    hit->point -= d * (h / cos_theta);
+  }
   const Eigen::Vector3d albedo =
       hit->albedo.allFinite()
           ? hit->albedo
@@ -152,7 +164,8 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
     const double sigma =
         std::sqrt(o.projector_psf_px * o.projector_psf_px + std::pow(coc / 2.5, 2));
     const double lens = o.vignetting ? std::pow(cos_beta, 4) : 1.0;
-    pattern += o.pattern_level * s.SpotProfile(*uv, sigma) * lens *
+    const Eigen::Vector2d element_uv = *uv + LensResidualPx(o.spot_errors, pi, *uv, 1);
+    pattern += o.pattern_level * s.SpotProfile(element_uv, sigma) * lens *
                std::pow(kReferenceDistanceMm / d_projector, 2) * cos_in;
   }
   out.pattern = (grey / 0.5) * pattern * vignetting;
@@ -253,6 +266,7 @@ void RenderOptions::Check() const {
   SEWER3D_VALIDATE(motion_direction.allFinite() && motion_direction.norm() > 0.0 &&
                        std::isfinite(motion_direction.norm()),
                    "motion_direction", "must be a finite, non-zero direction");
+  spot_errors.Check();
   SEWER3D_VALIDATE(sensor.bits >= 8 && sensor.bits <= 12, "bits",
                    "must be 8..12, got " << sensor.bits);
   SEWER3D_VALIDATE(sensor.full_well_e > 0.0 && sensor.full_well_e <= 1e7, "full_well_e",
@@ -302,7 +316,9 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
   tbb::parallel_for(0, h, [&](int v) {
     for (int u = 0; u < w; ++u) {
       const std::uint64_t pixel = static_cast<std::uint64_t>(v) * w + u;
-      const auto centre_ray = setup.camera.Unproject({double(u), double(v)});
+      const Eigen::Vector2d centre(u, v);  // what the pixel sees, with the lens's residual
+      const auto centre_ray =
+          setup.camera.Unproject(centre + LensResidualPx(o.spot_errors, module.camera, centre, 0));
       float depth = NAN;
       if (centre_ray && (o.truth_depth || blur_after)) {
         const auto hit = surface.Intersect(Eigen::Vector3d::Zero(),
@@ -362,6 +378,11 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
     }
   });
   if (blur_after) BlurAlongMotion(setup.camera, frame.truth_depth, motion, frame);
+  if (o.images != RenderImages::kTexture) {
+    const double pixel_pitch_mm = o.sensor_width_mm / w;
+    ApplySpeckle(frame.pattern_signal, o.spot_errors,
+                 SpeckleGrainPx(o.spot_errors, o.camera_f_number, pixel_pitch_mm), o.seed + 0x5eed);
+  }
   if (!o.truth_depth) frame.truth_depth.setTo(NAN);
   tbb::parallel_for(0, h, [&](int v) {
     for (int u = 0; u < w; ++u) {

@@ -7,7 +7,8 @@
 /// aperture) and projector (circle of confusion blurring each spot), irradiance falloff with
 /// distance and incidence, a ring light whose intensity and colour vary with the emission
 /// angle, vignetting with per-channel lens shading, white-balance gains; sensor: photon shot
-/// noise, read noise, quantisation, optional Bayer mosaic.
+/// noise, read noise, quantisation, optional Bayer mosaic; optionally a real projector's spot
+/// placement and power errors and laser speckle (spot_errors.hpp).
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -17,6 +18,7 @@
 #include "sewer3d/pattern/binary_array.hpp"
 #include "sewer3d/sim/scene.hpp"
 #include "sewer3d/sim/sensor.hpp"
+#include "sewer3d/sim/spot_errors.hpp"
 #include "sewer3d/sim/surface.hpp"
 
 namespace sewer3d {
@@ -61,6 +63,9 @@ struct RenderOptions {
   double exposure_ms = 2.0;
   Eigen::Vector3d motion_direction = Eigen::Vector3d::UnitY();  ///< camera frame
   SensorModel sensor;
+  /// The projector's and the wall's errors beyond ideal optics (none by default; the `paper`
+  /// realism profile sets them, docs/simulator.md "Error sources").
+  SpotErrors spot_errors;
   std::uint64_t seed = 1;
 
   void Check() const;

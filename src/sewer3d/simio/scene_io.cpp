@@ -305,7 +305,15 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
           {"read_noise_e", o.sensor.read_noise_e},
           {"bits", o.sensor.bits},
           {"noise", o.sensor.noise},
-          {"color_filter", ColorFilterName(o.sensor.color_filter)}};
+          {"color_filter", ColorFilterName(o.sensor.color_filter)},
+          {"spot_placement_sigma_px", o.spot_errors.placement_sigma_px},
+          {"spot_gain_sigma", o.spot_errors.gain_sigma},
+          {"speckle_contrast", o.spot_errors.speckle_contrast},
+          {"speckle_wavelength_nm", o.spot_errors.wavelength_nm},
+          {"lens_residual", o.spot_errors.lens_residual},
+          {"relief_mm", o.spot_errors.relief_mm},
+          {"relief_scale_mm", o.spot_errors.relief_scale_mm},
+          {"projector_seed", o.spot_errors.projector_seed}};
 }
 
 void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& p,
@@ -334,7 +342,16 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
                 "read_noise_e",
                 "bits",
                 "noise",
-                "color_filter"});
+                "color_filter",
+                "realism",
+                "spot_placement_sigma_px",
+                "spot_gain_sigma",
+                "speckle_contrast",
+                "speckle_wavelength_nm",
+                "lens_residual",
+                "relief_mm",
+                "relief_scale_mm",
+                "projector_seed"});
   o.supersampling = in.Integer(j, "supersampling", p, o.supersampling);
   o.sensor_width_mm = in.Number(j, "sensor_width_mm", p, o.sensor_width_mm);
   o.camera_f_number = ReadFNumber(in, j, "camera_f_number", p, o.camera_f_number);
@@ -362,6 +379,22 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
   const auto parsed = ParseColorFilter(filter);
   if (!parsed) in.Fail(p + "color_filter", "must be none or RGGB, got '" + filter + "'");
   o.sensor.color_filter = *parsed;
+  // A realism profile first, then any of its values given one by one.
+  if (j.contains("realism")) {
+    const std::string name = in.Text(j, "realism", p, "ideal");
+    const auto profile = RealismProfile(name);
+    if (!profile) in.Fail(p + "realism", "must be ideal or paper, got '" + name + "'");
+    o.spot_errors = *profile;
+  }
+  SpotErrors& e = o.spot_errors;
+  e.placement_sigma_px = in.Number(j, "spot_placement_sigma_px", p, e.placement_sigma_px);
+  e.gain_sigma = in.Number(j, "spot_gain_sigma", p, e.gain_sigma);
+  e.speckle_contrast = in.Number(j, "speckle_contrast", p, e.speckle_contrast);
+  e.wavelength_nm = in.Number(j, "speckle_wavelength_nm", p, e.wavelength_nm);
+  e.lens_residual = in.Number(j, "lens_residual", p, e.lens_residual);
+  e.relief_mm = in.Number(j, "relief_mm", p, e.relief_mm);
+  e.relief_scale_mm = in.Number(j, "relief_scale_mm", p, e.relief_scale_mm);
+  e.projector_seed = in.Seed(j, "projector_seed", p, e.projector_seed);
 }
 
 }  // namespace sewer3d

@@ -1,0 +1,134 @@
+#include "sewer3d/sim/spot_errors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
+#include "sewer3d/sim/material.hpp"
+
+namespace sewer3d {
+
+namespace {
+
+std::uint64_t ElementKey(int r, int c) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(r)) << 32) |
+         static_cast<std::uint32_t>(c);
+}
+
+}  // namespace
+
+void SpotErrors::Check() const {
+  // Beyond a pitch's worth the spots would cross their neighbours; beyond these the pattern is
+  // no longer a pattern.
+  SEWER3D_VALIDATE(placement_sigma_px >= 0.0 && placement_sigma_px <= 2.0, "placement_sigma_px",
+                   "must be 0..2 projector px, got " << placement_sigma_px);
+  SEWER3D_VALIDATE(gain_sigma >= 0.0 && gain_sigma <= 0.5, "gain_sigma",
+                   "must be 0..0.5, got " << gain_sigma);
+  SEWER3D_VALIDATE(speckle_contrast >= 0.0 && speckle_contrast <= 1.0, "speckle_contrast",
+                   "must be 0..1, got " << speckle_contrast);
+  SEWER3D_VALIDATE(lens_residual >= 0.0 && lens_residual <= 0.05, "lens_residual",
+                   "must be 0..0.05, got " << lens_residual);
+  SEWER3D_VALIDATE(relief_mm >= 0.0 && relief_mm <= 1.0, "relief_mm",
+                   "must be 0..1 mm, got " << relief_mm);
+  SEWER3D_VALIDATE(relief_scale_mm >= 0.05 && relief_scale_mm <= 50.0, "relief_scale_mm",
+                   "must be 0.05..50 mm, got " << relief_scale_mm);
+  SEWER3D_VALIDATE(wavelength_nm >= 300.0 && wavelength_nm <= 2000.0, "wavelength_nm",
+                   "must be 300..2000 nm, got " << wavelength_nm);
+}
+
+std::optional<SpotErrors> RealismProfile(const std::string& name) {
+  if (name == "ideal") return SpotErrors{};
+  if (name != "paper") return std::nullopt;
+  // Provisional (docs/accuracy.md, "Realism"): each source at a physically modest level.
+  SpotErrors e;
+  e.placement_sigma_px = 0.25;
+  e.gain_sigma = 0.1;
+  e.speckle_contrast = 0.1;
+  e.lens_residual = 1e-4;
+  e.relief_mm = 0.04;
+  return e;
+}
+
+Eigen::Vector2d ElementOffset(const SpotErrors& errors, int r, int c) {
+  if (errors.placement_sigma_px <= 0.0) return Eigen::Vector2d::Zero();
+  const std::uint64_t key = ElementKey(r, c);
+  return errors.placement_sigma_px * Eigen::Vector2d(HashNormal(errors.projector_seed, key, 1),
+                                                     HashNormal(errors.projector_seed, key, 2));
+}
+
+double ElementGain(const SpotErrors& errors, int r, int c) {
+  if (errors.gain_sigma <= 0.0) return 1.0;
+  // Clamped so that no spot goes dark or negative (3.3 sigma at the largest sigma allowed).
+  const double g = 1.0 + errors.gain_sigma * HashNormal(errors.projector_seed, ElementKey(r, c), 3);
+  return std::max(0.1, g);
+}
+
+Eigen::Vector2d LensResidualPx(const SpotErrors& errors, const CameraIntrinsics& k,
+                               const Eigen::Vector2d& pixel, int lens) {
+  if (errors.lens_residual <= 0.0) return Eigen::Vector2d::Zero();
+  // Directions of the tangential and thin-prism coefficient pairs, fixed per lens.
+  const double a = kTwoPi * HashUniform(errors.projector_seed, 21, static_cast<std::uint64_t>(lens));
+  const double b = kTwoPi * HashUniform(errors.projector_seed, 22, static_cast<std::uint64_t>(lens));
+  const double p1 = errors.lens_residual * std::cos(a), p2 = errors.lens_residual * std::sin(a);
+  const double s1 = errors.lens_residual * std::cos(b), s2 = errors.lens_residual * std::sin(b);
+  const double x = (pixel.x() - k.cx) / k.fx, y = (pixel.y() - k.cy) / k.fy;
+  const double r2 = x * x + y * y;
+  // Brown–Conrady decentring and thin-prism terms (normalised coordinates).
+  const double dx = 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x) + s1 * r2;
+  const double dy = p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y + s2 * r2;
+  return {k.fx * dx, k.fy * dy};
+}
+
+double WallRelief(const SpotErrors& errors, std::uint64_t seed, const Eigen::Vector2d& p_mm) {
+  if (errors.relief_mm <= 0.0) return 0.0;
+  const Eigen::Vector2d q = p_mm / errors.relief_scale_mm;
+  const double fx = std::floor(q.x()), fy = std::floor(q.y());
+  const double tx = q.x() - fx, ty = q.y() - fy;
+  const auto node = [&](double i, double j) {
+    const auto key = (static_cast<std::uint64_t>(static_cast<std::int64_t>(i)) << 32) ^
+                     static_cast<std::uint64_t>(static_cast<std::int64_t>(j) & 0xffffffff);
+    return HashNormal(seed + 0x4e11ef, key, 31);
+  };
+  const double h = (1 - tx) * (1 - ty) * node(fx, fy) + tx * (1 - ty) * node(fx + 1, fy) +
+                   (1 - tx) * ty * node(fx, fy + 1) + tx * ty * node(fx + 1, fy + 1);
+  // Bilinear weights average the lattice: E[Σ w²] = (2/3)², so the RMS is 2/3 before scaling.
+  return errors.relief_mm * 1.5 * h;
+}
+
+double SpeckleGrainPx(const SpotErrors& errors, double f_number, double pixel_pitch_mm) {
+  // A pinhole camera (f-number 0) has no diffraction-limited grain: one pixel.
+  const double grain_mm = 2.44 * errors.wavelength_nm * 1e-6 * f_number;
+  return std::max(1.0, grain_mm / pixel_pitch_mm);
+}
+
+void ApplySpeckle(cv::Mat1f& signal, const SpotErrors& errors, double grain_px,
+                  std::uint64_t seed) {
+  if (errors.speckle_contrast <= 0.0 || signal.empty()) return;
+  // Circular complex Gaussian field low-passed to the grain; its squared magnitude is fully
+  // developed speckle (exponential intensity, contrast 1), normalised to mean 1.
+  cv::Mat1f re(signal.size()), im(signal.size());
+  for (int v = 0; v < signal.rows; ++v) {
+    for (int u = 0; u < signal.cols; ++u) {
+      const std::uint64_t pixel = static_cast<std::uint64_t>(v) * signal.cols + u;
+      re(v, u) = static_cast<float>(HashNormal(seed, pixel, 11));
+      im(v, u) = static_cast<float>(HashNormal(seed, pixel, 12));
+    }
+  }
+  // `grain_px` is the Airy diameter 2.44 λN; the intensity correlation's FWHM is about λN,
+  // and an amplitude kernel of sigma s gives an intensity correlation of sigma s. Below half a
+  // pixel the pixel integrates several grains: the field stays at half a pixel and its
+  // contrast falls in proportion (pixel area over grain area, square-rooted).
+  const double wanted = grain_px / (2.44 * 2.355);
+  const double sigma = std::max(0.5, wanted);
+  const double contrast = errors.speckle_contrast * std::min(1.0, wanted / 0.5);
+  cv::GaussianBlur(re, re, cv::Size(), sigma, sigma, cv::BORDER_REFLECT);
+  cv::GaussianBlur(im, im, cv::Size(), sigma, sigma, cv::BORDER_REFLECT);
+  cv::Mat1f intensity = re.mul(re) + im.mul(im);
+  intensity /= std::max(1e-12, cv::mean(intensity)[0]);
+  const auto c = static_cast<float>(contrast);
+  signal = signal.mul(1.0f - c + c * intensity);
+}
+
+}  // namespace sewer3d

@@ -1,0 +1,77 @@
+#pragma once
+/// \file
+/// Error sources of a real spot projector that the ideal renderer lacks (issue 17; physical
+/// basis and defaults in docs/simulator.md, "Error sources"):
+/// - element placement: each element's spot sits off its design centre by a fixed Gaussian
+///   offset (mask or diffractive-element manufacture; the same in every frame of a module,
+///   so calibration, which uses the design centres, cannot see it);
+/// - element gain: each spot's power differs by a fixed Gaussian factor;
+/// - speckle: a coherent source's light scattered by a rough wall interferes into a granular
+///   pattern in the camera image (subjective speckle), grain size 2.44 λ N on the sensor
+///   (λ the wavelength, N the camera's f-number); fully developed speckle has intensity
+///   contrast 1, reduced by partial coherence and pixel integration.
+/// Pure functions of their inputs; no I/O.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+
+#include "sewer3d/camera/camera_model.hpp"
+
+namespace sewer3d {
+
+struct SpotErrors {
+  double placement_sigma_px = 0.0;  ///< per-element centre offset, projector px, per axis
+  double gain_sigma = 0.0;          ///< per-element relative power, standard deviation
+  double speckle_contrast = 0.0;    ///< 0: none; 1: fully developed
+  double wavelength_nm = 850.0;     ///< near-infrared laser
+  /// Lens distortion the module's 3-term radial model cannot represent (a decentred element, a
+  /// tilted sensor): tangential (p1, p2) and thin-prism (s1, s2) terms of this magnitude, in
+  /// directions fixed by the seed, on the camera and on the projector. 1e-3 moves a corner of
+  /// the default camera's image by about a pixel.
+  double lens_residual = 0.0;
+  /// Micro-relief of the wall below the spot scale (cement skin, sand grains, pores), RMS
+  /// height and correlation length: a plane of real concrete is not a plane to 0.05 mm.
+  double relief_mm = 0.0;
+  double relief_scale_mm = 0.5;
+  std::uint64_t projector_seed = 1;  ///< the projector's own (fixed per module)
+  void Check() const;
+  bool Any() const {
+    return placement_sigma_px > 0.0 || gain_sigma > 0.0 || speckle_contrast > 0.0 ||
+           lens_residual > 0.0 || relief_mm > 0.0;
+  }
+};
+
+/// The named realism profiles: "ideal" (no error source) and "paper" (a laser projector and
+/// wall whose errors match the accuracy the paper reports, docs/accuracy.md). nullopt for
+/// other names.
+std::optional<SpotErrors> RealismProfile(const std::string& name);
+
+/// Fixed offset (projector px) of element (r, c), absolute projector indices.
+Eigen::Vector2d ElementOffset(const SpotErrors& errors, int r, int c);
+
+/// Fixed power factor (> 0, mean 1) of element (r, c).
+double ElementGain(const SpotErrors& errors, int r, int c);
+
+/// Where the residual lens distortion moves a pixel of a lens with these intrinsics (px,
+/// added to the pixel the module's model gives): `lens` 0 for the camera, 1 for the projector.
+Eigen::Vector2d LensResidualPx(const SpotErrors& errors, const CameraIntrinsics& intrinsics,
+                               const Eigen::Vector2d& pixel, int lens);
+
+/// Height (mm, toward the viewer) of the wall's micro-relief at a surface point (mm in the
+/// surface's own coordinates): Gaussian lattice values at the correlation length, bilinear
+/// between them, scaled to the RMS asked for. Deterministic for the surface's seed.
+double WallRelief(const SpotErrors& errors, std::uint64_t seed, const Eigen::Vector2d& surface_mm);
+
+/// Speckle grain (intensity correlation length, camera px) for a camera of the given f-number
+/// and pixel pitch.
+double SpeckleGrainPx(const SpotErrors& errors, double f_number, double pixel_pitch_mm);
+
+/// Multiplies `signal` by a speckle field of mean 1, the errors' contrast and `grain_px`,
+/// deterministic for `seed` (a frame's own: the wall and the carrier move between frames).
+void ApplySpeckle(cv::Mat1f& signal, const SpotErrors& errors, double grain_px,
+                  std::uint64_t seed);
+
+}  // namespace sewer3d

@@ -1,0 +1,129 @@
+// The simulator's error sources (spot_errors.hpp): each is off by default, deterministic, and
+// of the size asked for.
+
+#include "sewer3d/sim/spot_errors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sewer3d/testing/small_module.hpp"
+
+namespace sewer3d {
+namespace {
+
+TEST(SpotErrors, IdealIsNoErrorAtAll) {
+  const SpotErrors ideal = *RealismProfile("ideal");
+  EXPECT_FALSE(ideal.Any());
+  EXPECT_EQ(ElementOffset(ideal, 3, 4), Eigen::Vector2d::Zero());
+  EXPECT_EQ(ElementGain(ideal, 3, 4), 1.0);
+  EXPECT_EQ(WallRelief(ideal, 1, {2.0, 3.0}), 0.0);
+  const ModuleDescription m = testing::SmallDefaultModule(648);
+  EXPECT_EQ(LensResidualPx(ideal, m.camera, {10.0, 20.0}, 0), Eigen::Vector2d::Zero());
+  cv::Mat1f signal(20, 30, 0.5f);
+  ApplySpeckle(signal, ideal, 3.0, 7);
+  EXPECT_EQ(cv::countNonZero(signal != 0.5f), 0);
+  EXPECT_TRUE(RealismProfile("paper")->Any());
+  EXPECT_FALSE(RealismProfile("real").has_value());
+}
+
+TEST(SpotErrors, ElementPlacementAndGainHaveTheSpreadAsked) {
+  SpotErrors e;
+  e.placement_sigma_px = 0.3;
+  e.gain_sigma = 0.1;
+  double sum2 = 0.0, gain_sum = 0.0, gain_sum2 = 0.0;
+  const int n = 100;
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      sum2 += ElementOffset(e, r, c).squaredNorm();
+      const double g = ElementGain(e, r, c);
+      gain_sum += g;
+      gain_sum2 += g * g;
+    }
+  }
+  const double count = n * n;
+  // 10 000 elements: the estimates are within 2 % (3 sigma of a variance estimate: 4 %).
+  EXPECT_NEAR(std::sqrt(sum2 / (2.0 * count)), 0.3, 0.3 * 0.04);
+  EXPECT_NEAR(gain_sum / count, 1.0, 0.005);
+  EXPECT_NEAR(std::sqrt(gain_sum2 / count - std::pow(gain_sum / count, 2)), 0.1, 0.1 * 0.04);
+  // Fixed per element (a property of the projector), another for another projector.
+  EXPECT_EQ(ElementOffset(e, 5, 6), ElementOffset(e, 5, 6));
+  SpotErrors other = e;
+  other.projector_seed = 2;
+  EXPECT_NE(ElementOffset(other, 5, 6), ElementOffset(e, 5, 6));
+}
+
+TEST(SpotErrors, WallReliefHasTheRmsAndScaleAsked) {
+  SpotErrors e;
+  e.relief_mm = 0.05;
+  e.relief_scale_mm = 0.5;
+  double sum = 0.0, sum2 = 0.0, near = 0.0, far = 0.0;
+  const int n = 200;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const Eigen::Vector2d p(0.37 * i, 0.41 * j);
+      const double h = WallRelief(e, 9, p);
+      sum += h;
+      sum2 += h * h;
+      near += h * WallRelief(e, 9, p + Eigen::Vector2d(0.05, 0.0));  // a tenth of the scale
+      far += h * WallRelief(e, 9, p + Eigen::Vector2d(5.0, 0.0));    // ten times the scale
+    }
+  }
+  const double count = n * n;
+  EXPECT_NEAR(sum / count, 0.0, 0.002);
+  EXPECT_NEAR(std::sqrt(sum2 / count), 0.05, 0.05 * 0.1);  // bilinear: RMS varies in a cell
+  EXPECT_GT(near / sum2, 0.8);                              // smooth below the scale
+  EXPECT_LT(std::abs(far / sum2), 0.05);                    // independent beyond it
+}
+
+TEST(SpotErrors, LensResidualVanishesAtThePrincipalPointAndGrowsOutward) {
+  SpotErrors e;
+  e.lens_residual = 1e-4;
+  const ModuleDescription m = testing::SmallDefaultModule(648);
+  const CameraIntrinsics& k = m.camera;
+  EXPECT_LT(LensResidualPx(e, k, {k.cx, k.cy}, 0).norm(), 1e-12);
+  const double mid = LensResidualPx(e, k, {k.cx + 0.25 * k.fx, k.cy}, 0).norm();
+  const double edge = LensResidualPx(e, k, {k.cx + 0.5 * k.fx, k.cy}, 0).norm();
+  // Quadratic in the distance from the principal point: twice as far, four times the shift;
+  // at r = 0.5 the terms sum to at most 1.5e-4 · 0.25 · 2 of the focal length.
+  EXPECT_NEAR(edge, 4.0 * mid, 1e-9);
+  EXPECT_GT(edge, 0.0);
+  EXPECT_LT(edge, 1e-4 * 0.25 * 4.0 * k.fx);
+  // Camera and projector lenses err in their own directions.
+  EXPECT_NE(LensResidualPx(e, k, {0.0, 0.0}, 0), LensResidualPx(e, k, {0.0, 0.0}, 1));
+}
+
+TEST(SpotErrors, SpeckleKeepsTheMeanAndHasTheContrastAsked) {
+  SpotErrors e;
+  e.speckle_contrast = 0.5;
+  cv::Mat1f signal(400, 400, 0.4f);
+  // A grain of 20 px (Airy diameter): the field's sigma is 1.4 px, well resolved.
+  ApplySpeckle(signal, e, 20.0, 3);
+  cv::Scalar mean, deviation;
+  cv::meanStdDev(signal, mean, deviation);
+  EXPECT_NEAR(mean[0], 0.4, 0.4 * 0.01);
+  // Fully developed speckle has contrast 1; half of it mixed with uniform light: 0.5.
+  EXPECT_NEAR(deviation[0] / mean[0], 0.5, 0.05);
+  // A grain whose correlation (Airy diameter / 5.75) is below half a pixel averages out in
+  // the pixel: the contrast falls in proportion, here to 0.5 · 0.348 / 0.5.
+  cv::Mat1f fine(400, 400, 0.4f);
+  ApplySpeckle(fine, e, 2.0, 3);
+  cv::meanStdDev(fine, mean, deviation);
+  EXPECT_NEAR(deviation[0] / mean[0], 0.5 * (2.0 / (2.44 * 2.355)) / 0.5, 0.04);
+}
+
+TEST(SpotErrors, OutOfRangeValuesAreRefused) {
+  SpotErrors e;
+  e.placement_sigma_px = 3.0;
+  EXPECT_THROW(e.Check(), std::invalid_argument);
+  e = SpotErrors{};
+  e.speckle_contrast = 1.5;
+  EXPECT_THROW(e.Check(), std::invalid_argument);
+  e = SpotErrors{};
+  e.relief_mm = -0.1;
+  EXPECT_THROW(e.Check(), std::invalid_argument);
+  EXPECT_NO_THROW(RealismProfile("paper")->Check());
+}
+
+}  // namespace
+}  // namespace sewer3d
