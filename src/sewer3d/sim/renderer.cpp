@@ -50,7 +50,8 @@ struct Setup {
     for (int v = 0; v <= m.camera.height; ++v) {
       for (int u = 0; u <= m.camera.width; ++u) {
         const Eigen::Vector2d corner(u - 0.5, v - 0.5);
-        const auto xy = camera.Unproject(corner + LensResidualPx(o.spot_errors, m.camera, corner, 0));
+        const auto xy =
+            camera.Unproject(corner + LensResidualPx(o.spot_errors, m.camera, corner, 0));
         corner_rays(v, u) = xy ? cv::Vec2d(xy->x(), xy->y()) : cv::Vec2d(NAN, NAN);
       }
     }

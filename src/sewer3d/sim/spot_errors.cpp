@@ -69,8 +69,10 @@ Eigen::Vector2d LensResidualPx(const SpotErrors& errors, const CameraIntrinsics&
                                const Eigen::Vector2d& pixel, int lens) {
   if (errors.lens_residual <= 0.0) return Eigen::Vector2d::Zero();
   // Directions of the tangential and thin-prism coefficient pairs, fixed per lens.
-  const double a = kTwoPi * HashUniform(errors.projector_seed, 21, static_cast<std::uint64_t>(lens));
-  const double b = kTwoPi * HashUniform(errors.projector_seed, 22, static_cast<std::uint64_t>(lens));
+  const double a =
+      kTwoPi * HashUniform(errors.projector_seed, 21, static_cast<std::uint64_t>(lens));
+  const double b =
+      kTwoPi * HashUniform(errors.projector_seed, 22, static_cast<std::uint64_t>(lens));
   const double p1 = errors.lens_residual * std::cos(a), p2 = errors.lens_residual * std::sin(a);
   const double s1 = errors.lens_residual * std::cos(b), s2 = errors.lens_residual * std::sin(b);
   const double x = (pixel.x() - k.cx) / k.fx, y = (pixel.y() - k.cy) / k.fy;

@@ -71,7 +71,6 @@ double SpeckleGrainPx(const SpotErrors& errors, double f_number, double pixel_pi
 
 /// Multiplies `signal` by a speckle field of mean 1, the errors' contrast and `grain_px`,
 /// deterministic for `seed` (a frame's own: the wall and the carrier move between frames).
-void ApplySpeckle(cv::Mat1f& signal, const SpotErrors& errors, double grain_px,
-                  std::uint64_t seed);
+void ApplySpeckle(cv::Mat1f& signal, const SpotErrors& errors, double grain_px, std::uint64_t seed);
 
 }  // namespace sewer3d

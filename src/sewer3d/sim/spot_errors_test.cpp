@@ -72,8 +72,8 @@ TEST(SpotErrors, WallReliefHasTheRmsAndScaleAsked) {
   const double count = n * n;
   EXPECT_NEAR(sum / count, 0.0, 0.002);
   EXPECT_NEAR(std::sqrt(sum2 / count), 0.05, 0.05 * 0.1);  // bilinear: RMS varies in a cell
-  EXPECT_GT(near / sum2, 0.8);                              // smooth below the scale
-  EXPECT_LT(std::abs(far / sum2), 0.05);                    // independent beyond it
+  EXPECT_GT(near / sum2, 0.8);                             // smooth below the scale
+  EXPECT_LT(std::abs(far / sum2), 0.05);                   // independent beyond it
 }
 
 TEST(SpotErrors, LensResidualVanishesAtThePrincipalPointAndGrowsOutward) {

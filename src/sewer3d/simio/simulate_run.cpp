@@ -198,7 +198,8 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
         HashUniform(scenario.seed, shot.module, shot.counter, static_cast<int>(shot.kind)) *
         0x1p53);
     // Each module's projector and lenses err in their own way (fixed over the run).
-    o.spot_errors.projector_seed = scenario.render.spot_errors.projector_seed + 1000003ULL * shot.module;
+    o.spot_errors.projector_seed =
+        scenario.render.spot_errors.projector_seed + 1000003ULL * shot.module;
     // Motion during the exposure, in the camera frame.
     const double dt = 0.5e-3;
     const Eigen::Vector3d velocity =
