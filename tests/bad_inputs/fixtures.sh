@@ -133,6 +133,10 @@ broken_run rig_v2 rig.json 'version=2'
 broken_run clock_typo rig.json 'modules.0.clock_hh=3'
 scenario_with slip_beyond.json 'odometry={"slips": [{"station_mm": 1e6, "length_mm": 10, "fraction": 0.5}]}'
 scenario_with slips_overlap.json 'odometry={"slips": [{"station_mm": 300, "length_mm": 20, "fraction": 0.7}, {"station_mm": 310, "length_mm": 20, "fraction": 0.6}]}'
+scenario_with crack_around.json 'pipe.features.0={"id": "K1", "type": "crack", "station_mm": 600, "clock_h": 3, "length_mm": 2000, "width_mm": 1, "depth_mm": 2, "angle_deg": 90}'
+scenario_with odo_noise.json 'odometry={"noise_mm": 1000}'
+printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_SE3:QUAT 1 1 0 0 0 0 0 1\nVERTEX_SE3:QUAT 2 2 0 0 0 0 0 1\nEDGE_SE3:QUAT 0 1 1 0 0 1 0.001 0 0 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\nEDGE_SE3:QUAT 1 2 1 0 0 0.9999 0.01 0 0 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n' >wxyz.g2o
+scenario_with crack_long.json 'pipe.features.0={"id": "K1", "type": "crack", "station_mm": 600, "clock_h": 3, "length_mm": 5000, "width_mm": 1, "depth_mm": 2}'
 scenario_with deposit_crown.json 'pipe.features.0={"id": "D1", "type": "deposit", "station_mm": 300, "clock_h": 12, "length_mm": 100, "height_mm": 10}'
 # Scene files: a frame's scene.json with its render options or features broken.
 "$S" simulate frame --module m/module.json --scene pipe-wall --supersampling 1 --out fpw >/dev/null

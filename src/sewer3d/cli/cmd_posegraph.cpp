@@ -80,6 +80,7 @@ Command AddPoseGraphCommand(CLI::App& app) {
             PoseGraph graph = ReadG2o(args->in);
             WarnOfUnitMismatch(args->in, graph);
             WarnOfSwappedEdges(args->in, graph);
+            WarnOfQuaternionOrder(args->in, graph);
             if (options.certify) CheckCertifiable(args->in, graph.nodes().size());
             fmt::print("{}: {} poses, {} edges, cost at its poses {:.7g}\n", args->in,
                        graph.nodes().size(), graph.edges().size(), GraphCost(graph));

@@ -53,67 +53,73 @@ Command AddReconstructCommand(CLI::App& app) {
                   "Depth map: longest triangle edge, in pattern pitches")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 20.0));
-  return {sub, [args] {
-            const LoadedModule loaded = LoadModule(args->module);
-            const ModuleDescription& module = loaded.module;
-            CheckNotInRunOrWorkspace(args->out, "--out");
-            for (const char* name : {"cloud.ply", "depth.tiff", "depth.png", "report.json"}) {
-              const std::filesystem::path output = std::filesystem::path(args->out) / name;
-              CheckNotAnInput(output, args->image, "--image");
-              if (!args->texture.empty()) CheckNotAnInput(output, args->texture, "--texture");
-              CheckNotAnInput(output, args->module, "--module");
-              CheckNotAnInput(output, loaded.pattern_file, "pattern matrix");
-            }
-            const cv::Mat image = ReadGreyImage(args->image);
-            if (image.cols != module.camera.width || image.rows != module.camera.height) {
-              throw FileError(
-                  args->image,
-                  fmt::format("image is {}x{} but the module's camera is {}x{}", image.cols,
-                              image.rows, module.camera.width, module.camera.height));
-            }
-            cv::Mat3b texture;
-            if (!args->texture.empty()) {
-              texture = ReadImage(args->texture, cv::IMREAD_COLOR, kMaxCameraPixels);
-              if (texture.size() != image.size())
-                throw FileError(args->texture, "texture size differs from the pattern image");
-            }
-            PatternConstraints constraints;
-            try {
-              constraints = InferConstraints(loaded.pattern);
-            } catch (const std::invalid_argument& e) {
-              throw FileError(loaded.pattern_file,
-                              std::string("cannot decode with this pattern: ") + e.what());
-            }
-            FrameReconstructionOptions options;
-            options.max_edge_steps = args->max_edge_steps;
-            const FrameReconstruction frame =
-                ReconstructFrame(module, loaded.pattern, constraints, image,
-                                 texture.empty() ? nullptr : &texture, options);
-            // A failure writes nothing (the outputs of a frame belong together).
-            if (frame.report.not_of_module) {
-              fmt::print(stderr, "sewer3d: error: {}: {}\n", args->image,
-                         NotOfModuleReason(frame.report));
-              return 1;
-            }
-            if (frame.points.empty()) {
-              fmt::print(stderr, "sewer3d: error: {}: {}{}\n", args->image,
-                         NoPointsReason(frame.report), ColourHint(args->image));
-              return 1;
-            }
-            const std::filesystem::path out = args->out;
-            WriteFrameReconstruction(out, frame, args->image);
-            fmt::print(
-                "{} spots, {} decoded, {} points; wrote {}/cloud.ply, depth.tiff, depth.png, "
-                "report.json\n",
-                frame.report.spots_found, frame.report.spots_decoded, frame.points.size(),
-                out.string());
-            if (const std::string doubt = FrameDoubt(frame.report, frame.points.size());
-                !doubt.empty()) {
-              fmt::print(stderr, "sewer3d: warning: {}: {}{}\n", args->image, doubt,
-                         ColourHint(args->image));
-            }
-            return 0;
-          }};
+  return {
+      sub, [args] {
+        const LoadedModule loaded = LoadModule(args->module);
+        const ModuleDescription& module = loaded.module;
+        CheckNotInRunOrWorkspace(args->out, "--out");
+        for (const char* name : {"cloud.ply", "depth.tiff", "depth.png", "report.json"}) {
+          const std::filesystem::path output = std::filesystem::path(args->out) / name;
+          CheckNotAnInput(output, args->image, "--image");
+          if (!args->texture.empty()) CheckNotAnInput(output, args->texture, "--texture");
+          CheckNotAnInput(output, args->module, "--module");
+          CheckNotAnInput(output, loaded.pattern_file, "pattern matrix");
+        }
+        const cv::Mat image = ReadGreyImage(args->image);
+        if (image.cols != module.camera.width || image.rows != module.camera.height) {
+          throw FileError(args->image,
+                          fmt::format("image is {}x{} but the module's camera is {}x{}", image.cols,
+                                      image.rows, module.camera.width, module.camera.height));
+        }
+        cv::Mat3b texture;
+        std::error_code ec;
+        if (!args->texture.empty() && std::filesystem::equivalent(args->texture, args->image, ec)) {
+          throw InvalidValue("--texture", args->texture +
+                                              " is the pattern image itself: give the image "
+                                              "taken with the texture light");
+        }
+        if (!args->texture.empty()) {
+          texture = ReadImage(args->texture, cv::IMREAD_COLOR, kMaxCameraPixels);
+          if (texture.size() != image.size())
+            throw FileError(args->texture, "texture size differs from the pattern image");
+        }
+        PatternConstraints constraints;
+        try {
+          constraints = InferConstraints(loaded.pattern);
+        } catch (const std::invalid_argument& e) {
+          throw FileError(loaded.pattern_file,
+                          std::string("cannot decode with this pattern: ") + e.what());
+        }
+        FrameReconstructionOptions options;
+        options.max_edge_steps = args->max_edge_steps;
+        const FrameReconstruction frame =
+            ReconstructFrame(module, loaded.pattern, constraints, image,
+                             texture.empty() ? nullptr : &texture, options);
+        // A failure writes nothing (the outputs of a frame belong together).
+        if (frame.report.not_of_module) {
+          fmt::print(stderr, "sewer3d: error: {}: {}\n", args->image,
+                     NotOfModuleReason(frame.report));
+          return 1;
+        }
+        if (frame.points.empty()) {
+          fmt::print(stderr, "sewer3d: error: {}: {}{}\n", args->image,
+                     NoPointsReason(frame.report), ColourHint(args->image));
+          return 1;
+        }
+        const std::filesystem::path out = args->out;
+        WriteFrameReconstruction(out, frame, args->image);
+        fmt::print(
+            "{} spots, {} decoded, {} points; wrote {}/cloud.ply, depth.tiff, depth.png, "
+            "report.json\n",
+            frame.report.spots_found, frame.report.spots_decoded, frame.points.size(),
+            out.string());
+        if (const std::string doubt = FrameDoubt(frame.report, frame.points.size());
+            !doubt.empty()) {
+          fmt::print(stderr, "sewer3d: warning: {}: {}{}\n", args->image, doubt,
+                     ColourHint(args->image));
+        }
+        return 0;
+      }};
 }
 
 }  // namespace sewer3d::cli

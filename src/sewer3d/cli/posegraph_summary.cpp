@@ -86,6 +86,21 @@ void WarnOfSwappedEdges(const std::string& in, const PoseGraph& graph) {
              in, as_written, inverted);
 }
 
+void WarnOfQuaternionOrder(const std::string& in, const PoseGraph& graph) {
+  // Every edge nearly a half turn: a near-identity rotation written w, x, y, z (w first) and
+  // read x, y, z, w has its 1 in the x slot and a small w (|w| < 0.2: within 23° of 180°).
+  // Odometry edges turn a little; a whole graph of half turns is a misread.
+  if (graph.edges().size() < 2) return;
+  for (const PoseEdge& e : graph.edges()) {
+    if (std::abs(e.a_from_b.rotation.w()) >= 0.2) return;
+  }
+  std::fflush(stdout);
+  fmt::print(stderr,
+             "sewer3d: warning: {}: every edge turns by nearly 180° (|qw| < 0.2): quaternions "
+             "written w, x, y, z? g2o's order is x, y, z, w; the result follows the file\n",
+             in);
+}
+
 void WarnOfOutlierEdge(const std::string& in, const PoseGraph& optimised) {
   const std::optional<OutlierEdge> outlier = FindOutlierEdge(optimised);
   if (!outlier) return;

@@ -28,6 +28,10 @@ void WarnOfUnitMismatch(const std::string& in, const PoseGraph& graph);
 /// than as written (GraphCostEdgesInverted): from and to swapped.
 void WarnOfSwappedEdges(const std::string& in, const PoseGraph& graph);
 
+/// A warning (stderr) when every edge's quaternion has |w| < 0.2 (nearly a half turn each):
+/// the file written w first.
+void WarnOfQuaternionOrder(const std::string& in, const PoseGraph& graph);
+
 /// Warns (stderr) of the optimised graph's edge whose χ² stands out from the others'
 /// (FindOutlierEdge): one measurement the rest contradict.
 void WarnOfOutlierEdge(const std::string& in, const PoseGraph& optimised);

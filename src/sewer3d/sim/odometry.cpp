@@ -15,7 +15,9 @@ void OdometryOptions::Check() const {
                    "must be 1..1000, got " << rate_hz);
   SEWER3D_VALIDATE(std::abs(scale_error) < 0.2, "scale_error",
                    "must be within ±0.2, got " << scale_error);
-  ValidateNotNegative("noise_mm", noise_mm);
+  // A cable counter reads to a millimetre or two; 50 mm of noise per reading is no counter.
+  SEWER3D_VALIDATE(noise_mm >= 0.0 && noise_mm <= 50.0, "noise_mm",
+                   "must be 0..50 mm, got " << noise_mm);
   for (size_t i = 0; i < slips.size(); ++i) {
     const std::string field = "slips[" + std::to_string(i) + "].";
     ValidateNotNegative(field + "length_mm", slips[i].length_mm);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/sim/material.hpp"
 #include "sewer3d/sim/root.hpp"
 
@@ -115,6 +116,7 @@ void PipeWorld::Check() const {
         "a deposit settles at the invert: must be within 6 ± 1.5 h, got " << f.clock_h);
     SEWER3D_VALIDATE(f.station_mm >= 0.0 && f.station_mm <= LengthMm(), field + "station_mm",
                      "must be on the pipe, 0.." << LengthMm() << ", got " << f.station_mm);
+    CheckFeatureOnPipe(f, field);
     for (const PipeSection& s : sections) {
       SEWER3D_VALIDATE(f.intrusion_mm < 0.4 * s.diameter_mm, field + "intrusion_mm",
                        "must be less than 40 % of every section's diameter (Ø"
@@ -129,6 +131,53 @@ void PipeWorld::Check() const {
   double smallest = sections.front().diameter_mm;
   for (const PipeSection& s : sections) smallest = std::min(smallest, s.diameter_mm);
   CheckFeaturesApart(0.5 * smallest);
+}
+
+void PipeWorld::CheckFeatureOnPipe(const PipeFeature& f, const std::string& field) const {
+  // Where the feature reaches along the pipe: the whole of it must be on the pipe, or the
+  // truth would list more (a longer crack, a larger hole) than the pipe shows.
+  double from = f.station_mm, to = f.station_mm;
+  switch (f.type) {
+    case PipeFeature::Type::kConnection:
+      from -= 0.5 * f.diameter_mm + f.wall_mm;
+      to += 0.5 * f.diameter_mm + f.wall_mm;
+      break;
+    case PipeFeature::Type::kDeposit:
+      to += f.length_mm;
+      break;
+    case PipeFeature::Type::kCrack: {
+      const double along = 0.5 * f.length_mm * std::abs(std::cos(DegToRad(f.angle_deg))) +
+                           0.5 * f.width_mm * std::abs(std::sin(DegToRad(f.angle_deg)));
+      from -= along;
+      to += along;
+      break;
+    }
+    case PipeFeature::Type::kSpalling:
+      from -= 0.5 * f.length_mm;
+      to += 0.5 * f.length_mm;
+      break;
+    default:
+      break;
+  }
+  // Around the pipe: no wider than its circumference (the smallest section's).
+  double smallest = sections.front().diameter_mm;
+  for (const PipeSection& s : sections) smallest = std::min(smallest, s.diameter_mm);
+  const double circumference = std::numbers::pi * smallest;
+  double around = 0.0;
+  if (f.type == PipeFeature::Type::kCrack) {
+    around = f.length_mm * std::abs(std::sin(DegToRad(f.angle_deg))) +
+             f.width_mm * std::abs(std::cos(DegToRad(f.angle_deg)));
+  } else if (f.type == PipeFeature::Type::kSpalling) {
+    around = f.width_mm;
+  }
+  SEWER3D_VALIDATE(around <= circumference,
+                   field + (f.type == PipeFeature::Type::kCrack ? "length_mm" : "width_mm"),
+                   "'" << f.id << "' spans " << around << " mm around the pipe, more than its "
+                       << circumference << " mm circumference (Ø" << smallest << ")");
+  SEWER3D_VALIDATE(from >= 0.0 && to <= LengthMm(), field + "station_mm",
+                   "'" << f.id << "' reaches from station " << from << " to " << to
+                       << " mm, beyond the pipe (0.." << LengthMm()
+                       << " mm): move it or make it shorter");
 }
 
 void PipeWorld::CheckFeaturesApart(double radius_mm) const {
