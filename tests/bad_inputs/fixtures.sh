@@ -282,6 +282,9 @@ broken_run matrix_missing rig.json 'modules.0.module.pattern.matrix="nothing.png
 broken_run clock_pose rig.json 'modules.1.clock_h=12'
 cp -r run_two run_period_tiny
 json_with run_two/run.json run_period_tiny/run.json 'acquisition_period_s=1e-9'
+cp -r run_two run_exposure_s
+python3 -c "p = 'run_exposure_s/acquisitions.csv'; L = open(p).read().splitlines(); \
+open(p, 'w').write('\n'.join([L[0]] + [l.replace(',2.000,', ',0.002,') for l in L[1:]]) + '\n')"
 cp -r run_ok run_same_place
 python3 -c "import json; p = 'run_same_place/rig.json'; r = json.load(open(p)); \
 r['modules'][1]['carrier_from_camera']['translation_mm'] = r['modules'][0]['carrier_from_camera']['translation_mm']; \

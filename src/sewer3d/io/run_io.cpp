@@ -25,8 +25,11 @@ using nlohmann::json;
 constexpr const char* kIndexHeader = "module,counter,image,time_s,exposure_ms,file";
 constexpr const char* kOdometryHeader = "time_s,distance_mm";
 // Plausible bounds for a cable counter: beyond them a value is a corrupt field, not a run.
-constexpr double kMaxOdometryMm = 1e7;     // 10 km of cable
-constexpr double kMaxTimeS = 1e7;          // about 115 days
+constexpr double kMaxOdometryMm = 1e7;  // 10 km of cable
+constexpr double kMaxTimeS = 1e7;       // about 115 days
+// 10 µs: the shortest exposure of machine-vision sensors; below it the light collected is
+// nothing, and an exposure of 0 is no image.
+constexpr double kMinExposureMs = 0.01;
 constexpr double kMaxExposureMs = 1000.0;  // a second: no moving inspection camera exposes longer
 
 // A file name from the index must stay inside the run folder.
@@ -311,8 +314,10 @@ std::vector<RunImage> ReadIndex(const fs::path& path) {
     };
     if (e.module < 0) fail(fmt::format("module {} is negative", e.module));
     if (e.counter < 0) fail(fmt::format("counter {} is negative", e.counter));
-    if (!(e.exposure_ms >= 0.0 && e.exposure_ms <= kMaxExposureMs)) {
-      fail(fmt::format("exposure_ms {} must be 0..{:g} ms", e.exposure_ms, kMaxExposureMs));
+    if (!(e.exposure_ms >= kMinExposureMs && e.exposure_ms <= kMaxExposureMs)) {
+      fail(fmt::format(
+          "exposure_ms {} must be {:g}..{:g} ms{}", e.exposure_ms, kMinExposureMs, kMaxExposureMs,
+          e.exposure_ms > 0.0 && e.exposure_ms < kMinExposureMs ? " (written in seconds?)" : ""));
     }
     if (std::abs(e.time_s) > kMaxTimeS)
       fail(fmt::format("time_s {} is beyond ±{:g} s", e.time_s, kMaxTimeS));

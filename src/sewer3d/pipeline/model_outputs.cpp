@@ -162,6 +162,16 @@ void WriteModelMeshes(const std::filesystem::path& folder, const PipeModelInfo& 
   WriteObj(folder / "mesh.obj", base, texture_name);
   const DisplacedMeshResult displaced = BuildDisplacedMesh(info.centreline, lattice);
   report.displaced_step_mm = displaced.step_mm;
+  // Fewer than 24 vertices round the pipe draw a polygon, not a pipe with its relief.
+  const double around_mm = grid.cols * grid.resolution_mm;
+  if (constexpr int kMinAround = 24; displaced.step_mm * kMinAround > around_mm) {
+    report.warnings.push_back(
+        "mesh.glb: a vertex every " + std::to_string(std::lround(displaced.step_mm)) +
+        " mm leaves about " + std::to_string(std::lround(around_mm / displaced.step_mm)) +
+        " vertices round the pipe (" + std::to_string(std::lround(around_mm)) +
+        " mm): a polygon without relief; --mesh-step-mm " +
+        std::to_string(std::lround(around_mm / kMinAround)) + " or less keeps 24");
+  }
   report.displaced_vertices = displaced.mesh.positions.size();
   if (displaced.within_budget && !displaced.mesh.positions.empty())
     WriteGlb(folder / "mesh.glb", displaced.mesh, small.texture);

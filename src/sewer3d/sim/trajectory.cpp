@@ -71,8 +71,9 @@ void CaptureOptions::Check() const {
                    "must be >= 0 and < 0.95, got " << overlap);
   ValidatePositive("triplet_interval_ms", triplet_interval_ms);
   ValidateNotNegative("group_delay_ms", group_delay_ms);
-  SEWER3D_VALIDATE(exposure_ms >= 0.0 && exposure_ms < triplet_interval_ms, "exposure_ms",
-                   "must be >= 0 and shorter than triplet_interval_ms ("
+  // 10 µs at least, as acquisitions.csv requires (io/run_io.cpp).
+  SEWER3D_VALIDATE(exposure_ms >= 0.01 && exposure_ms < triplet_interval_ms, "exposure_ms",
+                   "must be at least 0.01 ms and shorter than triplet_interval_ms ("
                        << triplet_interval_ms << "), got " << exposure_ms);
   ValidatePositive("nominal_diameter_mm", nominal_diameter_mm);
 }
