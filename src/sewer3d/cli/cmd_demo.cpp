@@ -76,9 +76,8 @@ int SimulateUnlessDone(const fs::path& run, const DemoArgs& a, bool& simulated) 
 // folder must stay as captured) nor inside a workspace (whose --force would remove it).
 void CheckDemoFolder(const fs::path& dir) {
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw InvalidValue("--out", dir.string() + " is a file; the demo needs a folder");
-  }
   if (const fs::path owner = OwnerAbove(dir, {"run.json", "workspace.json"}, true);
       !owner.empty()) {
     throw InvalidValue("--out", dir.string() + " lies in " + owner.string() +
