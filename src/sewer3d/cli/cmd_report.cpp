@@ -31,14 +31,6 @@ Command AddReportCommand(CLI::App& app) {
   sub->add_flag("--quiet", args->quiet, "Print only where the report is");
   return {sub, [args] {
             CheckWorkspaceExists(args->out, "report");
-            // (A capture run's folder is refused as such below.)
-            const std::filesystem::path out = args->out;
-            if (!std::filesystem::exists(out / "workspace.json") &&
-                !std::filesystem::exists(out / "run.json")) {
-              throw FileError(args->out,
-                              "not a workspace (no workspace.json): `sewer3d report` shows what "
-                              "`sewer3d process` or its stages wrote; run them first");
-            }
             const CaptureRun run = LoadRun(args->run);
             ReportStageReport r;
             try {
