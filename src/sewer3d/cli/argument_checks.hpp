@@ -55,4 +55,10 @@ void CheckNotAModuleFile(const std::filesystem::path& out, const char* flag,
 /// --out gets an error and no new folder.
 void CheckWorkspaceExists(const std::filesystem::path& folder, const std::string& stage);
 
+/// Throws InvalidValue naming --out unless the demo's folder `dir` can hold a run and a
+/// workspace of its own: not a file, not inside a capture run (whose folder must stay as
+/// captured) or a workspace (whose --force would remove it), and no workspace of another run
+/// at dir/ws (refused only after the simulation otherwise).
+void CheckDemoFolder(const std::filesystem::path& dir);
+
 }  // namespace sewer3d::cli

@@ -12,6 +12,7 @@
 #include <thread>
 #include <utility>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/demo_summary.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
@@ -70,21 +71,6 @@ int SimulateUnlessDone(const fs::path& run, const DemoArgs& a, bool& simulated) 
   tbb::task_arena arena(AllowedThreads(a.threads));
   simulated = true;
   return arena.execute([&] { return RunRun(args); });
-}
-
-// The demo's folder holds a run and a workspace of its own: not inside a capture run (whose
-// folder must stay as captured) nor inside a workspace (whose --force would remove it).
-void CheckDemoFolder(const fs::path& dir) {
-  std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw InvalidValue("--out", dir.string() + " is a file; the demo needs a folder");
-  if (const fs::path owner = OwnerAbove(dir, {"run.json", "workspace.json"}, true);
-      !owner.empty()) {
-    throw InvalidValue("--out", dir.string() + " lies in " + owner.string() +
-                                    "'s folder; the demo needs a folder of its own");
-  }
-  // A workspace of another run there would be refused only after the simulation.
-  CheckWorkspaceOfRun(dir / "ws", dir / "run");
 }
 
 int RunDemo(const DemoArgs& a) {

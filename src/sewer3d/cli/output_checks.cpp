@@ -1,6 +1,6 @@
 // The checks of output paths that argument_checks.hpp declares: not inside a capture run or a
-// processing workspace, not over a module's pattern matrix or its description, and a workspace
-// that a later stage continues must exist.
+// processing workspace, not over a module's pattern matrix or its description, a workspace
+// that a later stage continues must exist, and the demo's folder is its own.
 
 #include <nlohmann/json.hpp>
 
@@ -65,6 +65,18 @@ void CheckWorkspaceExists(const std::filesystem::path& folder, const std::string
   throw FileError(folder, "workspace folder not found: `sewer3d " + stage +
                               "` continues the workspace of `sewer3d rgbd` (or of `sewer3d "
                               "process`); is --out mistyped?");
+}
+
+void CheckDemoFolder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+    throw InvalidValue("--out", dir.string() + " is a file; the demo needs a folder");
+  if (const auto owner = OwnerAbove(dir, {"run.json", "workspace.json"}, true); !owner.empty()) {
+    throw InvalidValue("--out", dir.string() + " lies in " + owner.string() +
+                                    "'s folder; the demo needs a folder of its own");
+  }
+  // A workspace of another run there would be refused only after the simulation.
+  CheckWorkspaceOfRun(dir / "ws", dir / "run");
 }
 
 }  // namespace sewer3d::cli

@@ -93,6 +93,8 @@ void PipeWorld::Check() const {
   CheckUniqueIds();
   SEWER3D_VALIDATE(features.size() <= PipeFeature::kMaxCount, "features",
                    "at most " << PipeFeature::kMaxCount << " features, got " << features.size());
+  double smallest = sections.front().diameter_mm;
+  for (const PipeSection& s : sections) smallest = std::min(smallest, s.diameter_mm);
   for (size_t i = 0; i < features.size(); ++i) {
     const PipeFeature& f = features[i];
     const std::string field = "features[" + std::to_string(i) + "].";
@@ -104,8 +106,6 @@ void PipeWorld::Check() const {
                          << PipeFeatureTypeName(f.type)
                          << " (bump, pit and joint belong to pipe-wall scenes; a pipe's joints "
                             "go in \"joints\")");
-    double smallest = sections.front().diameter_mm;
-    for (const PipeSection& s : sections) smallest = std::min(smallest, s.diameter_mm);
     CheckWithin(field, [&] { f.CheckInPipe(smallest); });
     ValidateClockHours(field + "clock_h", f.clock_h);
     // Sediment settles where gravity takes it: the invert (clock 6), give or take a pipe
@@ -116,7 +116,7 @@ void PipeWorld::Check() const {
         "a deposit settles at the invert: must be within 6 ± 1.5 h, got " << f.clock_h);
     SEWER3D_VALIDATE(f.station_mm >= 0.0 && f.station_mm <= LengthMm(), field + "station_mm",
                      "must be on the pipe, 0.." << LengthMm() << ", got " << f.station_mm);
-    CheckFeatureOnPipe(f, field);
+    CheckFeatureOnPipe(f, field, smallest);
     for (const PipeSection& s : sections) {
       SEWER3D_VALIDATE(f.intrusion_mm < 0.4 * s.diameter_mm, field + "intrusion_mm",
                        "must be less than 40 % of every section's diameter (Ø"
@@ -128,12 +128,11 @@ void PipeWorld::Check() const {
                            << f.height_mm);
     }
   }
-  double smallest = sections.front().diameter_mm;
-  for (const PipeSection& s : sections) smallest = std::min(smallest, s.diameter_mm);
   CheckFeaturesApart(0.5 * smallest);
 }
 
-void PipeWorld::CheckFeatureOnPipe(const PipeFeature& f, const std::string& field) const {
+void PipeWorld::CheckFeatureOnPipe(const PipeFeature& f, const std::string& field,
+                                   double smallest) const {
   // Where the feature reaches along the pipe: the whole of it must be on the pipe, or the
   // truth would list more (a longer crack, a larger hole) than the pipe shows.
   double from = f.station_mm, to = f.station_mm;
@@ -160,8 +159,6 @@ void PipeWorld::CheckFeatureOnPipe(const PipeFeature& f, const std::string& fiel
       break;
   }
   // Around the pipe: no wider than its circumference (the smallest section's).
-  double smallest = sections.front().diameter_mm;
-  for (const PipeSection& s : sections) smallest = std::min(smallest, s.diameter_mm);
   const double circumference = std::numbers::pi * smallest;
   double around = 0.0;
   if (f.type == PipeFeature::Type::kCrack) {

@@ -60,8 +60,9 @@ struct PipeWorld {
   /// No two features of a type in one place (within 1 mm and 0.05 h), no two connections whose
   /// holes (with their walls) meet on a wall of `radius_mm`.
   void CheckFeaturesApart(double radius_mm) const;
-  /// The whole feature lies on the pipe: its reach along it within 0 .. LengthMm().
-  void CheckFeatureOnPipe(const PipeFeature& f, const std::string& field) const;
+  /// The whole feature lies on the pipe: its reach along it within 0 .. LengthMm(), its span
+  /// around it within the circumference of the smallest section (`smallest`, a diameter).
+  void CheckFeatureOnPipe(const PipeFeature& f, const std::string& field, double smallest) const;
   double LengthMm() const;
 };
 

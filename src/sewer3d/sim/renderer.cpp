@@ -30,6 +30,7 @@ struct Setup {
   Eigen::Matrix3d projector_rotation;
   Eigen::Vector3d projector_centre;  // camera frame, rig at rest
   double camera_aperture_mm, projector_aperture_mm;
+  LensResidual camera_residual, projector_residual;  // what the module's lens model lacks
   cv::Mat2d corner_rays;  // normalised (x, y) at pixel corners; NaN where not invertible
 
   Setup(const ModuleDescription& m, const BinaryArray& p, const Surface& s,
@@ -41,7 +42,9 @@ struct Setup {
         camera(m.camera),
         projector(m.projector),
         projector_rotation(m.projector_from_camera.RotationMatrix()),
-        projector_centre(m.projector_from_camera.Inverse().translation) {
+        projector_centre(m.projector_from_camera.Inverse().translation),
+        camera_residual(MakeLensResidual(opt.spot_errors, 0)),
+        projector_residual(MakeLensResidual(opt.spot_errors, 1)) {
     const double pitch_mm = o.sensor_width_mm / m.camera.width;
     camera_aperture_mm = o.camera_f_number > 0 ? m.camera.fx * pitch_mm / o.camera_f_number : 0.0;
     projector_aperture_mm =
@@ -50,8 +53,7 @@ struct Setup {
     for (int v = 0; v <= m.camera.height; ++v) {
       for (int u = 0; u <= m.camera.width; ++u) {
         const Eigen::Vector2d corner(u - 0.5, v - 0.5);
-        const auto xy =
-            camera.Unproject(corner + LensResidualPx(o.spot_errors, m.camera, corner, 0));
+        const auto xy = camera.Unproject(corner + camera_residual.ShiftPx(m.camera, corner));
         corner_rays(v, u) = xy ? cv::Vec2d(xy->x(), xy->y()) : cv::Vec2d(NAN, NAN);
       }
     }
@@ -165,7 +167,7 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
     const double sigma =
         std::sqrt(o.projector_psf_px * o.projector_psf_px + std::pow(coc / 2.5, 2));
     const double lens = o.vignetting ? std::pow(cos_beta, 4) : 1.0;
-    const Eigen::Vector2d element_uv = *uv + LensResidualPx(o.spot_errors, pi, *uv, 1);
+    const Eigen::Vector2d element_uv = *uv + s.projector_residual.ShiftPx(pi, *uv);
     pattern += o.pattern_level * s.SpotProfile(element_uv, sigma) * lens *
                std::pow(kReferenceDistanceMm / d_projector, 2) * cos_in;
   }
@@ -319,7 +321,7 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
       const std::uint64_t pixel = static_cast<std::uint64_t>(v) * w + u;
       const Eigen::Vector2d centre(u, v);  // what the pixel sees, with the lens's residual
       const auto centre_ray =
-          setup.camera.Unproject(centre + LensResidualPx(o.spot_errors, module.camera, centre, 0));
+          setup.camera.Unproject(centre + setup.camera_residual.ShiftPx(module.camera, centre));
       float depth = NAN;
       if (centre_ray && (o.truth_depth || blur_after)) {
         const auto hit = surface.Intersect(Eigen::Vector3d::Zero(),

@@ -12,7 +12,8 @@ namespace sewer3d {
 
 namespace {
 
-std::uint64_t ElementKey(int r, int c) {
+// An integer lattice point (element row and column, relief cell) as one hash input.
+std::uint64_t LatticeKey(int r, int c) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(r)) << 32) |
          static_cast<std::uint32_t>(c);
 }
@@ -53,7 +54,7 @@ std::optional<SpotErrors> RealismProfile(const std::string& name) {
 
 Eigen::Vector2d ElementOffset(const SpotErrors& errors, int r, int c) {
   if (errors.placement_sigma_px <= 0.0) return Eigen::Vector2d::Zero();
-  const std::uint64_t key = ElementKey(r, c);
+  const std::uint64_t key = LatticeKey(r, c);
   return errors.placement_sigma_px * Eigen::Vector2d(HashNormal(errors.projector_seed, key, 1),
                                                      HashNormal(errors.projector_seed, key, 2));
 }
@@ -61,20 +62,22 @@ Eigen::Vector2d ElementOffset(const SpotErrors& errors, int r, int c) {
 double ElementGain(const SpotErrors& errors, int r, int c) {
   if (errors.gain_sigma <= 0.0) return 1.0;
   // Clamped so that no spot goes dark or negative (3.3 sigma at the largest sigma allowed).
-  const double g = 1.0 + errors.gain_sigma * HashNormal(errors.projector_seed, ElementKey(r, c), 3);
+  const double g = 1.0 + errors.gain_sigma * HashNormal(errors.projector_seed, LatticeKey(r, c), 3);
   return std::max(0.1, g);
 }
 
-Eigen::Vector2d LensResidualPx(const SpotErrors& errors, const CameraIntrinsics& k,
-                               const Eigen::Vector2d& pixel, int lens) {
-  if (errors.lens_residual <= 0.0) return Eigen::Vector2d::Zero();
-  // Directions of the tangential and thin-prism coefficient pairs, fixed per lens.
-  const double a =
-      kTwoPi * HashUniform(errors.projector_seed, 21, static_cast<std::uint64_t>(lens));
-  const double b =
-      kTwoPi * HashUniform(errors.projector_seed, 22, static_cast<std::uint64_t>(lens));
-  const double p1 = errors.lens_residual * std::cos(a), p2 = errors.lens_residual * std::sin(a);
-  const double s1 = errors.lens_residual * std::cos(b), s2 = errors.lens_residual * std::sin(b);
+LensResidual MakeLensResidual(const SpotErrors& errors, int lens) {
+  if (errors.lens_residual <= 0.0) return {};
+  // Directions of the decentring and thin-prism coefficient pairs.
+  const auto which = static_cast<std::uint64_t>(lens);
+  const double a = kTwoPi * HashUniform(errors.projector_seed, 21, which);
+  const double b = kTwoPi * HashUniform(errors.projector_seed, 22, which);
+  const double m = errors.lens_residual;
+  return {m * std::cos(a), m * std::sin(a), m * std::cos(b), m * std::sin(b)};
+}
+
+Eigen::Vector2d LensResidual::ShiftPx(const CameraIntrinsics& k,
+                                      const Eigen::Vector2d& pixel) const {
   const double x = (pixel.x() - k.cx) / k.fx, y = (pixel.y() - k.cy) / k.fy;
   const double r2 = x * x + y * y;
   // Brown–Conrady decentring and thin-prism terms (normalised coordinates).
@@ -89,9 +92,7 @@ double WallRelief(const SpotErrors& errors, std::uint64_t seed, const Eigen::Vec
   const double fx = std::floor(q.x()), fy = std::floor(q.y());
   const double tx = q.x() - fx, ty = q.y() - fy;
   const auto node = [&](double i, double j) {
-    const auto key = (static_cast<std::uint64_t>(static_cast<std::int64_t>(i)) << 32) ^
-                     static_cast<std::uint64_t>(static_cast<std::int64_t>(j) & 0xffffffff);
-    return HashNormal(seed + 0x4e11ef, key, 31);
+    return HashNormal(seed + 0x4e11ef, LatticeKey(static_cast<int>(i), static_cast<int>(j)), 31);
   };
   const double h = (1 - tx) * (1 - ty) * node(fx, fy) + tx * (1 - ty) * node(fx + 1, fy) +
                    (1 - tx) * ty * node(fx, fy + 1) + tx * ty * node(fx + 1, fy + 1);

@@ -55,10 +55,19 @@ Eigen::Vector2d ElementOffset(const SpotErrors& errors, int r, int c);
 /// Fixed power factor (> 0, mean 1) of element (r, c).
 double ElementGain(const SpotErrors& errors, int r, int c);
 
-/// Where the residual lens distortion moves a pixel of a lens with these intrinsics (px,
-/// added to the pixel the module's model gives): `lens` 0 for the camera, 1 for the projector.
-Eigen::Vector2d LensResidualPx(const SpotErrors& errors, const CameraIntrinsics& intrinsics,
-                               const Eigen::Vector2d& pixel, int lens);
+/// One lens's residual distortion: Brown–Conrady decentring (p1, p2) and thin-prism (s1, s2)
+/// coefficients, fixed per lens (computed once, applied per ray).
+struct LensResidual {
+  double p1 = 0.0, p2 = 0.0, s1 = 0.0, s2 = 0.0;
+  /// Where the residual moves a pixel of a lens with these intrinsics (px, added to the pixel
+  /// the module's model gives).
+  [[nodiscard]] Eigen::Vector2d ShiftPx(const CameraIntrinsics& intrinsics,
+                                        const Eigen::Vector2d& pixel) const;
+};
+
+/// The residual of a lens of the module: `lens` 0 for the camera, 1 for the projector; all
+/// zero without errors.lens_residual.
+LensResidual MakeLensResidual(const SpotErrors& errors, int lens);
 
 /// Height (mm, toward the viewer) of the wall's micro-relief at a surface point (mm in the
 /// surface's own coordinates): Gaussian lattice values at the correlation length, bilinear

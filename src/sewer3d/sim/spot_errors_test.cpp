@@ -19,7 +19,7 @@ TEST(SpotErrors, IdealIsNoErrorAtAll) {
   EXPECT_EQ(ElementGain(ideal, 3, 4), 1.0);
   EXPECT_EQ(WallRelief(ideal, 1, {2.0, 3.0}), 0.0);
   const ModuleDescription m = testing::SmallDefaultModule(648);
-  EXPECT_EQ(LensResidualPx(ideal, m.camera, {10.0, 20.0}, 0), Eigen::Vector2d::Zero());
+  EXPECT_EQ(MakeLensResidual(ideal, 0).ShiftPx(m.camera, {10.0, 20.0}), Eigen::Vector2d::Zero());
   cv::Mat1f signal(20, 30, 0.5f);
   ApplySpeckle(signal, ideal, 3.0, 7);
   EXPECT_EQ(cv::countNonZero(signal != 0.5f), 0);
@@ -81,16 +81,17 @@ TEST(SpotErrors, LensResidualVanishesAtThePrincipalPointAndGrowsOutward) {
   e.lens_residual = 1e-4;
   const ModuleDescription m = testing::SmallDefaultModule(648);
   const CameraIntrinsics& k = m.camera;
-  EXPECT_LT(LensResidualPx(e, k, {k.cx, k.cy}, 0).norm(), 1e-12);
-  const double mid = LensResidualPx(e, k, {k.cx + 0.25 * k.fx, k.cy}, 0).norm();
-  const double edge = LensResidualPx(e, k, {k.cx + 0.5 * k.fx, k.cy}, 0).norm();
+  const LensResidual camera = MakeLensResidual(e, 0), projector = MakeLensResidual(e, 1);
+  EXPECT_LT(camera.ShiftPx(k, {k.cx, k.cy}).norm(), 1e-12);
+  const double mid = camera.ShiftPx(k, {k.cx + 0.25 * k.fx, k.cy}).norm();
+  const double edge = camera.ShiftPx(k, {k.cx + 0.5 * k.fx, k.cy}).norm();
   // Quadratic in the distance from the principal point: twice as far, four times the shift;
   // at r = 0.5 the terms sum to at most 1.5e-4 · 0.25 · 2 of the focal length.
   EXPECT_NEAR(edge, 4.0 * mid, 1e-9);
   EXPECT_GT(edge, 0.0);
   EXPECT_LT(edge, 1e-4 * 0.25 * 4.0 * k.fx);
   // Camera and projector lenses err in their own directions.
-  EXPECT_NE(LensResidualPx(e, k, {0.0, 0.0}, 0), LensResidualPx(e, k, {0.0, 0.0}, 1));
+  EXPECT_NE(camera.ShiftPx(k, {0.0, 0.0}), projector.ShiftPx(k, {0.0, 0.0}));
 }
 
 TEST(SpotErrors, SpeckleKeepsTheMeanAndHasTheContrastAsked) {

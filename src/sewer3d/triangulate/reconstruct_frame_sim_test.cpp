@@ -97,6 +97,15 @@ void Record(const Outcome& o) {
 // on a curved wall the triangle's chord adds up to its sagitta (below).
 constexpr double kFloatMm = 1e-4;  // truth and map are float: an ulp at 150 mm is 1.5e-5 mm
 
+// A DN300 wall with its axis 8 mm and 10 mm off the camera: the module's usual view.
+Scene DecentredDn300() {
+  Scene cylinder;
+  cylinder.type = Scene::Type::kCylinder;
+  cylinder.diameter_mm = 300.0;
+  cylinder.axis_point_mm = {8.0, 0.0, -10.0};
+  return cylinder;
+}
+
 TEST(ReconstructFrame, PlaneAt90mm) {
   Scene plane;
   plane.distance_mm = 90.0;
@@ -113,10 +122,7 @@ TEST(ReconstructFrame, PlaneAt90mm) {
 }
 
 TEST(ReconstructFrame, Dn300Cylinder) {
-  Scene cylinder;
-  cylinder.type = Scene::Type::kCylinder;
-  cylinder.diameter_mm = 300.0;
-  cylinder.axis_point_mm = {8.0, 0.0, -10.0};
+  const Scene cylinder = DecentredDn300();
   const ModuleDescription module = testing::SmallDefaultModule(648);
   const Outcome o = ReconstructRender(module, cylinder, 2);
   Record(o);
@@ -157,10 +163,7 @@ TEST(ReconstructFrame, ProjectorOffsetAlongTheOpticalAxis) {
 TEST(ReconstructFrame, RandomlyPerturbedModulesKeepTheirPoints) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  Scene cylinder;
-  cylinder.type = Scene::Type::kCylinder;
-  cylinder.diameter_mm = 300.0;
-  cylinder.axis_point_mm = {8.0, 0.0, -10.0};
+  const Scene cylinder = DecentredDn300();
   const int widths[] = {648, 720, 560, 648, 800, 600};
   for (int trial = 0; trial < 6; ++trial) {
     const ModuleDescription design = testing::SmallDefaultModule(widths[trial]);
@@ -190,10 +193,7 @@ TEST(ReconstructFrame, RandomlyPerturbedModulesKeepTheirPoints) {
 // relief) costs accuracy, as on a real module, but the decoder holds: nearly every spot
 // becomes a point and none lands off the wall.
 TEST(ReconstructFrame, ThePaperRealismProfileCostsAccuracyNotPoints) {
-  Scene cylinder;
-  cylinder.type = Scene::Type::kCylinder;
-  cylinder.diameter_mm = 300.0;
-  cylinder.axis_point_mm = {8.0, 0.0, -10.0};
+  const Scene cylinder = DecentredDn300();
   const ModuleDescription module = testing::SmallDefaultModule(648);
   const Outcome ideal = ReconstructRender(module, cylinder, 5);
   const Outcome paper = ReconstructRender(module, cylinder, 5, *RealismProfile("paper"));
