@@ -19,6 +19,7 @@
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/sim/board.hpp"
 #include "sewer3d/sim/renderer.hpp"
+#include "sewer3d/sim/spot_errors.hpp"
 #include "sewer3d/simio/scene_io.hpp"
 
 namespace sewer3d::cli {
@@ -71,6 +72,11 @@ void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& a) {
                   "S x S samples per pixel of the board images (corner accuracy needs S >= 4)")
       ->capture_default_str()
       ->check(CLI::Range(1, 16));
+  sub->add_option("--realism", a.realism,
+                  "Error sources of a real module: ideal (none) or paper (its projector's and "
+                  "lenses'; a printed board has no relief)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"ideal", "paper"}));
   sub->add_flag("--quiet", a.quiet, "No progress bar");
   a.app = sub;
 }
@@ -96,6 +102,7 @@ int RunCalibration(const CalibrationArgs& a) {
   ProgressBar progress(a.quiet);
   nlohmann::json truth;
   truth["board"] = {{"cols", board.cols}, {"rows", board.rows}, {"square_mm", board.square_mm}};
+  truth["realism"] = a.realism;
   truth["poses"] = nlohmann::json::array();
   WriteTextFile(out / "board.json", nlohmann::json(truth["board"]).dump(2) + "\n");
   ModuleDescription truth_module = loaded.module;  // loadable on its own: pattern beside it
@@ -106,6 +113,8 @@ int RunCalibration(const CalibrationArgs& a) {
     const std::filesystem::path dir = out / fmt::format("pose_{:02d}", i);
     const BoardSurface surface(board, poses[i]);
     RenderOptions o;
+    o.spot_errors = *RealismProfile(a.realism);
+    o.spot_errors.relief_mm = 0.0;
     o.supersampling = a.texture_supersampling;
     o.seed = a.seed * 1000 + i;
     o.images = RenderImages::kTexture;  // board lit, pattern off

@@ -39,6 +39,7 @@ struct CalibrationArgs {
   /// The board images' square edges alias at S < 4 (corner errors ~0.2 px at S = 2, 0.1 px
   /// at S = 4, measured against the true corners).
   int texture_supersampling = 4;
+  std::string realism = "ideal";  ///< RealismProfile: the projector's and lens's errors
   bool quiet = false;
 };
 

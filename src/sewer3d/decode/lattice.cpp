@@ -20,7 +20,7 @@ inline Eigen::Vector2d Nearest(const Eigen::Vector2d& x) {
 // steps, then least squares for both steps; twice.
 LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
                     std::pair<const int*, const int*> neighbours, LatticeSteps steps,
-                    double max_residual) {
+                    const LatticeSteps& predicted, const LatticeOptions& options) {
   const Eigen::Vector2d& p = spots[spot].centre_px;
   for (int iteration = 0; iteration < 2; ++iteration) {
     Eigen::Matrix2d basis;
@@ -31,14 +31,25 @@ LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
     for (const int* it = neighbours.first; it != neighbours.second; ++it) {
       const Eigen::Vector2d d = spots[*it].centre_px - p;
       const Eigen::Vector2d ij = Nearest(inverse * d);
-      if (ij.isZero() || ij.cwiseAbs().maxCoeff() > 2) continue;  // nearest ring only
-      if ((inverse * d - ij).norm() > max_residual) continue;
+      if (ij.isZero() || ij.cwiseAbs().maxCoeff() > options.refine_ring_steps) continue;
+      if ((inverse * d - ij).norm() > options.max_residual) continue;
       normal += ij * ij.transpose();
       rhs += ij * d.transpose();
       ++used;
     }
     if (used < 2 || std::abs(normal.determinant()) < 1e-9) break;
     const Eigen::Matrix2d solution = normal.ldlt().solve(rhs);  // rows: row_step, column_step
+    // The pattern lights no two adjacent elements, so every other column (or row) alone is
+    // a lattice too: a fit whose step drifted to twice its length (or half) still matches
+    // most neighbours, and the labels grown from it are scaled. The module predicts each
+    // step's length to within about 20 % over the working range (oblique walls included).
+    const auto scaled = [&](const Eigen::Vector2d& step, const Eigen::Vector2d& predicted) {
+      const double ratio = step.norm() / predicted.norm();
+      return ratio > options.max_step_scale || ratio < 1.0 / options.max_step_scale;
+    };
+    if (scaled(solution.row(0).transpose(), predicted.row_step) ||
+        scaled(solution.row(1).transpose(), predicted.column_step))
+      break;
     const double change = (solution.row(0).transpose() - steps.row_step).norm() +
                           (solution.row(1).transpose() - steps.column_step).norm();
     steps.row_step = solution.row(0).transpose();
@@ -56,6 +67,10 @@ void LatticeOptions::Check() const {
   ValidatePositive("max_neighbour_px", max_neighbour_px);
   SEWER3D_VALIDATE(max_residual > 0.0 && max_residual < 0.5, "max_residual",
                    "must be > 0 and < 0.5, got " << max_residual);
+  SEWER3D_VALIDATE(refine_ring_steps >= 1 && refine_ring_steps <= 6, "refine_ring_steps",
+                   "must be 1..6, got " << refine_ring_steps);
+  SEWER3D_VALIDATE(max_step_scale > 1.0, "max_step_scale",
+                   "must be above 1, got " << max_step_scale);
 }
 
 LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
@@ -75,7 +90,7 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   // its refinement from that neighbour's steps, which follow oblique walls far better than
   // the module's fronto-parallel prediction.
   auto refine = [&](int i, const LatticeSteps& start) {
-    labels.steps[i] = Refine(spots, i, neighbours.Of(i), start, options.max_residual);
+    labels.steps[i] = Refine(spots, i, neighbours.Of(i), start, predicted[i], options);
   };
   // An edge i -> j predicted with i's steps: the integer offset and how far from it.
   struct Edge {

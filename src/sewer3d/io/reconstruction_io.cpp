@@ -45,6 +45,7 @@ void WriteFrameReport(const std::filesystem::path& path, const FrameReport& r,
                         {"several_tiles_fit", r.rejected.several_tiles_fit},
                         {"depth_outlier_or_isolated", r.rejected.depth_outlier_or_isolated},
                         {"not_of_module", r.rejected.not_of_module}};
+  report["epipolar_tolerance_px"] = r.epipolar_tolerance_px;
   report["not_of_module"] = r.not_of_module;
   report["points"] = r.points;
   report["depth_pixels"] = r.depth_pixels;

@@ -42,9 +42,12 @@ void SpotErrors::Check() const {
 std::optional<SpotErrors> RealismProfile(const std::string& name) {
   if (name == "ideal") return SpotErrors{};
   if (name != "paper") return std::nullopt;
-  // Provisional (docs/accuracy.md, "Realism"): each source at a physically modest level.
+  // Tuned so that the five test scenes of the paper's tables land in (or within 30 % of) its
+  // per-module ranges (docs/accuracy.md, "Realism"): the wall's relief gives the part
+  // constant in millimetres, the spots' scatter on the image (placement, speckle) the part
+  // that grows with the square of the distance.
   SpotErrors e;
-  e.placement_sigma_px = 0.25;
+  e.placement_sigma_px = 0.6;
   e.gain_sigma = 0.1;
   e.speckle_contrast = 0.1;
   e.lens_residual = 1e-4;

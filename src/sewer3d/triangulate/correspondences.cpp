@@ -15,6 +15,8 @@ void TriangulationOptions::Check() const {
   SEWER3D_VALIDATE(z_max_mm > z_min_mm, "z_max_mm",
                    "must be > z_min_mm (" << z_min_mm << "), got " << z_max_mm);
   ValidatePositive("max_reprojection_px", max_reprojection_px);
+  ValidateNotNegative("adaptive_sigmas", adaptive_sigmas);
+  ValidateNotNegative("max_adaptive_px", max_adaptive_px);
 }
 
 Triangulator::Triangulator(const ModuleDescription& module, int array_rows, int array_cols,
@@ -57,80 +59,110 @@ const Eigen::Vector2d* Triangulator::Element(int r, int c) const {
   return std::isnan(xy.x()) ? nullptr : &xy;
 }
 
+Triangulator::Candidates Triangulator::NearestTiles(int k, const CodedObservation& o,
+                                                    double gate) const {
+  Candidates found;
+  const PatternLayout& layout = module_.pattern;
+  const double pitch = layout.pitch_px;
+  const TriangulationOptions& options = options_;
+  const auto xy = camera_.Unproject(o.camera_px);
+  if (!xy) return found;
+  found.projectable = true;
+  found.best.reprojection_px = 1e300;
+  const Eigen::Vector3d ray(xy->x(), xy->y(), 1.0);
+  // Projector region the epipolar curve covers over the depth range (sampled: distortion
+  // bends it slightly).
+  double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
+  for (int i = 0; i <= 2; ++i) {  // ends and middle; the one-pitch margin covers the bend
+    const double inv_z =
+        1.0 / options.z_max_mm + (1.0 / options.z_min_mm - 1.0 / options.z_max_mm) * i / 2.0;
+    const auto uv =
+        projector_.Project(p_projector_.leftCols<3>() * (ray / inv_z) + p_projector_.col(3));
+    if (!uv) continue;
+    u_lo = std::min(u_lo, uv->x()), u_hi = std::max(u_hi, uv->x());
+    v_lo = std::min(v_lo, uv->y()), v_hi = std::max(v_hi, uv->y());
+  }
+  if (u_lo > u_hi) return found;
+  // Element indices whose centres lie in the region (one pitch and the gate of margin),
+  // congruent to the decoded position.
+  const double margin = pitch + gate;
+  auto first = [&](double lo, double offset, int mod, int period) {
+    const int index = static_cast<int>(std::floor((lo - margin - offset + 0.5) / pitch - 0.5));
+    return index + ((mod - index) % period + period) % period;
+  };
+  const int r_start = first(v_lo, layout.offset_px.y(), o.row_mod, array_rows_);
+  const int c_start = first(u_lo, layout.offset_px.x(), o.col_mod, array_cols_);
+  for (int r = r_start; layout.ElementCentre(r, 0).y() <= v_hi + margin; r += array_rows_) {
+    for (int c = c_start; layout.ElementCentre(0, c).x() <= u_hi + margin; c += array_cols_) {
+      const Eigen::Vector2d centre = layout.ElementCentre(r, c);
+      const Eigen::Vector2d* projector_xy = Element(r, c);
+      if (!projector_xy) continue;
+      const auto x = TriangulateOnProjectorRay(*xy, *projector_xy, p_projector_);
+      if (!x || x->z() < options.z_min_mm || x->z() > options.z_max_mm) continue;
+      const auto back_camera = camera_.Project(*x);
+      const auto back_projector =
+          projector_.Project(p_projector_.leftCols<3>() * *x + p_projector_.col(3));
+      if (!back_camera || !back_projector) continue;
+      const double error =
+          std::max((*back_camera - o.camera_px).norm(), (*back_projector - centre).norm());
+      if (error > gate) continue;
+      if (error < found.best.reprojection_px) {
+        found.second_px = found.best.reprojection_px;
+        found.best = {k, *x, r, c, error};
+      } else {
+        found.second_px = std::min(found.second_px, error);
+      }
+    }
+  }
+  return found;
+}
+
+namespace {
+
+double AdaptiveTolerance(const TriangulationOptions& options, std::vector<double>& nearest_px) {
+  const double floor = options.max_reprojection_px;
+  // Too few spots say nothing about their scatter.
+  constexpr size_t kMinSpots = 50;
+  if (options.adaptive_sigmas <= 0.0 || nearest_px.size() < kMinSpots) return floor;
+  const auto middle = nearest_px.begin() + static_cast<std::ptrdiff_t>(nearest_px.size() / 2);
+  std::nth_element(nearest_px.begin(), middle, nearest_px.end());
+  // Distances to the line are |N(0, σ)|, whose median is 0.6745 σ.
+  const double sigma = *middle / 0.6745;
+  return std::clamp(options.adaptive_sigmas * sigma, floor,
+                    std::max(floor, options.max_adaptive_px));
+}
+
+}  // namespace
+
 std::vector<TriangulatedPoint> Triangulator::Triangulate(
     const std::vector<CodedObservation>& observations, TriangulationStats* stats) const {
   TriangulationStats local;
   TriangulationStats& st = stats ? *stats : local;
-  const PatternLayout& layout = module_.pattern;
-  const double pitch = layout.pitch_px;
-  const TriangulationOptions& options = options_;
+  const double gate = std::max(options_.max_reprojection_px,
+                               options_.adaptive_sigmas > 0.0 ? options_.max_adaptive_px : 0.0);
+  std::vector<Candidates> candidates(observations.size());
+  std::vector<double> nearest_px;
+  nearest_px.reserve(observations.size());
+  for (size_t k = 0; k < observations.size(); ++k) {
+    candidates[k] = NearestTiles(static_cast<int>(k), observations[k], gate);
+    // Only unambiguous spots measure the scatter: a second tile within the gate may be the
+    // right one.
+    if (candidates[k].best.reprojection_px <= gate && candidates[k].second_px > gate)
+      nearest_px.push_back(candidates[k].best.reprojection_px);
+  }
+  const double tolerance = AdaptiveTolerance(options_, nearest_px);
+  st.tolerance_px = tolerance;
   std::vector<TriangulatedPoint> points;
   points.reserve(observations.size());
-  for (size_t k = 0; k < observations.size(); ++k) {
-    const CodedObservation& o = observations[k];
-    const auto xy = camera_.Unproject(o.camera_px);
-    if (!xy) {
+  for (const Candidates& c : candidates) {
+    if (!c.projectable) {
       ++st.unprojectable;
-      continue;
-    }
-    const Eigen::Vector3d ray(xy->x(), xy->y(), 1.0);
-    // Projector region the epipolar curve covers over the depth range (sampled: distortion
-    // bends it slightly).
-    double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
-    for (int i = 0; i <= 2; ++i) {  // ends and middle; the one-pitch margin covers the bend
-      const double inv_z =
-          1.0 / options.z_max_mm + (1.0 / options.z_min_mm - 1.0 / options.z_max_mm) * i / 2.0;
-      const auto uv =
-          projector_.Project(p_projector_.leftCols<3>() * (ray / inv_z) + p_projector_.col(3));
-      if (!uv) continue;
-      u_lo = std::min(u_lo, uv->x()), u_hi = std::max(u_hi, uv->x());
-      v_lo = std::min(v_lo, uv->y()), v_hi = std::max(v_hi, uv->y());
-    }
-    if (u_lo > u_hi) {
+    } else if (c.best.reprojection_px > tolerance) {
       ++st.no_element;
-      continue;
-    }
-    // Element indices whose centres lie in the region (one pitch of margin), congruent to
-    // the decoded position.
-    auto first = [&](double lo, double offset, int mod, int period) {
-      const int index = static_cast<int>(std::floor((lo - pitch - offset + 0.5) / pitch - 0.5));
-      return index + ((mod - index) % period + period) % period;
-    };
-    const int r_start = first(v_lo, layout.offset_px.y(), o.row_mod, array_rows_);
-    const int c_start = first(u_lo, layout.offset_px.x(), o.col_mod, array_cols_);
-    TriangulatedPoint best;
-    int passing = 0;
-    best.reprojection_px = 1e300;
-    for (int r = r_start; layout.ElementCentre(r, 0).y() <= v_hi + pitch; r += array_rows_) {
-      for (int c = c_start; layout.ElementCentre(0, c).x() <= u_hi + pitch; c += array_cols_) {
-        const Eigen::Vector2d centre = layout.ElementCentre(r, c);
-        const Eigen::Vector2d* projector_xy = Element(r, c);
-        if (!projector_xy) continue;
-        const auto x = TriangulateOnProjectorRay(*xy, *projector_xy, p_projector_);
-        if (!x || x->z() < options.z_min_mm || x->z() > options.z_max_mm) continue;
-        const auto back_camera = camera_.Project(*x);
-        const auto back_projector =
-            projector_.Project(p_projector_.leftCols<3>() * *x + p_projector_.col(3));
-        if (!back_camera || !back_projector) continue;
-        const double error =
-            std::max((*back_camera - o.camera_px).norm(), (*back_projector - centre).norm());
-        if (error > options.max_reprojection_px) continue;
-        ++passing;
-        if (error < best.reprojection_px) {
-          best.observation = static_cast<int>(k);
-          best.point_mm = *x;
-          best.row = r;
-          best.col = c;
-          best.reprojection_px = error;
-        }
-      }
-    }
-    if (passing == 0) {
-      ++st.no_element;
-    } else if (passing > 1) {
+    } else if (c.second_px <= tolerance) {
       ++st.ambiguous;
     } else {
-      points.push_back(best);
+      points.push_back(c.best);
     }
   }
   return points;

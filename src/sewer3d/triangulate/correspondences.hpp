@@ -17,7 +17,14 @@ struct TriangulationOptions {
   /// columns), or two tiles fit one ray.
   double z_min_mm = 65.0;
   double z_max_mm = 250.0;
-  double max_reprojection_px = 1.0;  ///< in camera and projector, for the chosen element
+  /// Distance of the camera spot from the chosen element's epipolar line: at least this...
+  double max_reprojection_px = 1.0;
+  /// ...or, where the frame's spots scatter more about their lines (a real module's speckle,
+  /// its projector's element placement, the wall's relief), this many times their scatter
+  /// (σ from the median distance of the best tiles, as of a half-normal), up to
+  /// max_adaptive_px. 0: the fixed limit alone.
+  double adaptive_sigmas = 4.0;
+  double max_adaptive_px = 3.0;
   void Check() const;
 };
 
@@ -29,9 +36,10 @@ struct TriangulatedPoint {
 };
 
 struct TriangulationStats {
-  int unprojectable = 0;  ///< camera pixel beyond the lens's fold
-  int no_element = 0;     ///< no tile of the decoded position fits the epipolar line
-  int ambiguous = 0;      ///< more than one tile fits
+  int unprojectable = 0;      ///< camera pixel beyond the lens's fold
+  int no_element = 0;         ///< no tile of the decoded position fits the epipolar line
+  int ambiguous = 0;          ///< more than one tile fits
+  double tolerance_px = 0.0;  ///< epipolar limit used (TriangulationOptions, adaptive)
 };
 
 /// Triangulation for one module, with what depends only on the module computed once: the
@@ -45,6 +53,14 @@ class Triangulator {
 
  private:
   const Eigen::Vector2d* Element(int r, int c) const;
+  /// The tile of one observation nearest its epipolar line (within `gate` px) and the
+  /// distance of the second nearest.
+  struct Candidates {
+    bool projectable = false;
+    TriangulatedPoint best;
+    double second_px = 1e300;
+  };
+  Candidates NearestTiles(int k, const CodedObservation& o, double gate) const;
 
   ModuleDescription module_;
   int array_rows_, array_cols_;

@@ -145,6 +145,7 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
   report.rejected.votes_split_or_too_few = decoded.stats.spots_ambiguous;
   report.rejected.beyond_lens_fold = stats.unprojectable;
   report.rejected.no_tile_on_epipolar_line = stats.no_element;
+  report.epipolar_tolerance_px = stats.tolerance_px;
   report.rejected.several_tiles_fit = stats.ambiguous;
   report.points = static_cast<int>(frame.points.size());
   report.seconds.binarise = decoded.seconds_binarise;

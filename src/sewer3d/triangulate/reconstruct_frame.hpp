@@ -70,6 +70,9 @@ struct FrameReport {
   } rejected;
   /// The frame does not fit the module (FrameReconstructionOptions::mismatch_*): no points.
   bool not_of_module = false;
+  /// Distance from the epipolar line up to which a tile fits (TriangulationOptions: the fixed
+  /// limit, or the frame's own scatter times adaptive_sigmas).
+  double epipolar_tolerance_px = 0.0;
   int points = 0;        ///< triangulated points kept
   int depth_pixels = 0;  ///< pixels of the depth map with a depth
   /// Wall-clock time of each stage.
