@@ -127,9 +127,11 @@ double AdaptiveTolerance(const TriangulationOptions& options, std::vector<double
   const auto middle = nearest_px.begin() + static_cast<std::ptrdiff_t>(nearest_px.size() / 2);
   std::nth_element(nearest_px.begin(), middle, nearest_px.end());
   // Distances to the line are |N(0, σ)|, whose median is 0.6745 σ.
-  const double sigma = *middle / 0.6745;
-  return std::clamp(options.adaptive_sigmas * sigma, floor,
-                    std::max(floor, options.max_adaptive_px));
+  const double wanted = options.adaptive_sigmas * *middle / 0.6745;
+  // Spots that scatter beyond what a module's errors make do not fit the module (another
+  // module's image, a shifted one): widening would let their chance decodes through.
+  if (wanted > std::max(floor, options.max_adaptive_px)) return floor;
+  return std::max(floor, wanted);
 }
 
 }  // namespace

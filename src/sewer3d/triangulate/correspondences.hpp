@@ -22,7 +22,8 @@ struct TriangulationOptions {
   /// ...or, where the frame's spots scatter more about their lines (a real module's speckle,
   /// its projector's element placement, the wall's relief), this many times their scatter
   /// (σ from the median distance of the best tiles, as of a half-normal), up to
-  /// max_adaptive_px. 0: the fixed limit alone.
+  /// max_adaptive_px; a scatter beyond that keeps the fixed limit (the frame does not fit the
+  /// module). 0: the fixed limit alone.
   double adaptive_sigmas = 4.0;
   double max_adaptive_px = 3.0;
   void Check() const;
