@@ -113,8 +113,8 @@ int RunCalibration(const CalibrationArgs& a) {
     const std::filesystem::path dir = out / fmt::format("pose_{:02d}", i);
     const BoardSurface surface(board, poses[i]);
     RenderOptions o;
-    o.spot_errors = *RealismProfile(a.realism);
-    o.spot_errors.relief_mm = 0.0;
+    // A printed board: no relief, no scattering; the module file is the truth here.
+    o.spot_errors = ModuleOwnErrors(*RealismProfile(a.realism));
     o.supersampling = a.texture_supersampling;
     o.seed = a.seed * 1000 + i;
     o.images = RenderImages::kTexture;  // board lit, pattern off

@@ -74,6 +74,9 @@ struct Setup {
         std::ceil((uv.y() - layout.offset_px.y() + 0.5 + reach) / layout.pitch_px - 0.5));
     double value = 0.0;
     const double inv = 1.0 / (std::sqrt(2.0) * sigma_px);
+    // The erfc edge holds π (R² + σ²) of light where the disk sends π R²: scaled back, so
+    // that defocus and scattering spread a spot's light without adding to it.
+    const double keep = radius * radius / (radius * radius + sigma_px * sigma_px);
     for (int r = r_lo; r <= r_hi; ++r) {
       for (int c = c_lo; c <= c_hi; ++c) {
         if (!pattern.tiled(r, c)) continue;
@@ -83,7 +86,7 @@ struct Setup {
         if (rho2 > reach * reach) continue;  // erfc below 3e-8
         const double rho = std::sqrt(rho2);
         // Disk edge convolved with a Gaussian.
-        value += ElementGain(o.spot_errors, r, c) * 0.5 * std::erfc((rho - radius) * inv);
+        value += keep * ElementGain(o.spot_errors, r, c) * 0.5 * std::erfc((rho - radius) * inv);
       }
     }
     return value;  // overlapping spots add up (none do at the default pitch)
@@ -164,8 +167,12 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
                            ? CircleOfConfusionPx(s.module.projector.fx, s.projector_aperture_mm,
                                                  o.projector_focus_mm, p_projector.z())
                            : 0.0;
-    const double sigma =
-        std::sqrt(o.projector_psf_px * o.projector_psf_px + std::pow(coc / 2.5, 2));
+    // Subsurface scattering spreads the spot on the wall: its sigma across the ray, in
+    // projector px at this distance.
+    const double scatter_px =
+        SubsurfaceMm(o.spot_errors, hit->material) * s.module.projector.fx / p_projector.z();
+    const double sigma = std::sqrt(o.projector_psf_px * o.projector_psf_px +
+                                   std::pow(coc / 2.5, 2) + scatter_px * scatter_px);
     const double lens = o.vignetting ? std::pow(cos_beta, 4) : 1.0;
     const Eigen::Vector2d element_uv = *uv + s.projector_residual.ShiftPx(pi, *uv);
     pattern += o.pattern_level * s.SpotProfile(element_uv, sigma) * lens *
@@ -297,10 +304,12 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
   return RenderFrame(module, pattern, SceneSurface(scene), o);
 }
 
-RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pattern,
+RenderedFrame RenderFrame(const ModuleDescription& calibrated, const BinaryArray& pattern,
                           const Surface& surface, const RenderOptions& o) {
-  module.Check();
+  calibrated.Check();
   o.Check();
+  // The module file is the calibrated module; the scene is lit and seen by the actual one.
+  const ModuleDescription module = ActualModule(calibrated, o.spot_errors);
   const Setup setup(module, pattern, surface, o);
   const int w = module.camera.width, h = module.camera.height, n = o.supersampling;
   RenderedFrame frame;

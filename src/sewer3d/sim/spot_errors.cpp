@@ -1,5 +1,6 @@
 #include "sewer3d/sim/spot_errors.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -35,6 +36,22 @@ void SpotErrors::Check() const {
                    "must be 0..1 mm, got " << relief_mm);
   SEWER3D_VALIDATE(relief_scale_mm >= 0.05 && relief_scale_mm <= 50.0, "relief_scale_mm",
                    "must be 0.05..50 mm, got " << relief_scale_mm);
+  SEWER3D_VALIDATE(subsurface_mm >= 0.0 && subsurface_mm <= 2.0 && subsurface_plastic_mm >= 0.0 &&
+                       subsurface_plastic_mm <= 2.0,
+                   "subsurface_mm",
+                   "must be 0..2 mm, got " << subsurface_mm << " and " << subsurface_plastic_mm);
+  // A calibration this far off is no calibration (the decoder's tile choice needs the
+  // epipolar geometry to a few pixels).
+  SEWER3D_VALIDATE(calibration_focal_px >= 0.0 && calibration_focal_px <= 20.0 &&
+                       calibration_centre_px >= 0.0 && calibration_centre_px <= 20.0,
+                   "calibration_focal_px",
+                   "focal and centre sigmas must be 0..20 px, got "
+                       << calibration_focal_px << " and " << calibration_centre_px);
+  SEWER3D_VALIDATE(calibration_baseline_mm >= 0.0 && calibration_baseline_mm <= 2.0,
+                   "calibration_baseline_mm", "must be 0..2 mm, got " << calibration_baseline_mm);
+  SEWER3D_VALIDATE(calibration_rotation_deg >= 0.0 && calibration_rotation_deg <= 1.0,
+                   "calibration_rotation_deg",
+                   "must be 0..1 deg, got " << calibration_rotation_deg);
   SEWER3D_VALIDATE(wavelength_nm >= 300.0 && wavelength_nm <= 2000.0, "wavelength_nm",
                    "must be 300..2000 nm, got " << wavelength_nm);
 }
@@ -52,7 +69,26 @@ std::optional<SpotErrors> RealismProfile(const std::string& name) {
   e.speckle_contrast = 0.1;
   e.lens_residual = 1e-4;
   e.relief_mm = 0.04;
+  // Concrete's cement paste scatters within tens of micrometres; plastic pipe more.
+  e.subsurface_mm = 0.02;
+  e.subsurface_plastic_mm = 0.15;
+  // What calibrating a module with these errors from 20 board poses left (docs/calibration.md,
+  // "paper" captures): focal lengths within a few tenths of a pixel, principal points half a
+  // pixel, the projector's centre 0.015 mm and rotation 0.015 degrees per axis.
+  e.calibration_focal_px = 0.3;
+  e.calibration_centre_px = 0.5;
+  e.calibration_baseline_mm = 0.015;
+  e.calibration_rotation_deg = 0.015;
   return e;
+}
+
+SpotErrors ModuleOwnErrors(const SpotErrors& errors) {
+  SpotErrors own = errors;
+  own.relief_mm = 0.0;
+  own.subsurface_mm = own.subsurface_plastic_mm = 0.0;
+  own.calibration_focal_px = own.calibration_centre_px = 0.0;
+  own.calibration_baseline_mm = own.calibration_rotation_deg = 0.0;
+  return own;
 }
 
 Eigen::Vector2d ElementOffset(const SpotErrors& errors, int r, int c) {
@@ -101,6 +137,38 @@ double WallRelief(const SpotErrors& errors, std::uint64_t seed, const Eigen::Vec
                    (1 - tx) * ty * node(fx, fy + 1) + tx * ty * node(fx + 1, fy + 1);
   // Bilinear weights average the lattice: E[Σ w²] = (2/3)², so the RMS is 2/3 before scaling.
   return errors.relief_mm * 1.5 * h;
+}
+
+double SubsurfaceMm(const SpotErrors& errors, Material material) {
+  return material == Material::kPlastic ? errors.subsurface_plastic_mm : errors.subsurface_mm;
+}
+
+ModuleDescription ActualModule(const ModuleDescription& calibrated, const SpotErrors& errors) {
+  if (!errors.CalibrationError()) return calibrated;
+  ModuleDescription m = calibrated;
+  std::uint64_t draw = 40;
+  const auto normal = [&](double sigma) {
+    return sigma * HashNormal(errors.projector_seed, 0xca1b, draw++);
+  };
+  for (CameraIntrinsics* k : {&m.camera, &m.projector}) {
+    k->fx += normal(errors.calibration_focal_px);
+    k->fy += normal(errors.calibration_focal_px);
+    k->cx += normal(errors.calibration_centre_px);
+    k->cy += normal(errors.calibration_centre_px);
+  }
+  // The projector's centre (camera frame) and its rotation, each axis on its own.
+  const Rigid3d camera_from_projector = calibrated.projector_from_camera.Inverse();
+  Eigen::Vector3d centre = camera_from_projector.translation;
+  Eigen::Vector3d angles;
+  for (int i = 0; i < 3; ++i) centre[i] += normal(errors.calibration_baseline_mm);
+  for (int i = 0; i < 3; ++i) angles[i] = DegToRad(normal(errors.calibration_rotation_deg));
+  const Eigen::Matrix3d turn =
+      (Eigen::AngleAxisd(angles.norm(), angles.norm() > 0 ? Eigen::Vector3d(angles.normalized())
+                                                          : Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
+  m.projector_from_camera =
+      Rigid3d(camera_from_projector.RotationMatrix() * turn, centre).Inverse();
+  return m;
 }
 
 double SpeckleGrainPx(const SpotErrors& errors, double f_number, double pixel_pitch_mm) {

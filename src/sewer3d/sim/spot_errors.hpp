@@ -10,6 +10,11 @@
 ///   pattern in the camera image (subjective speckle), grain size 2.44 λ N on the sensor
 ///   (λ the wavelength, N the camera's f-number); fully developed speckle has intensity
 ///   contrast 1, reduced by partial coherence and pixel integration.
+/// - subsurface scattering: light entering the wall leaves it again around the entry point, so a
+///   spot on the wall is its projected disk blurred by a Gaussian of the material's scattering
+///   length (cement paste and glaze little, translucent plastic more);
+/// - calibration error: the module that lights and sees the scene differs from the module file
+///   (the calibrated one the decoder uses) by draws within a calibration's uncertainties.
 /// Pure functions of their inputs; no I/O.
 
 #include <Eigen/Core>
@@ -19,6 +24,8 @@
 #include <string>
 
 #include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/camera/module.hpp"
+#include "sewer3d/sim/material.hpp"
 
 namespace sewer3d {
 
@@ -36,11 +43,27 @@ struct SpotErrors {
   /// height and correlation length: a plane of real concrete is not a plane to 0.05 mm.
   double relief_mm = 0.0;
   double relief_scale_mm = 0.5;
+  /// Subsurface scattering length (Gaussian sigma on the wall, mm) of mineral walls (concrete,
+  /// vitrified clay, sediment) and of plastic.
+  double subsurface_mm = 0.0;
+  double subsurface_plastic_mm = 0.0;
+  /// Calibration error, one standard deviation of each draw (ActualModule): focal lengths and
+  /// principal points of camera and projector (their own px), projector centre per axis (mm),
+  /// projector rotation per axis (deg).
+  double calibration_focal_px = 0.0;
+  double calibration_centre_px = 0.0;
+  double calibration_baseline_mm = 0.0;
+  double calibration_rotation_deg = 0.0;
   std::uint64_t projector_seed = 1;  ///< the projector's own (fixed per module)
   void Check() const;
   bool Any() const {
     return placement_sigma_px > 0.0 || gain_sigma > 0.0 || speckle_contrast > 0.0 ||
-           lens_residual > 0.0 || relief_mm > 0.0;
+           lens_residual > 0.0 || relief_mm > 0.0 || subsurface_mm > 0.0 ||
+           subsurface_plastic_mm > 0.0 || CalibrationError();
+  }
+  bool CalibrationError() const {
+    return calibration_focal_px > 0.0 || calibration_centre_px > 0.0 ||
+           calibration_baseline_mm > 0.0 || calibration_rotation_deg > 0.0;
   }
 };
 
@@ -48,6 +71,11 @@ struct SpotErrors {
 /// wall whose errors match the accuracy the paper reports, docs/accuracy.md). nullopt for
 /// other names.
 std::optional<SpotErrors> RealismProfile(const std::string& name);
+
+/// The module's own errors of `errors` (placement, gain, speckle, lens residual): without the
+/// wall's (relief, subsurface scattering) and without calibration error. What checkerboard
+/// captures for a calibration see.
+SpotErrors ModuleOwnErrors(const SpotErrors& errors);
 
 /// Fixed offset (projector px) of element (r, c), absolute projector indices.
 Eigen::Vector2d ElementOffset(const SpotErrors& errors, int r, int c);
@@ -73,6 +101,15 @@ LensResidual MakeLensResidual(const SpotErrors& errors, int lens);
 /// surface's own coordinates): Gaussian lattice values at the correlation length, bilinear
 /// between them, scaled to the RMS asked for. Deterministic for the surface's seed.
 double WallRelief(const SpotErrors& errors, std::uint64_t seed, const Eigen::Vector2d& surface_mm);
+
+/// Subsurface scattering sigma (mm on the wall) of a material.
+double SubsurfaceMm(const SpotErrors& errors, Material material);
+
+/// The module that renders the scene when `calibrated` is what the module file says: its
+/// camera's and projector's focal lengths, principal points, projector centre and rotation
+/// moved by Gaussian draws of the calibration sigmas, fixed by projector_seed. `calibrated`
+/// itself without calibration error.
+ModuleDescription ActualModule(const ModuleDescription& calibrated, const SpotErrors& errors);
 
 /// Speckle grain (intensity correlation length, camera px) for a camera of the given f-number
 /// and pixel pitch.

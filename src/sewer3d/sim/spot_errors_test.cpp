@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
+#include <utility>
 
+#include "sewer3d/core/units.hpp"
 #include "sewer3d/testing/small_module.hpp"
 
 namespace sewer3d {
@@ -113,6 +116,58 @@ TEST(SpotErrors, SpeckleKeepsTheMeanAndHasTheContrastAsked) {
   EXPECT_NEAR(deviation[0] / mean[0], 0.5 * (2.0 / (2.44 * 2.355)) / 0.5, 0.04);
 }
 
+TEST(SpotErrors, CalibrationErrorMovesTheModuleByTheSigmasAsked) {
+  const ModuleDescription m = testing::SmallDefaultModule(648);
+  SpotErrors e;
+  EXPECT_EQ(ActualModule(m, e).camera.fx, m.camera.fx);
+  e.calibration_focal_px = 0.5;
+  e.calibration_centre_px = 0.3;
+  e.calibration_baseline_mm = 0.02;
+  e.calibration_rotation_deg = 0.01;
+  double focal2 = 0.0, centre2 = 0.0, baseline2 = 0.0, angle2 = 0.0;
+  const int modules = 1000;
+  const Rigid3d calibrated_from_projector = m.projector_from_camera.Inverse();
+  for (int seed = 1; seed <= modules; ++seed) {
+    e.projector_seed = seed;
+    const ModuleDescription a = ActualModule(m, e);
+    for (const auto& [k, k0] :
+         {std::pair{a.camera, m.camera}, std::pair{a.projector, m.projector}}) {
+      focal2 += std::pow(k.fx - k0.fx, 2) + std::pow(k.fy - k0.fy, 2);
+      centre2 += std::pow(k.cx - k0.cx, 2) + std::pow(k.cy - k0.cy, 2);
+    }
+    const Rigid3d actual_from_projector = a.projector_from_camera.Inverse();
+    baseline2 +=
+        (actual_from_projector.translation - calibrated_from_projector.translation).squaredNorm();
+    angle2 += std::pow(Eigen::AngleAxisd(calibrated_from_projector.rotation.conjugate() *
+                                         actual_from_projector.rotation)
+                           .angle(),
+                       2);
+  }
+  // 4000 draws per intrinsic (2.2 % on the standard deviation at 3 sigma), 3000 per axis of
+  // the projector's centre and rotation.
+  EXPECT_NEAR(std::sqrt(focal2 / (4.0 * modules)), 0.5, 0.5 * 0.035);
+  EXPECT_NEAR(std::sqrt(centre2 / (4.0 * modules)), 0.3, 0.3 * 0.035);
+  EXPECT_NEAR(std::sqrt(baseline2 / (3.0 * modules)), 0.02, 0.02 * 0.04);
+  EXPECT_NEAR(RadToDeg(std::sqrt(angle2 / (3.0 * modules))), 0.01, 0.01 * 0.04);
+  // The module's other parts stay: lens terms, sizes, the pattern layout.
+  const ModuleDescription a = ActualModule(m, e);
+  EXPECT_EQ(a.camera.k, m.camera.k);
+  EXPECT_EQ(a.projector.width, m.projector.width);
+  EXPECT_EQ(a.pattern.pitch_px, m.pattern.pitch_px);
+}
+
+TEST(SpotErrors, SubsurfaceScatteringIsTheMaterialsOwn) {
+  SpotErrors e;
+  e.subsurface_mm = 0.03;
+  e.subsurface_plastic_mm = 0.2;
+  EXPECT_EQ(SubsurfaceMm(e, Material::kConcrete), 0.03);
+  EXPECT_EQ(SubsurfaceMm(e, Material::kVitrifiedClay), 0.03);
+  EXPECT_EQ(SubsurfaceMm(e, Material::kSediment), 0.03);
+  EXPECT_EQ(SubsurfaceMm(e, Material::kPlastic), 0.2);
+  EXPECT_TRUE(e.Any());
+  EXPECT_FALSE(ModuleOwnErrors(e).Any());  // the wall's, not the module's
+}
+
 TEST(SpotErrors, OutOfRangeValuesAreRefused) {
   SpotErrors e;
   e.placement_sigma_px = 3.0;
@@ -122,6 +177,12 @@ TEST(SpotErrors, OutOfRangeValuesAreRefused) {
   EXPECT_THROW(e.Check(), std::invalid_argument);
   e = SpotErrors{};
   e.relief_mm = -0.1;
+  EXPECT_THROW(e.Check(), std::invalid_argument);
+  e = SpotErrors{};
+  e.subsurface_plastic_mm = 3.0;
+  EXPECT_THROW(e.Check(), std::invalid_argument);
+  e = SpotErrors{};
+  e.calibration_rotation_deg = 2.0;
   EXPECT_THROW(e.Check(), std::invalid_argument);
   EXPECT_NO_THROW(RealismProfile("paper")->Check());
 }

@@ -313,6 +313,12 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
           {"lens_residual", o.spot_errors.lens_residual},
           {"relief_mm", o.spot_errors.relief_mm},
           {"relief_scale_mm", o.spot_errors.relief_scale_mm},
+          {"subsurface_mm", o.spot_errors.subsurface_mm},
+          {"subsurface_plastic_mm", o.spot_errors.subsurface_plastic_mm},
+          {"calibration_focal_px", o.spot_errors.calibration_focal_px},
+          {"calibration_centre_px", o.spot_errors.calibration_centre_px},
+          {"calibration_baseline_mm", o.spot_errors.calibration_baseline_mm},
+          {"calibration_rotation_deg", o.spot_errors.calibration_rotation_deg},
           {"projector_seed", o.spot_errors.projector_seed}};
 }
 
@@ -351,6 +357,12 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
                 "lens_residual",
                 "relief_mm",
                 "relief_scale_mm",
+                "subsurface_mm",
+                "subsurface_plastic_mm",
+                "calibration_focal_px",
+                "calibration_centre_px",
+                "calibration_baseline_mm",
+                "calibration_rotation_deg",
                 "projector_seed"});
   o.supersampling = in.Integer(j, "supersampling", p, o.supersampling);
   o.sensor_width_mm = in.Number(j, "sensor_width_mm", p, o.sensor_width_mm);
@@ -394,6 +406,13 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
   e.lens_residual = in.Number(j, "lens_residual", p, e.lens_residual);
   e.relief_mm = in.Number(j, "relief_mm", p, e.relief_mm);
   e.relief_scale_mm = in.Number(j, "relief_scale_mm", p, e.relief_scale_mm);
+  e.subsurface_mm = in.Number(j, "subsurface_mm", p, e.subsurface_mm);
+  e.subsurface_plastic_mm = in.Number(j, "subsurface_plastic_mm", p, e.subsurface_plastic_mm);
+  e.calibration_focal_px = in.Number(j, "calibration_focal_px", p, e.calibration_focal_px);
+  e.calibration_centre_px = in.Number(j, "calibration_centre_px", p, e.calibration_centre_px);
+  e.calibration_baseline_mm = in.Number(j, "calibration_baseline_mm", p, e.calibration_baseline_mm);
+  e.calibration_rotation_deg =
+      in.Number(j, "calibration_rotation_deg", p, e.calibration_rotation_deg);
   e.projector_seed = in.Seed(j, "projector_seed", p, e.projector_seed);
 }
 
