@@ -16,13 +16,73 @@ inline Eigen::Vector2d Nearest(const Eigen::Vector2d& x) {
   return {std::floor(x.x() + 0.5), std::floor(x.y() + 0.5)};
 }
 
+// The pattern lights no two adjacent elements, so every other column (or row) alone is a
+// lattice too, and a fit can drift to it: its step twice the true one, the spots of the other
+// columns then sitting half a step off, where a true lattice has none. Where the neighbours
+// half a step off are as common as those on the lattice, the step is halved.
+void HalveDoubledSteps(const std::vector<Spot>& spots, const Eigen::Vector2d& p,
+                       std::pair<const int*, const int*> neighbours, int rings, double max_residual,
+                       Eigen::Matrix2d& solution) {
+  Eigen::Matrix2d basis;
+  basis << solution.row(0).transpose(), solution.row(1).transpose();
+  if (std::abs(basis.determinant()) < 1e-9) return;
+  const Eigen::Matrix2d inverse = basis.inverse();
+  int on = 0;
+  Eigen::Vector2i half = Eigen::Vector2i::Zero();  // on in one index, half a step off in the other
+  for (const int* it = neighbours.first; it != neighbours.second; ++it) {
+    const Eigen::Vector2d q = inverse * (spots[*it].centre_px - p);
+    if (q.cwiseAbs().maxCoeff() > rings + 0.5) continue;
+    const Eigen::Vector2d f = (q - Nearest(q)).cwiseAbs();  // ≤ 0.5
+    const bool row_on = f.x() < max_residual, col_on = f.y() < max_residual;
+    // Half a step off: within half the residual limit of it.
+    const bool row_half = f.x() > 0.5 - 0.5 * max_residual;
+    const bool col_half = f.y() > 0.5 - 0.5 * max_residual;
+    if (row_on && col_on) ++on;
+    if (row_half && col_on) ++half.x();
+    if (row_on && col_half) ++half.y();
+  }
+  // The doubled lattice leaves about as many spots half a step off as on it; random offsets
+  // (a poor fit) a quarter as many.
+  for (int k = 0; k < 2; ++k)
+    if (half[k] >= 2 && 2 * half[k] >= on) solution.row(k) *= 0.5;
+}
+
+// Share of the neighbours out to refine_ring_steps that `steps` places on the lattice (within
+// max_residual).
+double StartFitShare(const std::vector<Spot>& spots, const Eigen::Vector2d& p,
+                     std::pair<const int*, const int*> neighbours, const LatticeSteps& steps,
+                     const LatticeOptions& options) {
+  Eigen::Matrix2d basis;
+  basis << steps.row_step, steps.column_step;
+  if (std::abs(basis.determinant()) < 1e-9) return 0.0;
+  const Eigen::Matrix2d inverse = basis.inverse();
+  int on = 0, within = 0;
+  for (const int* it = neighbours.first; it != neighbours.second; ++it) {
+    const Eigen::Vector2d q = inverse * (spots[*it].centre_px - p);
+    if (q.cwiseAbs().maxCoeff() > options.refine_ring_steps + 0.5) continue;
+    ++within;
+    if ((q - Nearest(q)).norm() <= options.max_residual) ++on;
+  }
+  return within > 0 ? static_cast<double>(on) / within : 0.0;
+}
+
 // Refines the steps of one spot from its neighbours: assign integer offsets with the current
-// steps, then least squares for both steps; twice.
+// steps, then least squares for both steps, over refine_ring_steps rings; from a poor start
+// over the two nearest first (steps a tilt's 15 % off round a neighbour three pitches out to
+// the wrong offset, two pitches out they do not).
 LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
                     std::pair<const int*, const int*> neighbours, LatticeSteps steps,
                     const LatticeSteps& predicted, const LatticeOptions& options) {
   const Eigen::Vector2d& p = spots[spot].centre_px;
-  for (int iteration = 0; iteration < 2; ++iteration) {
+  constexpr int kNearRings = 2;
+  constexpr double kGoodStartShare = 0.7;
+  // A start that fits most neighbours out to all rings (a neighbour's steps, mostly) is
+  // refined over all of them at once; a poor one (the module's prediction on a tilted board)
+  // over the two nearest rings first.
+  const bool near_first = StartFitShare(spots, p, neighbours, steps, options) < kGoodStartShare;
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    const int rings = iteration == 0 && near_first ? std::min(kNearRings, options.refine_ring_steps)
+                                                   : options.refine_ring_steps;
     Eigen::Matrix2d basis;
     basis << steps.row_step, steps.column_step;
     const Eigen::Matrix2d inverse = basis.inverse();
@@ -31,14 +91,15 @@ LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
     for (const int* it = neighbours.first; it != neighbours.second; ++it) {
       const Eigen::Vector2d d = spots[*it].centre_px - p;
       const Eigen::Vector2d ij = Nearest(inverse * d);
-      if (ij.isZero() || ij.cwiseAbs().maxCoeff() > options.refine_ring_steps) continue;
+      if (ij.isZero() || ij.cwiseAbs().maxCoeff() > rings) continue;
       if ((inverse * d - ij).norm() > options.max_residual) continue;
       normal += ij * ij.transpose();
       rhs += ij * d.transpose();
       ++used;
     }
     if (used < 2 || std::abs(normal.determinant()) < 1e-9) break;
-    const Eigen::Matrix2d solution = normal.ldlt().solve(rhs);  // rows: row_step, column_step
+    Eigen::Matrix2d solution = normal.ldlt().solve(rhs);  // rows: row_step, column_step
+    HalveDoubledSteps(spots, p, neighbours, rings, options.max_residual, solution);
     // The pattern lights no two adjacent elements, so every other column (or row) alone is
     // a lattice too: a fit whose step drifted to twice its length (or half) still matches
     // most neighbours, and the labels grown from it are scaled. The module predicts each
@@ -55,8 +116,10 @@ LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
     steps.row_step = solution.row(0).transpose();
     steps.column_step = solution.row(1).transpose();
     // Started from a neighbour's steps, one pass rarely moves them enough to change which
-    // integer offset a neighbour gets; a second pass is needed only after a large change.
-    if (change < 0.02 * (steps.row_step.norm() + steps.column_step.norm())) break;
+    // integer offset a neighbour gets; another pass is needed only after a large change, or
+    // to take the outer rings in.
+    const bool all_rings = rings == options.refine_ring_steps;
+    if (all_rings && change < 0.02 * (steps.row_step.norm() + steps.column_step.norm())) break;
   }
   return steps;
 }

@@ -24,7 +24,10 @@ struct LatticeOptions {
   /// lights about one element in six, so the nearest two rings hold four spots on average
   /// and a fit from two of them takes their noise into both steps: with a real module's spot
   /// scatter (0.6 px, docs/accuracy.md) the labels broke into small contradicting groups (9 %
-  /// of a close plane's spots decoded, 98 % with three rings, which hold eight).
+  /// of a close plane's spots decoded, 98 % with three rings, which hold eight). From a poor
+  /// start (steps that place under 70 % of these neighbours on the lattice) the first pass
+  /// takes two rings: from steps a tilt's 15 % off, a third ring's neighbours round to the
+  /// wrong offset (a tilted calibration board lost its whole lattice).
   int refine_ring_steps = 3;
   /// A refined step longer than this many times the predicted one, or shorter than its
   /// inverse, is not taken: the fit has found every other column or row (lattice.cpp).

@@ -124,12 +124,23 @@ double AdaptiveTolerance(const TriangulationOptions& options, std::vector<double
   // Too few spots say nothing about their scatter.
   constexpr size_t kMinSpots = 50;
   if (options.adaptive_sigmas <= 0.0 || nearest_px.size() < kMinSpots) return floor;
-  const auto middle = nearest_px.begin() + static_cast<std::ptrdiff_t>(nearest_px.size() / 2);
-  std::nth_element(nearest_px.begin(), middle, nearest_px.end());
-  // Distances to the line are |N(0, σ)|, whose median is 0.6745 σ.
-  const double wanted = options.adaptive_sigmas * *middle / 0.6745;
+  const auto median_of = [](std::vector<double>& v) {
+    const auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), middle, v.end());
+    return *middle;
+  };
+  // Distances to the lines are |b + N(0, σ)|: b the offset a module's calibration error
+  // gives (a smooth field over the image), σ its spots' scatter. The median plus k robust
+  // sigmas of the distances about it (MAD / 0.6745) is b + kσ where b dominates; for b = 0 (a
+  // half-normal: median 0.6745 σ, MAD 0.40 σ) k is set to give adaptive_sigmas σ.
+  const double median = median_of(nearest_px);
+  for (double& d : nearest_px) d = std::abs(d - median);
+  const double sigma = median_of(nearest_px) / 0.6745;
+  const double k = (options.adaptive_sigmas - 0.6745) / (0.40 / 0.6745);
+  const double wanted = median + k * sigma;
   // Spots that scatter beyond what a module's errors make do not fit the module (another
-  // module's image, a shifted one): widening would let their chance decodes through.
+  // module's image, a shifted one: distances spread evenly up to the gate): widening would let
+  // their chance decodes through.
   if (wanted > std::max(floor, options.max_adaptive_px)) return floor;
   return std::max(floor, wanted);
 }

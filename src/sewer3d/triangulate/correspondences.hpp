@@ -19,13 +19,14 @@ struct TriangulationOptions {
   double z_max_mm = 250.0;
   /// Distance of the camera spot from the chosen element's epipolar line: at least this...
   double max_reprojection_px = 1.0;
-  /// ...or, where the frame's spots scatter more about their lines (a real module's speckle,
-  /// its projector's element placement, the wall's relief), this many times their scatter
-  /// (σ from the median distance of the best tiles, as of a half-normal), up to
-  /// max_adaptive_px; a scatter beyond that keeps the fixed limit (the frame does not fit the
-  /// module). 0: the fixed limit alone.
+  /// ...or, where the frame's spots lie farther from their lines (a real module's speckle,
+  /// its projector's element placement, the wall's relief scatter them; its calibration error
+  /// offsets them), their median distance plus their robust spread about it, scaled so that
+  /// spots without offset get this many sigmas of their scatter; up to max_adaptive_px. A
+  /// spread beyond that keeps the fixed limit (the frame does not fit the module). 0: the
+  /// fixed limit alone.
   double adaptive_sigmas = 4.0;
-  double max_adaptive_px = 3.0;
+  double max_adaptive_px = 5.0;
   void Check() const;
 };
 

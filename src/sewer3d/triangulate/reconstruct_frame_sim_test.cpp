@@ -191,23 +191,24 @@ TEST(ReconstructFrame, RandomlyPerturbedModulesKeepTheirPoints) {
 }
 
 // The `paper` realism profile (spot placement and power, speckle, lens residual, wall
-// relief) costs accuracy, as on a real module, but the decoder holds: nearly every spot
-// becomes a point and none lands off the wall.
+// relief, subsurface scattering, calibration error) costs accuracy, as on a real module, but the
+// decoder holds: nearly every spot becomes a point and none lands off the wall.
 TEST(ReconstructFrame, ThePaperRealismProfileCostsAccuracyNotPoints) {
   const Scene cylinder = DecentredDn300();
   const ModuleDescription module = testing::SmallDefaultModule(648);
   const Outcome ideal = ReconstructRender(module, cylinder, 5);
   // The profile's spot scatter is set in projector pixels of the full-size module (0.6 px of
   // an 8 px pitch); this quarter-size module keeps the pitch, so the same share of a pitch is
-  // four times the angle: about 0.4 mm of depth noise at 150 mm. A wrong element is a column
-  // of disparity off, 5.4 mm there: wrong beyond half of that.
+  // four times the angle: about 0.4 mm of depth noise at 150 mm; its calibration error (half
+  // a pixel at the principal points) as well: a bent and scaled wall, 0.5 mm RMS on its own.
+  // A wrong element is a column of disparity off, 5.4 mm there: wrong beyond half of that.
   const Outcome paper =
       ReconstructRender(module, cylinder, 5, *RealismProfile("paper"), /*wrong_mm=*/2.7);
   Record(paper);
   EXPECT_GT(paper.points, 0.9 * paper.spots);
   EXPECT_EQ(paper.wrong, 0);
   EXPECT_GT(paper.rms_to_truth_mm, 1.5 * ideal.rms_to_truth_mm);
-  EXPECT_LT(paper.rms_to_truth_mm, 0.6);  // measured 0.39 mm
+  EXPECT_LT(paper.rms_to_truth_mm, 1.0);  // measured 0.74 mm (0.39 without calibration error)
 }
 
 // A mirrored or flipped pattern image decodes windows by chance, and a few of those land on
