@@ -3,7 +3,8 @@
 # of the default module, calibrate the module from them, print the recovered-vs-true table,
 # then reconstruct the accuracy scenes (scripts/accuracy.sh) once with the true and once with
 # the calibrated module. Usage (after scripts/build.sh):
-#   scripts/calibration_accuracy.sh [OUT_DIR] [CAMERA_SIZE WxH, default 2592x1944]
+#   scripts/calibration_accuracy.sh [OUT_DIR] [CAMERA_SIZE WxH, default 2592x1944] [REALISM]
+# REALISM (ideal or paper, default ideal) is the captures' (`simulate calibration --realism`).
 # Full size takes about half an hour on 2 cores (rendering the captures; an existing
 # OUT_DIR/captures is reused).
 set -euo pipefail
@@ -12,10 +13,12 @@ source scripts/accuracy_lib.sh
 bin=./build/sewer3d
 out=${1:-out/calibration_accuracy}
 size=${2:-2592x1944}
+realism=${3:-ideal}
 mkdir -p "$out"
 "$bin" module --out "$out/true" --camera-size "$size" >/dev/null
 if [[ ! -f "$out/captures/truth/poses.json" ]]; then
-  "$bin" simulate calibration --module "$out/true/module.json" --poses 20 --out "$out/captures" --supersampling 2 >/dev/null
+  "$bin" simulate calibration --module "$out/true/module.json" --poses 20 --out "$out/captures" --supersampling 2 \
+    --realism "$realism" >/dev/null
 fi
 "$bin" calibrate module --captures "$out/captures" --board 9x6 --square-mm 10 \
   --out "$out/calibrated/module.json" >"$out/calibrate.txt" 2>"$out/calibrate.err"

@@ -28,7 +28,7 @@ std::vector<std::optional<Eigen::Vector2d>> CornersInProjector(
   if (o.camera) {
     camera.emplace(*o.camera);
     projector.emplace(*o.projector);
-    threshold = o.ransac_px / o.projector->fx;
+    threshold = threshold / o.projector->fx;
   }
   const auto to_fit = [](const std::optional<CameraModel>& model,
                          const Eigen::Vector2d& px) -> std::optional<Eigen::Vector2d> {
@@ -71,6 +71,11 @@ std::vector<std::optional<Eigen::Vector2d>> CornersInProjector(
   return out;
 }
 
+bool ModuleCalibrationView::Complete() const {
+  return std::all_of(projector_corners.begin(), projector_corners.end(),
+                     [](const Eigen::Vector2d& c) { return c.allFinite(); });
+}
+
 int RetransferCorners(std::vector<ModuleCalibrationView>& views,
                       const std::vector<SpotCorrespondences>& spots, const CameraIntrinsics& camera,
                       const CameraIntrinsics& projector, const CornerTransferOptions& options) {
@@ -82,103 +87,209 @@ int RetransferCorners(std::vector<ModuleCalibrationView>& views,
   for (size_t v = 0; v < views.size(); ++v) {
     const auto again = CornersInProjector(views[v].camera_corners, spots[v].camera_px,
                                           spots[v].projector_px, undistorted);
-    if (!std::all_of(again.begin(), again.end(), [](const auto& c) { return c.has_value(); }))
-      continue;
-    for (size_t i = 0; i < again.size(); ++i) views[v].projector_corners[i] = *again[i];
-    ++updated;
+    bool all = true;
+    for (size_t i = 0; i < again.size(); ++i) {
+      if (again[i]) {
+        views[v].projector_corners[i] = *again[i];
+      } else if (views[v].projector_corners[i].allFinite()) {
+        all = false;
+      }
+    }
+    if (all) ++updated;
   }
   return updated;
 }
+
+namespace {
+
+// Floor of a device's corner noise in the weights (exact synthetic corners have none).
+constexpr double kMinNoisePx = 0.01;
+
+// The joint problem's parameters: both devices' intrinsics, the extrinsics, every view's pose.
+struct StereoParameters {
+  double camera_fc[4], camera_k[3], projector_fc[4], projector_k[3];
+  std::array<double, 6> extrinsic;
+  std::vector<std::array<double, 6>> poses;
+
+  // One view's corner residuals (px) on the camera and, where carried, on the projector.
+  Eigen::Vector2d CameraResidual(const Eigen::Vector3d& corner, const Eigen::Vector2d& px,
+                                 size_t v) const {
+    Eigen::Vector2d r;
+    ReprojectionCost{corner, px}(camera_fc, camera_k, poses[v].data(), poses[v].data() + 3,
+                                 r.data());
+    return r;
+  }
+  Eigen::Vector2d ProjectorResidual(const Eigen::Vector3d& corner, const Eigen::Vector2d& px,
+                                    size_t v) const {
+    Eigen::Vector2d r;
+    StereoReprojectionCost{corner, px}(projector_fc, projector_k, poses[v].data(),
+                                       poses[v].data() + 3, extrinsic.data(), extrinsic.data() + 3,
+                                       r.data());
+    return r;
+  }
+};
+
+// Each device's corners weighted by 1 / its noise (px): the projector's corners, carried by
+// homographies from spots that scatter, are several times noisier than the camera's.
+void AddStereoResiduals(ceres::Problem& problem, const std::vector<ModuleCalibrationView>& views,
+                        const std::vector<Eigen::Vector3d>& board, StereoParameters& x,
+                        double camera_noise_px, double projector_noise_px) {
+  for (size_t v = 0; v < views.size(); ++v) {
+    double* pose = x.poses[v].data();
+    for (size_t i = 0; i < board.size(); ++i) {
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 4, 3, 3, 3>(
+              new ReprojectionCost{board[i], views[v].camera_corners[i], 1.0 / camera_noise_px}),
+          nullptr, x.camera_fc, x.camera_k, pose, pose + 3);
+      if (!views[v].projector_corners[i].allFinite()) continue;  // not carried
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<StereoReprojectionCost, 2, 4, 3, 3, 3, 3, 3>(
+              new StereoReprojectionCost{board[i], views[v].projector_corners[i],
+                                         1.0 / projector_noise_px}),
+          nullptr, x.projector_fc, x.projector_k, pose, pose + 3, x.extrinsic.data(),
+          x.extrinsic.data() + 3);
+    }
+  }
+}
+
+// A carried corner can be wrong by whole pattern pitches (a group of spots decoded with the
+// wrong label carries it consistently): projector corners whose residual exceeds five times
+// the projector RMS (at least 2 px) are dropped. Returns how many.
+int DropProjectorOutliers(std::vector<ModuleCalibrationView>& views,
+                          const std::vector<Eigen::Vector3d>& board, const StereoParameters& x) {
+  double sum = 0.0;
+  int count = 0;
+  for (size_t v = 0; v < views.size(); ++v) {
+    for (size_t i = 0; i < board.size(); ++i) {
+      if (!views[v].projector_corners[i].allFinite()) continue;
+      sum += x.ProjectorResidual(board[i], views[v].projector_corners[i], v).squaredNorm();
+      ++count;
+    }
+  }
+  const double limit = std::max(2.0, 5.0 * std::sqrt(sum / std::max(1, count)));
+  int dropped = 0;
+  for (size_t v = 0; v < views.size(); ++v) {
+    for (size_t i = 0; i < board.size(); ++i) {
+      Eigen::Vector2d& corner = views[v].projector_corners[i];
+      if (!corner.allFinite() || x.ProjectorResidual(board[i], corner, v).norm() <= limit) continue;
+      corner = Eigen::Vector2d::Constant(std::nan(""));
+      ++dropped;
+    }
+  }
+  return dropped;
+}
+
+// Per-view and overall RMS of the solved problem.
+void SetResiduals(const std::vector<ModuleCalibrationView>& views,
+                  const std::vector<Eigen::Vector3d>& board, const StereoParameters& x,
+                  ModuleCalibrationResult& r, double& camera_total, double& projector_total,
+                  double& projector_points) {
+  camera_total = projector_total = projector_points = 0.0;
+  r.view_camera_rms_px.clear();
+  r.view_projector_rms_px.clear();
+  for (size_t v = 0; v < views.size(); ++v) {
+    double cs = 0.0, ps = 0.0;
+    int carried = 0;
+    for (size_t i = 0; i < board.size(); ++i) {
+      cs += x.CameraResidual(board[i], views[v].camera_corners[i], v).squaredNorm();
+      if (!views[v].projector_corners[i].allFinite()) continue;
+      ps += x.ProjectorResidual(board[i], views[v].projector_corners[i], v).squaredNorm();
+      ++carried;
+    }
+    camera_total += cs;
+    projector_total += ps;
+    projector_points += carried;
+    r.view_camera_rms_px.push_back(std::sqrt(cs / board.size()));
+    r.view_projector_rms_px.push_back(std::sqrt(ps / std::max(1, carried)));
+  }
+  r.camera_rms_px = std::sqrt(camera_total / static_cast<double>(views.size() * board.size()));
+  r.projector_rms_px = std::sqrt(projector_total / std::max(1.0, projector_points));
+}
+
+}  // namespace
 
 ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>& views,
                                         const std::vector<Eigen::Vector3d>& board, int camera_width,
                                         int camera_height, int projector_width,
                                         int projector_height) {
-  SEWER3D_VALIDATE(views.size() >= 3, "",
-                   "module calibration needs at least 3 views, got " << views.size());
-  // Each device alone first (Zhang + refinement), then both together.
+  // Each device alone first (Zhang + refinement; the projector from its complete views), then
+  // both together.
   std::vector<CalibrationView> camera_views, projector_views;
-  for (const auto& v : views) {
-    camera_views.push_back({v.camera_corners});
-    projector_views.push_back({v.projector_corners});
+  size_t first_complete = views.size();
+  for (size_t v = 0; v < views.size(); ++v) {
+    camera_views.push_back({views[v].camera_corners});
+    if (!views[v].Complete()) continue;
+    projector_views.push_back({views[v].projector_corners});
+    first_complete = std::min(first_complete, v);
   }
+  SEWER3D_VALIDATE(projector_views.size() >= 3, "",
+                   "module calibration needs at least 3 views with every corner carried into "
+                   "the projector, got "
+                       << projector_views.size());
   const CalibrationResult camera =
       CalibrateCamera(camera_views, board, camera_width, camera_height);
   const CalibrationResult projector =
       CalibrateCamera(projector_views, board, projector_width, projector_height);
-  // Extrinsics: the first view's projector_from_board · board_from_camera.
-  const Rigid3d extrinsic0 = projector.camera_from_board[0] * camera.camera_from_board[0].Inverse();
-
-  double camera_fc[4] = {camera.intrinsics.fx, camera.intrinsics.fy, camera.intrinsics.cx,
-                         camera.intrinsics.cy};
-  double camera_k[3] = {camera.intrinsics.k[0], camera.intrinsics.k[1], camera.intrinsics.k[2]};
-  double projector_fc[4] = {projector.intrinsics.fx, projector.intrinsics.fy,
-                            projector.intrinsics.cx, projector.intrinsics.cy};
-  double projector_k[3] = {projector.intrinsics.k[0], projector.intrinsics.k[1],
-                           projector.intrinsics.k[2]};
-  std::array<double, 6> extrinsic = AngleAxisOf(extrinsic0);
-  std::vector<std::array<double, 6>> poses;
-  for (const Rigid3d& p : camera.camera_from_board) poses.push_back(AngleAxisOf(p));
-  ceres::Problem problem;
-  for (size_t v = 0; v < views.size(); ++v) {
-    for (size_t i = 0; i < board.size(); ++i) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ReprojectionCost, 2, 4, 3, 3, 3>(
-                                   new ReprojectionCost{board[i], views[v].camera_corners[i]}),
-                               nullptr, camera_fc, camera_k, poses[v].data(), poses[v].data() + 3);
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<StereoReprojectionCost, 2, 4, 3, 3, 3, 3, 3>(
-              new StereoReprojectionCost{board[i], views[v].projector_corners[i]}),
-          nullptr, projector_fc, projector_k, poses[v].data(), poses[v].data() + 3,
-          extrinsic.data(), extrinsic.data() + 3);
-    }
-  }
+  StereoParameters x{};
+  const CameraIntrinsics& c = camera.intrinsics;
+  const CameraIntrinsics& p = projector.intrinsics;
+  std::copy_n(std::array<double, 4>{c.fx, c.fy, c.cx, c.cy}.begin(), 4, x.camera_fc);
+  std::copy_n(c.k.begin(), 3, x.camera_k);
+  std::copy_n(std::array<double, 4>{p.fx, p.fy, p.cx, p.cy}.begin(), 4, x.projector_fc);
+  std::copy_n(p.k.begin(), 3, x.projector_k);
+  // Extrinsics: the first complete view's projector_from_board · board_from_camera.
+  x.extrinsic = AngleAxisOf(projector.camera_from_board[0] *
+                            camera.camera_from_board[first_complete].Inverse());
+  for (const Rigid3d& pose : camera.camera_from_board) x.poses.push_back(AngleAxisOf(pose));
+  // Solved again without the projector corners the solution shows to be wrong, and with each
+  // device's weight from the last solution's RMS (first: from each device alone).
+  std::vector<ModuleCalibrationView> kept = views;
+  double camera_noise = std::max(kMinNoisePx, camera.rms_px);
+  double projector_noise = std::max(kMinNoisePx, projector.rms_px);
   ModuleCalibrationResult r;
-  std::tie(r.iterations, r.converged) = SolveCalibration(problem, 200);
-  r.camera = IntrinsicsFrom(camera_fc, camera_k, camera_width, camera_height);
-  r.projector = IntrinsicsFrom(projector_fc, projector_k, projector_width, projector_height);
-  r.projector_from_camera = PoseFromAngleAxis(extrinsic.data());
-  double camera_total = 0.0, projector_total = 0.0;
-  for (size_t v = 0; v < views.size(); ++v) {
-    double cs = 0.0, ps = 0.0;
-    for (size_t i = 0; i < board.size(); ++i) {
-      Eigen::Vector2d rc, rp;
-      ReprojectionCost{board[i], views[v].camera_corners[i]}(camera_fc, camera_k, poses[v].data(),
-                                                             poses[v].data() + 3, rc.data());
-      StereoReprojectionCost{board[i], views[v].projector_corners[i]}(
-          projector_fc, projector_k, poses[v].data(), poses[v].data() + 3, extrinsic.data(),
-          extrinsic.data() + 3, rp.data());
-      cs += rc.squaredNorm();
-      ps += rp.squaredNorm();
-    }
-    camera_total += cs;
-    projector_total += ps;
-    r.view_camera_rms_px.push_back(std::sqrt(cs / board.size()));
-    r.view_projector_rms_px.push_back(std::sqrt(ps / board.size()));
+  double camera_total = 0.0, projector_total = 0.0, projector_points = 0.0;
+  for (int round = 0;; ++round) {
+    ceres::Problem attempt;
+    AddStereoResiduals(attempt, kept, board, x, camera_noise, projector_noise);
+    std::tie(r.iterations, r.converged) = SolveCalibration(attempt, 200);
+    const int dropped = round == 3 ? 0 : DropProjectorOutliers(kept, board, x);
+    SetResiduals(kept, board, x, r, camera_total, projector_total, projector_points);
+    const bool settled = std::abs(r.projector_rms_px / projector_noise - 1.0) < 0.1 &&
+                         std::abs(r.camera_rms_px / camera_noise - 1.0) < 0.1;
+    camera_noise = std::max(kMinNoisePx, r.camera_rms_px);
+    projector_noise = std::max(kMinNoisePx, r.projector_rms_px);
+    if (round == 3 || (dropped == 0 && settled)) break;
   }
-  const double points = static_cast<double>(views.size() * board.size());
-  r.camera_rms_px = std::sqrt(camera_total / points);
-  r.projector_rms_px = std::sqrt(projector_total / points);
+  ceres::Problem problem;  // the last one, for the covariance
+  AddStereoResiduals(problem, kept, board, x, camera_noise, projector_noise);
+  r.camera = IntrinsicsFrom(x.camera_fc, x.camera_k, camera_width, camera_height);
+  r.projector = IntrinsicsFrom(x.projector_fc, x.projector_k, projector_width, projector_height);
+  r.projector_from_camera = PoseFromAngleAxis(x.extrinsic.data());
   // Uncertainties from the covariance, scaled by the residual variance per coordinate.
   ceres::Covariance covariance({});
   const std::vector<std::pair<const double*, const double*>> blocks{
-      {camera_fc, camera_fc},
-      {projector_fc, projector_fc},
-      {extrinsic.data(), extrinsic.data()},
-      {extrinsic.data() + 3, extrinsic.data() + 3}};
+      {x.camera_fc, x.camera_fc},
+      {x.projector_fc, x.projector_fc},
+      {x.extrinsic.data(), x.extrinsic.data()},
+      {x.extrinsic.data() + 3, x.extrinsic.data() + 3}};
   if (covariance.Compute(blocks, &problem)) {
-    const double dof = 4.0 * points - 20.0 - 6.0 * views.size();
-    const double variance = dof > 0 ? (camera_total + projector_total) / dof : 0.0;
+    const double camera_points = static_cast<double>(views.size() * board.size());
+    const double dof = 2.0 * (camera_points + projector_points) - 20.0 - 6.0 * views.size();
+    // The weighted residuals' variance (about 1 when the weights are the devices' noise).
+    const double weighted = camera_total / (camera_noise * camera_noise) +
+                            projector_total / (projector_noise * projector_noise);
+    const double variance = dof > 0 ? weighted / dof : 0.0;
     double c4[16], p4[16], rot[9], tr[9];
-    covariance.GetCovarianceBlock(camera_fc, camera_fc, c4);
-    covariance.GetCovarianceBlock(projector_fc, projector_fc, p4);
-    covariance.GetCovarianceBlock(extrinsic.data(), extrinsic.data(), rot);
-    covariance.GetCovarianceBlock(extrinsic.data() + 3, extrinsic.data() + 3, tr);
+    covariance.GetCovarianceBlock(x.camera_fc, x.camera_fc, c4);
+    covariance.GetCovarianceBlock(x.projector_fc, x.projector_fc, p4);
+    covariance.GetCovarianceBlock(x.extrinsic.data(), x.extrinsic.data(), rot);
+    covariance.GetCovarianceBlock(x.extrinsic.data() + 3, x.extrinsic.data() + 3, tr);
     for (int i = 0; i < 4; ++i) {
       r.sigma[i] = std::sqrt(std::max(0.0, c4[i * 5] * variance));
       r.sigma[4 + i] = std::sqrt(std::max(0.0, p4[i * 5] * variance));
     }
     // Baseline length |t|: σ² = tᵀ Σ t / |t|².
-    const Eigen::Vector3d t(extrinsic[3], extrinsic[4], extrinsic[5]);
+    const Eigen::Vector3d t(x.extrinsic[3], x.extrinsic[4], x.extrinsic[5]);
     const Eigen::Matrix3d st = Eigen::Map<const Eigen::Matrix3d>(tr) * variance;
     r.sigma[8] = std::sqrt(std::max(0.0, t.dot(st * t))) / std::max(1e-12, t.norm());
     r.sigma[9] = RadToDeg(std::sqrt(std::max({rot[0], rot[4], rot[8], 0.0}) * variance));

@@ -33,8 +33,12 @@ std::vector<std::optional<Eigen::Vector2d>> CornersInProjector(
     const CornerTransferOptions& options = {});
 
 struct ModuleCalibrationView {
-  std::vector<Eigen::Vector2d> camera_corners;     ///< every board corner
-  std::vector<Eigen::Vector2d> projector_corners;  ///< every board corner
+  std::vector<Eigen::Vector2d> camera_corners;  ///< every board corner
+  /// Every board corner; NaN where it could not be carried into the projector (too few
+  /// decoded spots around it): the view then counts for the camera and for the corners that
+  /// were carried.
+  std::vector<Eigen::Vector2d> projector_corners;
+  bool Complete() const;  ///< every projector corner carried
 };
 
 /// One view's decoded spots: camera pixel and projector element centre of each.
@@ -54,16 +58,17 @@ struct ModuleCalibrationResult {
   bool converged = false;
 };
 
-/// Needs at least 3 views; throws std::invalid_argument otherwise.
+/// Needs at least 3 views with every projector corner (the projector's own start); throws
+/// std::invalid_argument otherwise. The others join the joint refinement with their corners.
 ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>& views,
                                         const std::vector<Eigen::Vector3d>& board, int camera_width,
                                         int camera_height, int projector_width,
                                         int projector_height);
 
 /// Second pass of the corner transfer: every view's corners carried again with the lens
-/// models of `camera` and `projector` (homographies fitted in undistorted coordinates). A view
-/// keeps its projector corners where one of them cannot be carried now. Returns the number of
-/// views updated.
+/// models of `camera` and `projector` (homographies fitted in undistorted coordinates). A
+/// corner that cannot be carried now keeps what it had. Returns the number of views whose
+/// every carried corner was carried again.
 int RetransferCorners(std::vector<ModuleCalibrationView>& views,
                       const std::vector<SpotCorrespondences>& spots, const CameraIntrinsics& camera,
                       const CameraIntrinsics& projector, const CornerTransferOptions& options = {});

@@ -1,6 +1,7 @@
 #include "sewer3d/calib/module_from_captures.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/chessboard.hpp"
@@ -18,6 +19,8 @@ void ModuleCalibratorOptions::Check() const {
   triangulation.Check();
   SEWER3D_VALIDATE(!corner_transfer.camera && !corner_transfer.projector, "corner_transfer",
                    "lens models must be unset: the second pass sets them");
+  SEWER3D_VALIDATE(min_carried_fraction > 0.0 && min_carried_fraction <= 1.0,
+                   "min_carried_fraction", "must be in (0, 1], got " << min_carried_fraction);
 }
 
 namespace {
@@ -78,13 +81,15 @@ CaptureOutcome ModuleCalibrator::AddCapture(const cv::Mat1b& texture_grey,
       CornersInProjector(*corners, spots.camera_px, spots.projector_px, options_.corner_transfer);
   outcome.corners_missing = static_cast<int>(
       std::count_if(transferred.begin(), transferred.end(), [](const auto& c) { return !c; }));
-  if (outcome.corners_missing > 0) {
+  const int carried = outcome.corners - outcome.corners_missing;
+  if (carried < options_.min_carried_fraction * outcome.corners) {
     outcome.status = CaptureOutcome::Status::kCornersNotCarried;
     return outcome;
   }
   ModuleCalibrationView view;
   view.camera_corners = *corners;
-  for (const auto& c : transferred) view.projector_corners.push_back(*c);
+  for (const auto& c : transferred)
+    view.projector_corners.push_back(c ? *c : Eigen::Vector2d::Constant(std::nan("")));
   views_.push_back(std::move(view));
   spots_.push_back(std::move(spots));
   return outcome;

@@ -40,6 +40,10 @@ struct ModuleCalibratorOptions {
   }();
   /// Both passes' corner transfer; its lens models must be unset (the second pass sets them).
   CornerTransferOptions corner_transfer;
+  /// A pose is used when at least this fraction of its corners is carried into the projector
+  /// (the others count for the camera only): a far or steep pose loses the corners of a few
+  /// squares whose spots do not decode, and is still worth its camera corners and the rest.
+  double min_carried_fraction = 0.5;
   void Check() const;
 };
 
@@ -48,13 +52,13 @@ struct CaptureOutcome {
   enum class Status {
     kUsed,
     kBoardNotFound,      ///< the whole board was not found in the texture image
-    kCornersNotCarried,  ///< some corners have too few decoded spots around them
+    kCornersNotCarried,  ///< too many corners have too few decoded spots around them
     kRepeated,           ///< the board lies where it did in a capture already used
   };
   Status status = Status::kUsed;
   int repeats = -1;         ///< kRepeated: the capture used before (0-based, in order of use)
   int corners = 0;          ///< board corners (0 when the board was not found)
-  int corners_missing = 0;  ///< corners that could not be carried into the projector
+  int corners_missing = 0;  ///< corners not carried into the projector (kUsed: used without)
   int spots_decoded = 0;    ///< spots with a projector element (0 when the board was not found)
 };
 
@@ -81,16 +85,16 @@ class ModuleCalibrator {
 
   /// One pose: `texture_grey` with the board lit (projector off), `pattern_image` (8- or
   /// 16-bit grey, projector on), both the nominal camera's size (else std::invalid_argument).
-  /// The pose is used only when every corner is found and carried into the projector, and the
-  /// board does not lie where it did in a pose already used (the same capture twice adds nothing
-  /// but weight).
+  /// The pose is used when every corner is found, enough of them are carried into the
+  /// projector (min_carried_fraction), and the board does not lie where it did in a pose
+  /// already used (the same capture twice adds nothing but weight).
   CaptureOutcome AddCapture(const cv::Mat1b& texture_grey, const cv::Mat& pattern_image);
 
   /// Captures kept so far (the views of Calibrate, in the order they were added).
   int captures_used() const { return static_cast<int>(views_.size()); }
 
-  /// The two-pass calibration of the captures used so far. Needs captures_used() >= 3
-  /// (std::invalid_argument otherwise).
+  /// The two-pass calibration of the captures used so far. Needs three of them with every
+  /// corner carried (std::invalid_argument otherwise).
   ModuleFromCapturesResult Calibrate() const;
 
  private:

@@ -24,6 +24,7 @@ void ProjectionResidual(const T* focal_centre, const T* k, const T* p,
 struct ReprojectionCost {
   Eigen::Vector3d board;
   Eigen::Vector2d observed;
+  double weight = 1.0;  ///< residual scale: 1 / the corners' noise (px) in a weighted problem
 
   template <typename T>
   bool operator()(const T* focal_centre, const T* k, const T* rotation, const T* translation,
@@ -33,6 +34,8 @@ struct ReprojectionCost {
     ceres::AngleAxisRotatePoint(rotation, point, p);
     for (int i = 0; i < 3; ++i) p[i] += translation[i];
     ProjectionResidual(focal_centre, k, p, observed, residual);
+    residual[0] *= weight;
+    residual[1] *= weight;
     return true;
   }
 };
@@ -42,6 +45,7 @@ struct ReprojectionCost {
 struct StereoReprojectionCost {
   Eigen::Vector3d board;
   Eigen::Vector2d observed;
+  double weight = 1.0;  ///< as ReprojectionCost's
 
   template <typename T>
   bool operator()(const T* focal_centre, const T* k, const T* view_rotation,
@@ -54,6 +58,8 @@ struct StereoReprojectionCost {
     ceres::AngleAxisRotatePoint(rotation, c, p);
     for (int i = 0; i < 3; ++i) p[i] += translation[i];
     ProjectionResidual(focal_centre, k, p, observed, residual);
+    residual[0] *= weight;
+    residual[1] *= weight;
     return true;
   }
 };

@@ -98,6 +98,10 @@ std::vector<std::string> AddCaptures(ModuleCalibrator& calibrator,
                  used[static_cast<std::size_t>(outcome.repeats)]);
       continue;
     }
+    if (outcome.corners_missing > 0) {
+      fmt::print("{}: {} of {} corners without enough decoded spots around them, used without\n",
+                 pose.string(), outcome.corners_missing, outcome.corners);
+    }
     used.push_back(pose.filename().string());
     bar.Update("calibrate module", static_cast<int>(used.size()), static_cast<int>(poses.size()),
                "poses");
