@@ -47,25 +47,6 @@ void HalveDoubledSteps(const std::vector<Spot>& spots, const Eigen::Vector2d& p,
     if (half[k] >= 2 && 2 * half[k] >= on) solution.row(k) *= 0.5;
 }
 
-// Share of the neighbours out to refine_ring_steps that `steps` places on the lattice (within
-// max_residual).
-double StartFitShare(const std::vector<Spot>& spots, const Eigen::Vector2d& p,
-                     std::pair<const int*, const int*> neighbours, const LatticeSteps& steps,
-                     const LatticeOptions& options) {
-  Eigen::Matrix2d basis;
-  basis << steps.row_step, steps.column_step;
-  if (std::abs(basis.determinant()) < 1e-9) return 0.0;
-  const Eigen::Matrix2d inverse = basis.inverse();
-  int on = 0, within = 0;
-  for (const int* it = neighbours.first; it != neighbours.second; ++it) {
-    const Eigen::Vector2d q = inverse * (spots[*it].centre_px - p);
-    if (q.cwiseAbs().maxCoeff() > options.refine_ring_steps + 0.5) continue;
-    ++within;
-    if ((q - Nearest(q)).norm() <= options.max_residual) ++on;
-  }
-  return within > 0 ? static_cast<double>(on) / within : 0.0;
-}
-
 // Refines the steps of one spot from its neighbours: assign integer offsets with the current
 // steps, then least squares for both steps, over refine_ring_steps rings; from a poor start
 // over the two nearest first (steps a tilt's 15 % off round a neighbour three pitches out to
@@ -74,28 +55,45 @@ LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
                     std::pair<const int*, const int*> neighbours, LatticeSteps steps,
                     const LatticeSteps& predicted, const LatticeOptions& options) {
   const Eigen::Vector2d& p = spots[spot].centre_px;
-  constexpr int kNearRings = 2;
+  const int near_rings = std::min(2, options.refine_ring_steps);
   constexpr double kGoodStartShare = 0.7;
-  // A start that fits most neighbours out to all rings (a neighbour's steps, mostly) is
-  // refined over all of them at once; a poor one (the module's prediction on a tilted board)
-  // over the two nearest rings first.
-  const bool near_first = StartFitShare(spots, p, neighbours, steps, options) < kGoodStartShare;
   for (int iteration = 0; iteration < 3; ++iteration) {
-    const int rings = iteration == 0 && near_first ? std::min(kNearRings, options.refine_ring_steps)
-                                                   : options.refine_ring_steps;
     Eigen::Matrix2d basis;
     basis << steps.row_step, steps.column_step;
     const Eigen::Matrix2d inverse = basis.inverse();
+    // Normal equations over all rings and over the near ones; the share of the neighbours out
+    // to all rings that the current steps place on the lattice.
     Eigen::Matrix2d normal = Eigen::Matrix2d::Zero(), rhs = Eigen::Matrix2d::Zero();
-    int used = 0;
+    Eigen::Matrix2d near_normal = Eigen::Matrix2d::Zero(), near_rhs = Eigen::Matrix2d::Zero();
+    int used = 0, near_used = 0, on = 0, within = 0;
     for (const int* it = neighbours.first; it != neighbours.second; ++it) {
       const Eigen::Vector2d d = spots[*it].centre_px - p;
-      const Eigen::Vector2d ij = Nearest(inverse * d);
-      if (ij.isZero() || ij.cwiseAbs().maxCoeff() > rings) continue;
-      if ((inverse * d - ij).norm() > options.max_residual) continue;
+      const Eigen::Vector2d q = inverse * d;
+      const Eigen::Vector2d ij = Nearest(q);
+      const double ring = ij.cwiseAbs().maxCoeff();
+      const bool fits = (q - ij).norm() <= options.max_residual;
+      if (q.cwiseAbs().maxCoeff() <= options.refine_ring_steps + 0.5) {
+        ++within;
+        on += fits ? 1 : 0;
+      }
+      if (ij.isZero() || ring > options.refine_ring_steps || !fits) continue;
       normal += ij * ij.transpose();
       rhs += ij * d.transpose();
       ++used;
+      if (ring > near_rings) continue;
+      near_normal += ij * ij.transpose();
+      near_rhs += ij * d.transpose();
+      ++near_used;
+    }
+    // A start that fits most neighbours out to all rings (a neighbour's steps, mostly) is
+    // refined over all of them at once; a poor one (the module's prediction on a tilted
+    // board) over the near rings first.
+    int rings = options.refine_ring_steps;
+    if (iteration == 0 && on < kGoodStartShare * within) {
+      rings = near_rings;
+      normal = near_normal;
+      rhs = near_rhs;
+      used = near_used;
     }
     if (used < 2 || std::abs(normal.determinant()) < 1e-9) break;
     Eigen::Matrix2d solution = normal.ldlt().solve(rhs);  // rows: row_step, column_step
