@@ -118,8 +118,9 @@ Command AddSimulateCommand(CLI::App& app) {
   frame->add_flag("--ideal", args->ideal, "No noise, defocus, ambient light or vignetting");
   frame
       ->add_option("--realism", args->realism,
-                   "Error sources of a real projector and wall: ideal (none) or paper (spot "
-                   "placement and power, laser speckle: the paper's accuracy)")
+                   "Error sources of a real module and wall: ideal (none) or paper (spot "
+                   "placement and power, speckle, lens residual, wall relief, subsurface "
+                   "scattering, calibration error: the paper's accuracy)")
       ->capture_default_str()
       ->check(CLI::IsMember({"ideal", "paper"}));
   AddRunCommand(*sim, *run_args);
