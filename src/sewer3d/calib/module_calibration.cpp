@@ -28,7 +28,7 @@ std::vector<std::optional<Eigen::Vector2d>> CornersInProjector(
   if (o.camera) {
     camera.emplace(*o.camera);
     projector.emplace(*o.projector);
-    threshold = threshold / o.projector->fx;
+    threshold = o.ransac_px / o.projector->fx;
   }
   const auto to_fit = [](const std::optional<CameraModel>& model,
                          const Eigen::Vector2d& px) -> std::optional<Eigen::Vector2d> {
@@ -156,17 +156,9 @@ void AddStereoResiduals(ceres::Problem& problem, const std::vector<ModuleCalibra
 // wrong label carries it consistently): projector corners whose residual exceeds five times
 // the projector RMS (at least 2 px) are dropped. Returns how many.
 int DropProjectorOutliers(std::vector<ModuleCalibrationView>& views,
-                          const std::vector<Eigen::Vector3d>& board, const StereoParameters& x) {
-  double sum = 0.0;
-  int count = 0;
-  for (size_t v = 0; v < views.size(); ++v) {
-    for (size_t i = 0; i < board.size(); ++i) {
-      if (!views[v].projector_corners[i].allFinite()) continue;
-      sum += x.ProjectorResidual(board[i], views[v].projector_corners[i], v).squaredNorm();
-      ++count;
-    }
-  }
-  const double limit = std::max(2.0, 5.0 * std::sqrt(sum / std::max(1, count)));
+                          const std::vector<Eigen::Vector3d>& board, const StereoParameters& x,
+                          double projector_rms_px) {
+  const double limit = std::max(2.0, 5.0 * projector_rms_px);
   int dropped = 0;
   for (size_t v = 0; v < views.size(); ++v) {
     for (size_t i = 0; i < board.size(); ++i) {
@@ -252,8 +244,11 @@ ModuleCalibrationResult CalibrateModule(const std::vector<ModuleCalibrationView>
     ceres::Problem attempt;
     AddStereoResiduals(attempt, kept, board, x, camera_noise, projector_noise);
     std::tie(r.iterations, r.converged) = SolveCalibration(attempt, 200);
-    const int dropped = round == 3 ? 0 : DropProjectorOutliers(kept, board, x);
     SetResiduals(kept, board, x, r, camera_total, projector_total, projector_points);
+    const int dropped = round == 3 ? 0 : DropProjectorOutliers(kept, board, x, r.projector_rms_px);
+    // The weights of the next round from the corners it keeps.
+    if (dropped > 0)
+      SetResiduals(kept, board, x, r, camera_total, projector_total, projector_points);
     const bool settled = std::abs(r.projector_rms_px / projector_noise - 1.0) < 0.1 &&
                          std::abs(r.camera_rms_px / camera_noise - 1.0) < 0.1;
     camera_noise = std::max(kMinNoisePx, r.camera_rms_px);
