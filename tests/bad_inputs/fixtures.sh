@@ -167,6 +167,17 @@ python3 -c "import sys; t = open('m/module.json').read(); open('m/nul.json', 'w'
 json_with frame8/scene.json scene_psf_huge.json 'render.projector_psf_px=1e6'
 json_with fpw/scene.json scene_joint_offset.json 'scene.features.0.offset_mm=1000'
 json_with fpw/scene.json scene_axis_big.json 'scene.axis=[0,1e308,1e308]'
+# Probe 23: a realism profile beside every member it sets (a written file); members named as
+# the file spells them; per-shot members in a scenario's render; unknown scene members.
+json_with frame8/scene.json scene_realism_dead.json 'render.realism="paper"'
+json_with frame8/scene.json scene_gain_neg.json 'render.spot_gain_sigma=-1'
+json_with frame8/scene.json scene_wavelength.json 'render.speckle_wavelength_nm=0'
+json_with frame8/scene.json scene_centre_neg.json 'render.calibration_centre_px=-1'
+json_with frame8/scene.json scene_top_bits.json 'bits=12'
+json_with frame8/scene.json scene_tilt_typo.json 'scene.tilt_degs=30'
+printf '{"type": "plane", "distance_mm": 150, "realism": "paper"}' >scene_top_realism.json
+scenario_with scenario_render_speed.json 'render={"speed_mm_s": 100}'
+scenario_with scenario_render_exposure.json 'render={"exposure_ms": 5}'
 mkfifo pfifo.json
 mkdir -p rfifo && mkfifo rfifo/report.json
 printf 'VERTEX_SE3:QUAT 0 1e300 0 0 0 0 0 1\nFIX 0\n' >far.g2o

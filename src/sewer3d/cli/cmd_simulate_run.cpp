@@ -13,6 +13,7 @@
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/sim/spot_errors.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
 #include "sewer3d/simio/simulate_run.hpp"
 
@@ -34,6 +35,10 @@ CLI::App* AddRunCommand(CLI::App& sim, RunArgs& a) {
   run->add_option("--supersampling", a.supersampling,
                   "S x S samples per pixel (overrides the scenario's)")
       ->check(CLI::Range(1, 16));
+  run->add_option("--realism", a.realism,
+                  "Error sources of real modules and walls, over the scenario's: ideal (none) or "
+                  "paper (the scenarios' default: docs/simulator.md, \"Error sources\")")
+      ->check(CLI::IsMember({"ideal", "paper"}));
   run->add_flag("--quiet", a.quiet, "No progress bar");
   run->add_flag("--allow-large", a.allow_large,
                 "Run even when the plan exceeds 200 000 images, 20 M odometry rows or the free "
@@ -49,6 +54,7 @@ int RunRun(const RunArgs& a) {
   Scenario s = a.scenario.empty() ? PresetScenario(a.preset) : ReadScenario(a.scenario);
   if (a.seed != 0) s.seed = a.seed;
   if (a.supersampling != 0) s.render.supersampling = a.supersampling;
+  if (!a.realism.empty()) s.render.spot_errors = *RealismProfile(a.realism);
   std::filesystem::path module_file = a.module;
   if (module_file.empty() && !s.module_file.empty()) {
     module_file = std::filesystem::path(a.scenario).parent_path() / s.module_file;

@@ -51,6 +51,7 @@ struct RunArgs {
   std::string scenario, preset, out, module;
   std::uint64_t seed = 0;
   int supersampling = 0;
+  std::string realism;  ///< RealismProfile over the scenario's error sources
   bool quiet = false;
   bool allow_large = false;  ///< skip CheckRunFits
 };

@@ -305,9 +305,11 @@ RenderedFrame RenderFrame(const ModuleDescription& module, const BinaryArray& pa
 }
 
 RenderedFrame RenderFrame(const ModuleDescription& calibrated, const BinaryArray& pattern,
-                          const Surface& surface, const RenderOptions& o) {
+                          const Surface& surface, const RenderOptions& options) {
   calibrated.Check();
-  o.Check();
+  options.Check();
+  RenderOptions o = options;
+  o.spot_errors = AtCameraWidth(options.spot_errors, calibrated.camera.width);
   // The module file is the calibrated module; the scene is lit and seen by the actual one.
   const ModuleDescription module = ActualModule(calibrated, o.spot_errors);
   const Setup setup(module, pattern, surface, o);

@@ -50,6 +50,9 @@ Scenario Tiny() {
   s.motion.start_station_mm = 350.0;
   s.motion.travel_mm = 100.0;
   s.render.supersampling = 1;
+  // The tests' run: without the paper profile's error sources, so that their tolerances
+  // measure the stages and the renderer's truth is the wall seen by the module file's camera.
+  s.render.spot_errors = SpotErrors{};
   s.truth_depth = TruthDepth::kAll;
   s.truth_albedo = true;
   return s;
@@ -270,6 +273,12 @@ Eigen::Vector3d CameraWhiteBalance(const Scenario& scenario, int module) {
   const double sigma = scenario.white_balance_error;
   return {std::exp(sigma * HashNormal(scenario.seed, 0x3b, m)), 1.0,
           std::exp(sigma * HashNormal(scenario.seed, 0xbb, m))};
+}
+
+RenderOptions RunRenderDefaults() {
+  RenderOptions o;
+  o.spot_errors = *RealismProfile("paper");
+  return o;
 }
 
 const std::vector<std::string>& PresetNames() {

@@ -18,6 +18,11 @@ namespace sewer3d {
 
 enum class TruthDepth { kAll, kPattern, kNone };
 
+/// A run's render options unless its scenario says otherwise: the renderer's defaults with the
+/// `paper` realism profile's error sources (a simulated run errs as real captures do;
+/// "realism": "ideal" in a scenario's render options turns them off).
+RenderOptions RunRenderDefaults();
+
 struct Scenario {
   std::string name = "custom";
   std::uint64_t seed = 1;
@@ -30,7 +35,7 @@ struct Scenario {
   MotionOptions motion;
   CaptureOptions capture;
   OdometryOptions odometry;
-  RenderOptions render;
+  RenderOptions render = RunRenderDefaults();
   TruthDepth truth_depth = TruthDepth::kPattern;  ///< which images get a truth depth map
   /// Each module's camera white balance is off by gains exp(σ n) on R and B (n standard normal
   /// from the seed and the module, G = 1): σ = this (docs/simulated_run.md).
@@ -44,7 +49,9 @@ struct Scenario {
 Eigen::Vector3d CameraWhiteBalance(const Scenario& scenario, int module);
 
 const std::vector<std::string>& PresetNames();
-/// tiny: 648 × 486 images, DN300 concrete with a displaced joint, two acquisitions (tests);
+/// Every preset but tiny renders with the `paper` realism profile (RunRenderDefaults).
+/// tiny: 648 × 486 images, DN300 concrete with a displaced joint, two acquisitions (tests;
+/// realism ideal);
 /// compact: 648 × 486 images, DN300, 0.56 m of travel: concrete, displaced joint, intruding
 /// connection, then plastic (`sewer3d demo`); demo: full-size images, DN300, 1 m of travel:
 /// concrete, displaced joint, intruding connection, spalled patch, crack, then plastic; long: 10 m

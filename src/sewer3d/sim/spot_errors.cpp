@@ -24,9 +24,9 @@ std::uint64_t LatticeKey(int r, int c) {
 void SpotErrors::Check() const {
   // Beyond a pitch's worth the spots would cross their neighbours; beyond these the pattern is
   // no longer a pattern.
-  SEWER3D_VALIDATE(placement_sigma_px >= 0.0 && placement_sigma_px <= 2.0, "placement_sigma_px",
+  SEWER3D_VALIDATE(placement_sigma_px >= 0.0 && placement_sigma_px <= 2.0, "spot_placement_sigma_px",
                    "must be 0..2 projector px, got " << placement_sigma_px);
-  SEWER3D_VALIDATE(gain_sigma >= 0.0 && gain_sigma <= 0.5, "gain_sigma",
+  SEWER3D_VALIDATE(gain_sigma >= 0.0 && gain_sigma <= 0.5, "spot_gain_sigma",
                    "must be 0..0.5, got " << gain_sigma);
   SEWER3D_VALIDATE(speckle_contrast >= 0.0 && speckle_contrast <= 1.0, "speckle_contrast",
                    "must be 0..1, got " << speckle_contrast);
@@ -36,23 +36,25 @@ void SpotErrors::Check() const {
                    "must be 0..1 mm, got " << relief_mm);
   SEWER3D_VALIDATE(relief_scale_mm >= 0.05 && relief_scale_mm <= 50.0, "relief_scale_mm",
                    "must be 0.05..50 mm, got " << relief_scale_mm);
-  SEWER3D_VALIDATE(subsurface_mm >= 0.0 && subsurface_mm <= 2.0 && subsurface_plastic_mm >= 0.0 &&
-                       subsurface_plastic_mm <= 2.0,
-                   "subsurface_mm",
-                   "must be 0..2 mm, got " << subsurface_mm << " and " << subsurface_plastic_mm);
+  SEWER3D_VALIDATE(subsurface_mm >= 0.0 && subsurface_mm <= 2.0, "subsurface_mm",
+                   "must be 0..2 mm, got " << subsurface_mm);
+  SEWER3D_VALIDATE(subsurface_plastic_mm >= 0.0 && subsurface_plastic_mm <= 2.0,
+                   "subsurface_plastic_mm", "must be 0..2 mm, got " << subsurface_plastic_mm);
   // A calibration this far off is no calibration (the decoder's tile choice needs the
   // epipolar geometry to a few pixels).
-  SEWER3D_VALIDATE(calibration_focal_px >= 0.0 && calibration_focal_px <= 20.0 &&
-                       calibration_centre_px >= 0.0 && calibration_centre_px <= 20.0,
-                   "calibration_focal_px",
-                   "focal and centre sigmas must be 0..20 px, got "
-                       << calibration_focal_px << " and " << calibration_centre_px);
+  SEWER3D_VALIDATE(calibration_focal_px >= 0.0 && calibration_focal_px <= 20.0,
+                   "calibration_focal_px", "must be 0..20 px, got " << calibration_focal_px);
+  SEWER3D_VALIDATE(calibration_centre_px >= 0.0 && calibration_centre_px <= 20.0,
+                   "calibration_centre_px", "must be 0..20 px, got " << calibration_centre_px);
   SEWER3D_VALIDATE(calibration_baseline_mm >= 0.0 && calibration_baseline_mm <= 2.0,
                    "calibration_baseline_mm", "must be 0..2 mm, got " << calibration_baseline_mm);
   SEWER3D_VALIDATE(calibration_rotation_deg >= 0.0 && calibration_rotation_deg <= 1.0,
                    "calibration_rotation_deg",
                    "must be 0..1 deg, got " << calibration_rotation_deg);
-  SEWER3D_VALIDATE(wavelength_nm >= 300.0 && wavelength_nm <= 2000.0, "wavelength_nm",
+  SEWER3D_VALIDATE(reference_width_px == 0 || (reference_width_px >= 64 && reference_width_px <= 20000),
+                   "reference_width_px",
+                   "must be 0 (the module's own pixels) or 64..20000 px, got " << reference_width_px);
+  SEWER3D_VALIDATE(wavelength_nm >= 300.0 && wavelength_nm <= 2000.0, "speckle_wavelength_nm",
                    "must be 300..2000 nm, got " << wavelength_nm);
 }
 
@@ -79,6 +81,19 @@ std::optional<SpotErrors> RealismProfile(const std::string& name) {
   e.calibration_centre_px = 0.5;
   e.calibration_baseline_mm = 0.015;
   e.calibration_rotation_deg = 0.015;
+  // Pixels of the full-size module (2592 px): a smaller module errs by the same angles.
+  e.reference_width_px = 2592;
+  return e;
+}
+
+SpotErrors AtCameraWidth(const SpotErrors& errors, int camera_width) {
+  if (errors.reference_width_px <= 0) return errors;
+  const double scale = camera_width / static_cast<double>(errors.reference_width_px);
+  SpotErrors e = errors;
+  e.placement_sigma_px *= scale;
+  e.calibration_focal_px *= scale;
+  e.calibration_centre_px *= scale;
+  e.reference_width_px = 0;
   return e;
 }
 

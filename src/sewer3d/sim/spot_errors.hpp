@@ -55,6 +55,10 @@ struct SpotErrors {
   double calibration_baseline_mm = 0.0;
   double calibration_rotation_deg = 0.0;
   std::uint64_t projector_seed = 1;  ///< the projector's own (fixed per module)
+  /// 0: the px members are the rendered module's own pixels. > 0: they are pixels of a camera
+  /// this wide (a profile's, for the full-size module) and scale with the rendered module's
+  /// camera width, so that a reduced-size module errs by the same angles (AtCameraWidth).
+  int reference_width_px = 0;
   void Check() const;
   bool Any() const {
     return placement_sigma_px > 0.0 || gain_sigma > 0.0 || speckle_contrast > 0.0 ||
@@ -71,6 +75,11 @@ struct SpotErrors {
 /// wall whose errors match the accuracy the paper reports, docs/accuracy.md). nullopt for
 /// other names.
 std::optional<SpotErrors> RealismProfile(const std::string& name);
+
+/// `errors` for a module whose camera is `camera_width` px wide: the px members (placement,
+/// calibration focal length and principal point) scaled by camera_width / reference_width_px,
+/// reference_width_px then 0. Unchanged when reference_width_px is 0.
+SpotErrors AtCameraWidth(const SpotErrors& errors, int camera_width);
 
 /// The module's own errors of `errors` (placement, gain, speckle, lens residual): without the
 /// wall's (relief, subsurface scattering) and without calibration error. What checkerboard

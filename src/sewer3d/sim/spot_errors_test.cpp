@@ -30,6 +30,25 @@ TEST(SpotErrors, IdealIsNoErrorAtAll) {
   EXPECT_FALSE(RealismProfile("real").has_value());
 }
 
+// A profile's pixels are the full-size module's: a quarter-size module gets a quarter of
+// them (the same angles); the other members are physical and stay.
+TEST(SpotErrors, AProfileScalesItsPixelsToTheModulesWidth) {
+  const SpotErrors paper = *RealismProfile("paper");
+  EXPECT_EQ(paper.reference_width_px, 2592);
+  const SpotErrors quarter = AtCameraWidth(paper, 648);
+  EXPECT_DOUBLE_EQ(quarter.placement_sigma_px, paper.placement_sigma_px / 4.0);
+  EXPECT_DOUBLE_EQ(quarter.calibration_focal_px, paper.calibration_focal_px / 4.0);
+  EXPECT_DOUBLE_EQ(quarter.calibration_centre_px, paper.calibration_centre_px / 4.0);
+  EXPECT_EQ(quarter.calibration_baseline_mm, paper.calibration_baseline_mm);
+  EXPECT_EQ(quarter.relief_mm, paper.relief_mm);
+  EXPECT_EQ(quarter.reference_width_px, 0);
+  EXPECT_EQ(AtCameraWidth(paper, 2592).placement_sigma_px, paper.placement_sigma_px);
+  // Pixels of the module itself: unchanged at any width.
+  SpotErrors own;
+  own.placement_sigma_px = 0.3;
+  EXPECT_EQ(AtCameraWidth(own, 648).placement_sigma_px, 0.3);
+}
+
 TEST(SpotErrors, ElementPlacementAndGainHaveTheSpreadAsked) {
   SpotErrors e;
   e.placement_sigma_px = 0.3;

@@ -279,7 +279,19 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
                                 in.Number(slips[i], "length_mm", p, 0.0),
                                 in.Number(slips[i], "fraction", p, 0.0)});
   }
-  ReadRenderOptions(in, in.Object(j, "render", ""), "render.", s.render);
+  const json& render = in.Object(j, "render", "");
+  // What the run sets per shot is the scenario's to give, not the renderer's.
+  for (const auto& [key, where] : std::initializer_list<std::pair<const char*, const char*>>{
+           {"speed_mm_s", "motion.speed_mm_s"},
+           {"exposure_ms", "capture.exposure_ms"},
+           {"motion_direction", "the motion along the pipe (motion)"},
+           {"white_balance", "white_balance_error"},
+           {"truth_albedo", "truth_albedo"}}) {
+    if (render.contains(key))
+      in.Fail(std::string("render.") + key,
+              std::string("is set by the run for every shot; give it as ") + where);
+  }
+  ReadRenderOptions(in, render, "render.", s.render);
   s.truth_albedo = in.Bool(j, "truth_albedo", "", s.truth_albedo);
   s.white_balance_error = in.Number(j, "white_balance_error", "", s.white_balance_error);
   const std::string truth = in.Text(j, "truth_depth", "", "pattern");

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -52,6 +54,11 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
                         "a scene file (or a rendered frame's scene.json) has type plane, "
                         "cylinder or pipe_wall");
   }
+  // A flat scene file carries its render options, seed and module beside the geometry.
+  in.OnlyKnown(j, "",
+               {"type", "material", "material_seed", "distance_mm", "tilt_deg", "diameter_mm",
+                "axis", "axis_point_mm", "features", "render", "seed", "module",
+                "depth_range_mm"});
   const std::string type = in.Text(j, "type", "", "");
   if (type == "plane")
     s.type = Scene::Type::kPlane;
@@ -120,7 +127,14 @@ Scene ReadScene(const std::filesystem::path& path) {
   try {
     const json doc = json::parse(text);
     if (doc.is_object() && doc.contains("scene")) {
-      if (!doc["scene"].is_object()) JsonReader(path).Fail("scene", "must be an object");
+      // A rendered frame's scene.json: the geometry under "scene", the rest beside it.
+      const JsonReader in(path);
+      if (!doc["scene"].is_object()) in.Fail("scene", "must be an object");
+      in.OnlyKnown(doc, "", {"scene", "render", "seed", "module", "depth_range_mm"});
+      for (const char* beside : {"render", "seed", "module", "depth_range_mm"}) {
+        if (doc["scene"].contains(beside))
+          in.Fail(std::string("scene.") + beside, "belongs beside \"scene\", not in it");
+      }
       return ParseScene(doc["scene"].dump(), path);
     }
   } catch (const json::exception&) {
@@ -319,8 +333,20 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
           {"calibration_centre_px", o.spot_errors.calibration_centre_px},
           {"calibration_baseline_mm", o.spot_errors.calibration_baseline_mm},
           {"calibration_rotation_deg", o.spot_errors.calibration_rotation_deg},
-          {"projector_seed", o.spot_errors.projector_seed}};
+          {"projector_seed", o.spot_errors.projector_seed},
+          {"reference_width_px", o.spot_errors.reference_width_px}};
 }
+
+namespace {
+
+// The members a realism profile sets.
+constexpr const char* kProfileMembers[] = {
+    "spot_placement_sigma_px", "spot_gain_sigma",       "speckle_contrast",
+    "lens_residual",           "relief_mm",             "subsurface_mm",
+    "subsurface_plastic_mm",   "calibration_focal_px",  "calibration_centre_px",
+    "calibration_baseline_mm", "calibration_rotation_deg"};
+
+}  // namespace
 
 void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std::string& p,
                        RenderOptions& o) {
@@ -363,7 +389,8 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
                 "calibration_centre_px",
                 "calibration_baseline_mm",
                 "calibration_rotation_deg",
-                "projector_seed"});
+                "projector_seed",
+                "reference_width_px"});
   o.supersampling = in.Integer(j, "supersampling", p, o.supersampling);
   o.sensor_width_mm = in.Number(j, "sensor_width_mm", p, o.sensor_width_mm);
   o.camera_f_number = ReadFNumber(in, j, "camera_f_number", p, o.camera_f_number);
@@ -391,11 +418,17 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
   const auto parsed = ParseColorFilter(filter);
   if (!parsed) in.Fail(p + "color_filter", "must be none or RGGB, got '" + filter + "'");
   o.sensor.color_filter = *parsed;
-  // A realism profile first, then any of its values given one by one.
+  // A realism profile first, then any of its values given beside it (in any order) over it.
   if (j.contains("realism")) {
     const std::string name = in.Text(j, "realism", p, "ideal");
     const auto profile = RealismProfile(name);
     if (!profile) in.Fail(p + "realism", "must be ideal or paper, got '" + name + "'");
+    const auto given = [&](const char* key) { return j.contains(key); };
+    if (std::all_of(std::begin(kProfileMembers), std::end(kProfileMembers), given)) {
+      in.Fail(p + "realism",
+              "has no effect: every error source '" + name + "' sets is also given beside it "
+              "(a written scene or scenario lists them all); remove those members, or realism");
+    }
     o.spot_errors = *profile;
   }
   SpotErrors& e = o.spot_errors;
@@ -414,6 +447,7 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
   e.calibration_rotation_deg =
       in.Number(j, "calibration_rotation_deg", p, e.calibration_rotation_deg);
   e.projector_seed = in.Seed(j, "projector_seed", p, e.projector_seed);
+  e.reference_width_px = in.Integer(j, "reference_width_px", p, e.reference_width_px);
 }
 
 }  // namespace sewer3d

@@ -197,13 +197,15 @@ TEST(ReconstructFrame, ThePaperRealismProfileCostsAccuracyNotPoints) {
   const Scene cylinder = DecentredDn300();
   const ModuleDescription module = testing::SmallDefaultModule(648);
   const Outcome ideal = ReconstructRender(module, cylinder, 5);
-  // The profile's spot scatter is set in projector pixels of the full-size module (0.6 px of
-  // an 8 px pitch); this quarter-size module keeps the pitch, so the same share of a pitch is
-  // four times the angle: about 0.4 mm of depth noise at 150 mm; its calibration error (half
-  // a pixel at the principal points) as well: a bent and scaled wall, 0.5 mm RMS on its own.
-  // A wrong element is a column of disparity off, 5.4 mm there: wrong beyond half of that.
-  const Outcome paper =
-      ReconstructRender(module, cylinder, 5, *RealismProfile("paper"), /*wrong_mm=*/2.7);
+  // The profile's pixel errors are the full-size module's (0.6 px of an 8 px pitch), scaled
+  // to a smaller module's width (AtCameraWidth). Taken as this quarter-size module's own
+  // pixels they are four times the angle, the decoder's hard case: about 0.4 mm of depth
+  // noise at 150 mm; its calibration error (half a pixel at the principal points) as well: a
+  // bent and scaled wall, 0.5 mm RMS on its own. A wrong element is a column of disparity off,
+  // 5.4 mm there: wrong beyond half of that.
+  SpotErrors hard = *RealismProfile("paper");
+  hard.reference_width_px = 0;
+  const Outcome paper = ReconstructRender(module, cylinder, 5, hard, /*wrong_mm=*/2.7);
   Record(paper);
   EXPECT_GT(paper.points, 0.9 * paper.spots);
   EXPECT_EQ(paper.wrong, 0);
