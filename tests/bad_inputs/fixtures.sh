@@ -176,6 +176,8 @@ json_with frame8/scene.json scene_centre_neg.json 'render.calibration_centre_px=
 json_with frame8/scene.json scene_top_bits.json 'bits=12'
 json_with frame8/scene.json scene_tilt_typo.json 'scene.tilt_degs=30'
 printf '{"type": "plane", "distance_mm": 150, "realism": "paper"}' >scene_top_realism.json
+# Stage outputs without workspace.json (removed, or copied in).
+mkdir -p ws_unrecorded/registration
 scenario_with scenario_render_speed.json 'render={"speed_mm_s": 100}'
 scenario_with scenario_render_exposure.json 'render={"exposure_ms": 5}'
 mkfifo pfifo.json

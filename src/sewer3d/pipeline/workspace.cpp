@@ -107,10 +107,32 @@ void CheckOutsideTheRun(const std::filesystem::path& folder,
   }
 }
 
+namespace {
+
+// Stage outputs without workspace.json: nothing records which run, options or version made
+// them, so no stage may resume from them or read them. What to say of them; empty if none.
+std::string UnrecordedOutputs(const std::filesystem::path& folder) {
+  std::string found;
+  for (const std::string& stage : WorkspaceStageOrder()) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(folder / OutputFolderName(stage), ec))
+      found += (found.empty() ? "" : ", ") + OutputFolderName(stage) + "/";
+  }
+  if (found.empty()) return "";
+  return "holds stage outputs (" + found +
+         ") but no workspace.json, so nothing records which run and options made them; choose "
+         "another --out, or remove those folders";
+}
+
+}  // namespace
+
 void CheckWorkspaceOfRun(const std::filesystem::path& folder,
                          const std::filesystem::path& run_folder) {
   const std::filesystem::path record = folder / "workspace.json";
-  if (!IsRegularFile(record)) return;
+  if (!IsRegularFile(record)) {
+    if (const std::string why = UnrecordedOutputs(folder); !why.empty()) throw FileError(folder, why);
+    return;
+  }
   const std::string recorded = ReadWorkspaceRecord(record).run, run = RunName(run_folder);
   if (recorded != run) throw FileError(record, "workspace of run " + recorded + ", not of " + run);
 }
@@ -164,6 +186,8 @@ Workspace::Workspace(const std::filesystem::path& folder, const std::filesystem:
       throw WorkspaceConflict(RecordFile().string() + ": workspace of run " + record_.run +
                               ", not of " + run + "; choose another --out");
     }
+  } else if (const std::string why = UnrecordedOutputs(folder_); !why.empty()) {
+    throw WorkspaceConflict(folder_.string() + ": " + why);
   }
   record_.run = run;
   record_.software_version = SoftwareVersion();

@@ -26,8 +26,9 @@ namespace sewer3d {
 struct CaptureRun;
 
 /// Throws FileError naming `folder`/workspace.json when that workspace records another run
-/// than `run_folder` (an evaluation compares a workspace with its own run's truth only);
-/// nothing when it has no record.
+/// than `run_folder` (an evaluation compares a workspace with its own run's truth only), or
+/// naming `folder` when it holds stage outputs without a record (nothing says what made them);
+/// nothing when it has neither.
 void CheckWorkspaceOfRun(const std::filesystem::path& folder,
                          const std::filesystem::path& run_folder);
 
@@ -69,7 +70,8 @@ class Workspace {
   /// Opens `folder` for the run at `run_folder`: takes the workspace's lock (FileError when
   /// another process holds it), removes temporaries a killed run left, reads
   /// `folder/workspace.json` when it exists (FileError when it is malformed; WorkspaceConflict
-  /// when it records another run), else starts a new record, written by the first BeginStage.
+  /// when it records another run), else starts a new record, written by the first BeginStage
+  /// (WorkspaceConflict when stage output folders are there without a record).
   Workspace(const std::filesystem::path& folder, const std::filesystem::path& run_folder);
   /// As above for the loaded `run`, and then checks the run's own files the stages were made
   /// from against the stamps workspace.json records (rig.json, its pattern matrices and

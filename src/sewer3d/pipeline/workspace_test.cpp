@@ -220,6 +220,7 @@ TEST_F(WorkspaceTest, OneProcessAtATimeAndStaleTemporariesAreRemoved) {
   std::optional<Workspace> first;
   first.emplace(dir_ / "ws", dir_ / "run_a");
   EXPECT_THROW(Workspace(dir_ / "ws", dir_ / "run_a"), FileError);
+  first->BeginStage("rgbd", "{}", false);  // a stage records itself before it writes
   first.reset();  // the lock goes with the workspace (and with a killed process)
   fs::create_directories(dir_ / "ws" / "rgbd" / ".m0.tmp-12-3");
   std::ofstream(dir_ / "ws" / "rgbd" / ".m0.tmp-12-3" / "depth.tiff") << "partial";
@@ -229,6 +230,22 @@ TEST_F(WorkspaceTest, OneProcessAtATimeAndStaleTemporariesAreRemoved) {
   EXPECT_EQ(ws.stale_temporaries_removed(), 2);
   EXPECT_FALSE(fs::exists(dir_ / "ws" / "rgbd" / ".m0.tmp-12-3"));
   EXPECT_TRUE(fs::exists(dir_ / "ws" / "rgbd" / "kept.txt"));
+}
+
+// Stage outputs without workspace.json (removed, or folders copied in): nothing says which run
+// and options made them, so no stage resumes from them and no evaluation reads them.
+TEST_F(WorkspaceTest, StageOutputsWithoutARecordAreRefused) {
+  fs::create_directories(dir_ / "ws" / "model");
+  try {
+    const Workspace ws(dir_ / "ws", dir_ / "run_a");
+    ADD_FAILURE() << "opened";
+  } catch (const WorkspaceConflict& e) {
+    EXPECT_NE(std::string(e.what()).find("(model/) but no workspace.json"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(CheckWorkspaceOfRun(dir_ / "ws", dir_ / "run_a"), FileError);
+  fs::remove_all(dir_ / "ws" / "model");
+  EXPECT_NO_THROW(Workspace(dir_ / "ws", dir_ / "run_a"));
 }
 
 }  // namespace
