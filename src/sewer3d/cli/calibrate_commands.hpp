@@ -23,6 +23,16 @@ CLI::Option* AddBoardOption(CLI::App& sub, std::string& board);
 /// The --square-mm option (board square size): 0.1..1000 mm (a board OpenCV can use).
 CLI::Option* AddSquareOption(CLI::App& sub, double& square_mm);
 
+/// The captures' board.json (`simulate calibration` writes one) must agree with --board and
+/// --square-mm: another square size would scale every length of the module without a word.
+/// InvalidValue naming the flag; nothing when there is no board.json.
+void CheckBoardFile(const std::filesystem::path& captures, const BoardLayout& layout);
+
+/// The calibrated `module` must be valid and its baseline within 0.5–2 × the `nominal`
+/// module's: else InvalidValue naming --square-mm (every length scales with the square).
+void CheckCalibratedScale(const ModuleDescription& module, const ModuleDescription& nominal,
+                          double square_mm);
+
 /// `sewer3d calibrate module` (docs/calibration.md), registered under `calibrate`.
 Command AddCalibrateModuleCommand(CLI::App& calibrate);
 

@@ -31,31 +31,13 @@ struct ModuleArgs {
   bool quiet = false;
 };
 
-// The captures' board.json (`simulate calibration` writes one) must agree with --board and
-// --square-mm: another square size would scale every length of the module without a word.
-void CheckBoardFile(const fs::path& captures, const BoardLayout& layout) {
-  const fs::path file = captures / "board.json";
-  if (!IsRegularFile(file)) return;
-  const BoardLayout written = ReadBoardLayout(file, layout);
-  const double square_mm = written.square_mm;
-  if (std::abs(square_mm - layout.square_mm) > 1e-6 * square_mm) {
-    throw InvalidValue(
-        "--square-mm",
-        fmt::format("{} mm, but {} says {} mm: every length of the module would "
-                    "be scaled by {:.3g}",
-                    layout.square_mm, file.string(), square_mm, layout.square_mm / square_mm));
-  }
-  const int cols = written.cols, rows = written.rows;
-  if (cols != layout.cols || rows != layout.rows) {
-    throw InvalidValue("--board", fmt::format("{}x{}, but {} says {}x{}", layout.cols, layout.rows,
-                                              file.string(), cols, rows));
-  }
-}
-
 int RunModule(const ModuleArgs& a) {
   const auto board_size = ParseSize(a.board);
   CheckFileNotInRunOrWorkspace(a.out, "--out");
   CheckOutputFile(a.out);  // before minutes of work
+  std::error_code ec;
+  if (!a.nominal.empty() && fs::equivalent(a.out, a.nominal, ec))
+    throw InvalidValue("--out", a.out + " is the --nominal module; write the calibration beside it");
   // pattern.png is written beside the module file: they must be two files.
   if (fs::path(a.out).filename() == "pattern.png")
     throw InvalidValue("--out", "names the module file (JSON), got " + a.out +
@@ -106,16 +88,7 @@ int RunModule(const ModuleArgs& a) {
     return 1;
   }
   ModuleDescription module = calibrated.module;
-  try {
-    module.Check();
-  } catch (const InvalidValue& e) {
-    // Every length of the estimate scales with the board's square: a baseline out of range
-    // is a wrong --square-mm far more often than a wrong module.
-    if (e.field().rfind("projector_from_camera", 0) != 0) throw;
-    throw InvalidValue("--square-mm", fmt::format("{:g} mm makes the calibrated module's {}: "
-                                                  "{}; is it the board's square size?",
-                                                  a.square_mm, e.field(), e.problem()));
-  }
+  CheckCalibratedScale(module, nominal.module, a.square_mm);
   module.pattern.matrix_path = "pattern.png";
   module.source_json.clear();
   SaveModule(a.out, module);
