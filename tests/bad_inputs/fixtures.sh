@@ -293,6 +293,9 @@ cp -r run_two run_blank
 white_png run_blank/images/m0/000000_pattern.png
 broken_run matrix_missing rig.json 'modules.0.module.pattern.matrix="nothing.png"'
 broken_run clock_pose rig.json 'modules.1.clock_h=12'
+# Probe 23: run.json's colour filter against colour images; odometry of one reading.
+broken_run filter_rggb run.json 'color_filter="RGGB"'
+mkdir -p ws_evaluation_cut/evaluation/model && printf '{"all": ' >ws_evaluation_cut/evaluation/model/evaluation.json
 cp -r run_two run_period_tiny
 json_with run_two/run.json run_period_tiny/run.json 'acquisition_period_s=1e-9'
 cp -r run_two run_exposure_s

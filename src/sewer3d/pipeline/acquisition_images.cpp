@@ -46,24 +46,46 @@ std::filesystem::path ExistingImageFile(const CaptureRun& run, const Acquisition
   return file;
 }
 
-// The size of the first of `images` (indices into the run's) that decodes, trying at most
-// kTries; nullopt when none does.
+// The first of `images` (indices into the run's) that decodes, trying at most kTries: its
+// size, channels and file; nullopt when none does.
+struct ReadableImage {
+  cv::Size size;
+  int channels = 0;
+  std::string file;
+};
 constexpr int kTries = 3;
 template <typename It>
-std::optional<std::pair<cv::Size, std::string>> FirstReadableSize(const CaptureRun& run, It begin,
-                                                                  It end) {
+std::optional<ReadableImage> FirstReadable(const CaptureRun& run, It begin, It end) {
   int tries = 0;
   for (It it = begin; it != end && tries < kTries; ++it) {
     const RunImage& image = run.images[*it];
     if (image.missing) continue;
     ++tries;
     try {
-      return std::make_pair(ReadImage(run.folder / image.file, cv::IMREAD_UNCHANGED).size(),
-                            image.file);
+      const cv::Mat decoded = ReadImage(run.folder / image.file, cv::IMREAD_UNCHANGED);
+      return ReadableImage{decoded.size(), decoded.channels(), image.file};
     } catch (const FileError&) {  // a bad image: its acquisition fails on its own
     }
   }
   return std::nullopt;
+}
+
+// run.json's color_filter against the first texture image that decodes: a raw mosaic has one
+// channel, a colour image three or four.
+void CheckColorFilterMatchesImages(const CaptureRun& run) {
+  std::vector<int> textures;
+  for (size_t i = 0; i < run.images.size(); ++i)
+    if (run.images[i].kind != ImageKind::kPattern) textures.push_back(static_cast<int>(i));
+  const auto first = FirstReadable(run, textures.begin(), textures.end());
+  if (!first) return;
+  const bool mosaic = run.info.color_filter != "none";
+  if (mosaic == (first->channels == 1)) return;
+  throw FileError(run.folder / "run.json",
+                  fmt::format("color_filter \"{}\" ({}), but the texture images have {} "
+                              "channel{} ({}): run.json does not match the images",
+                              run.info.color_filter,
+                              mosaic ? "raw one-channel mosaics" : "colour images",
+                              first->channels, first->channels == 1 ? "" : "s", first->file));
 }
 
 }  // namespace
@@ -73,20 +95,21 @@ void CheckRigMatchesImages(const CaptureRun& run) {
     std::vector<int> images;
     for (size_t i = 0; i < run.images.size(); ++i)
       if (run.images[i].module == static_cast<int>(k)) images.push_back(static_cast<int>(i));
-    const auto first = FirstReadableSize(run, images.begin(), images.end());
+    const auto first = FirstReadable(run, images.begin(), images.end());
     if (!first) continue;
-    const auto last = FirstReadableSize(run, images.rbegin(), images.rend());
+    const auto last = FirstReadable(run, images.rbegin(), images.rend());
     const CameraIntrinsics& camera = run.rig.modules[k].module.camera;
     const cv::Size expected(camera.width, camera.height);
-    if (first->first == expected || (last && last->first == expected)) continue;
-    std::string files = first->second;
-    if (last && last->second != first->second) files += " and " + last->second;
+    if (first->size == expected || (last && last->size == expected)) continue;
+    std::string files = first->file;
+    if (last && last->file != first->file) files += " and " + last->file;
     throw FileError(run.folder / "rig.json",
                     fmt::format("modules[{}].module.camera: {}x{} px, but module m{}'s images are "
                                 "{}x{} ({}): the rig does not match the images",
-                                k, camera.width, camera.height, k, first->first.width,
-                                first->first.height, files));
+                                k, camera.width, camera.height, k, first->size.width,
+                                first->size.height, files));
   }
+  CheckColorFilterMatchesImages(run);
 }
 
 std::filesystem::path AcquisitionImageFile(const CaptureRun& run, const Acquisition& a,

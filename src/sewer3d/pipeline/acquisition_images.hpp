@@ -20,7 +20,9 @@ std::filesystem::path AcquisitionImageFile(const CaptureRun& run, const Acquisit
 /// Checks that the rig describes the images: for each module, its first and last readable
 /// images (missing or undecodable ones are passed over: their acquisitions fail on their own)
 /// must have the size of its camera. Throws FileError naming rig.json and the module's camera
-/// when every one checked differs, since then the rig, not an image, is wrong.
+/// when every one checked differs, since then the rig, not an image, is wrong. Likewise run.json
+/// when its color_filter does not match the first texture image that decodes (a raw mosaic
+/// has one channel).
 void CheckRigMatchesImages(const CaptureRun& run);
 
 /// The pattern image, grey 8- or 16-bit as stored, the module's camera size.

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <chrono>
+#include <nlohmann/json.hpp>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/inspection_io.hpp"
@@ -96,6 +97,13 @@ ReportStageReport RunReportStage(const CaptureRun& run, Workspace& workspace, bo
                            "workspace); shown as it is now");
       in.notes.push_back(r.warnings.back());
     }
+  }
+  for (const EvaluationText& e : in.evaluations) {
+    const nlohmann::json j = nlohmann::json::parse(e.json, nullptr, false);
+    if (!j.is_discarded() && j.is_object()) continue;
+    r.warnings.push_back((ws / "evaluation" / e.name / "evaluation.json").string() +
+                         ": not a JSON object (damaged or cut short); its accuracy figures are "
+                         "left out of the report");
   }
   r.html = workspace.StageFolder("report") / "index.html";
   r.summary = WriteReport(in, r.html);

@@ -105,6 +105,28 @@ void ReadTotals(const std::filesystem::path& rgbd_folder, RgbdAcquisitionSummary
     for (const json& w : report["warnings"])
       if (w.is_string()) s.warnings.push_back(w.get<std::string>());
   }
+  const json deblur = report.value("color_steps", json::object()).value("deblur", json());
+  s.without_odometry = deblur.is_string() && deblur.get<std::string>().rfind("not done", 0) == 0;
+}
+
+// Acquisitions the colour pass could not deblur (no odometry reading around their time): the
+// summary says so, and one warning counts them.
+void NoteUndeblurred(RgbdStageReport& report) {
+  const auto n = std::count_if(report.results.begin(), report.results.end(),
+                               [](const RgbdAcquisitionSummary& s) { return s.without_odometry; });
+  if (n == 0) return;
+  const auto complete = std::count_if(report.results.begin(), report.results.end(),
+                                      [](const RgbdAcquisitionSummary& s) { return s.complete; });
+  report.warnings.push_back(fmt::format(
+      "{} of {} acquisitions not deblurred and their texture triplets mapped without motion: "
+      "odometry.csv gives no distance around their images' times",
+      n, complete));
+  const std::string said = "texture triplet: deblurred";
+  if (report.color_source.rfind(said, 0) == 0) {
+    report.color_source.replace(0, said.size(),
+                                fmt::format("{} (for {} of {}: no odometry for the others)", said,
+                                            complete - n, complete));
+  }
 }
 
 void Summarise(RgbdStageReport& report) {
@@ -342,6 +364,7 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
     ReadTotals(folder, s);
     for (const std::string& line : s.warnings) report.warnings.push_back(line);
   }
+  NoteUndeblurred(report);
   Summarise(report);
   report.seconds = SecondsSince(start);
   WriteTextFileAtomically(folder / "report.json", RgbdStageReportToJson(report));

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/ply_io.hpp"
@@ -267,6 +268,10 @@ TEST_F(RgbdStageTiny, BadImagesFailOnlyTheirAcquisition) {
   fs::resize_file(truncated, fs::file_size(truncated) / 2);
   const fs::path small = bad / "images" / (ImageStem(4, 0, ImageKind::kTextureBefore) + ".png");
   ASSERT_TRUE(cv::imwrite(small.string(), cv::Mat3b(100, 120, cv::Vec3b(50, 60, 70))));
+  // And odometry of one reading: no motion known at any image's time, so nothing deblurred.
+  const std::string odometry = ReadTextFile(bad / "odometry.csv");
+  const size_t second_row = odometry.find('\n', odometry.find('\n') + 1);
+  WriteTextFileAtomically(bad / "odometry.csv", odometry.substr(0, second_row + 1));
   const CaptureRun run = LoadRun(bad);
   Workspace ws(dir_ / "ws_bad", run.folder);
   RgbdStageOptions options;
@@ -288,6 +293,12 @@ TEST_F(RgbdStageTiny, BadImagesFailOnlyTheirAcquisition) {
   const std::string json = ReadTextFile(dir_ / "ws_bad" / "rgbd" / "report.json");
   EXPECT_NE(json.find(truncated.string()), std::string::npos);
   EXPECT_FALSE(ReadWorkspaceRecord(dir_ / "ws_bad" / "workspace.json").stages.at("rgbd").done);
+  EXPECT_NE(report.color_source.find("deblurred (for 0 of 10: no odometry"), std::string::npos)
+      << report.color_source;
+  const auto said = std::find_if(report.warnings.begin(), report.warnings.end(), [](const auto& w) {
+    return w.find("10 of 10 acquisitions not deblurred") != std::string::npos;
+  });
+  EXPECT_NE(said, report.warnings.end());
 }
 
 }  // namespace
