@@ -33,7 +33,26 @@ RgbdFiles RgbdAcquisitionFiles(const std::filesystem::path& rgbd_folder, int mod
           folder / (s + "geometry.json"),     folder / (s + "report.json")};
 }
 
-bool RgbdAcquisitionDone(const RgbdFiles& files) { return IsRegularFile(files.report); }
+std::string RgbdDamagedFile(const RgbdFiles& files) {
+  if (!IsRegularFile(files.report)) return "";
+  // A report that does not parse is left to its reader, which names it.
+  const nlohmann::json report = nlohmann::json::parse(ReadTextFile(files.report), nullptr, false);
+  if (report.is_discarded() || !report.is_object() || !report.contains("file_bytes")) return "";
+  const nlohmann::json& sizes = report["file_bytes"];
+  if (!sizes.is_object()) return files.report.string();
+  for (const auto& [name, bytes] : sizes.items()) {
+    const std::filesystem::path file = files.report.parent_path() / name;
+    std::error_code ec;
+    if (!IsRegularFile(file) || !bytes.is_number_unsigned() ||
+        std::filesystem::file_size(file, ec) != bytes.get<std::uintmax_t>() || ec)
+      return file.string();
+  }
+  return "";
+}
+
+bool RgbdAcquisitionDone(const RgbdFiles& files) {
+  return IsRegularFile(files.report) && RgbdDamagedFile(files).empty();
+}
 
 bool RgbdGeometryDone(const RgbdFiles& files) { return IsRegularFile(files.geometry); }
 
@@ -88,7 +107,13 @@ void WriteRgbdColour(const RgbdFiles& files, const cv::Mat3b& color_bgr,
                      const std::string& report_json) {
   WriteFileAtomically(files.color, [&](const auto& t) { WriteImage(t, color_bgr); });
   WriteFileAtomically(files.cloud, [&](const auto& t) { WritePly(t, points, colours); });
-  WriteTextFileAtomically(files.report, report_json);
+  nlohmann::json report = nlohmann::json::parse(report_json);
+  for (const std::filesystem::path* file : {&files.depth, &files.color, &files.cloud}) {
+    std::error_code ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(*file, ec);
+    if (!ec) report["file_bytes"][file->filename().string()] = bytes;
+  }
+  WriteTextFileAtomically(files.report, report.dump(2) + "\n");
 }
 
 }  // namespace sewer3d

@@ -32,8 +32,13 @@ struct RgbdFiles {
 };
 RgbdFiles RgbdAcquisitionFiles(const std::filesystem::path& rgbd_folder, int module, int counter);
 
-/// True when the acquisition's report exists, i.e. it was finished by an earlier run.
+/// True when the acquisition's report exists, i.e. it was finished by an earlier run, and the
+/// depth map, colour image and cloud still have the sizes it recorded (`file_bytes`).
 bool RgbdAcquisitionDone(const RgbdFiles& files);
+/// The first file of a finished acquisition whose size is not the one its report recorded
+/// (cut short or replaced since: a copy broken off, a full disk); empty when none is, or when
+/// the acquisition is not finished.
+std::string RgbdDamagedFile(const RgbdFiles& files);
 /// True when the geometry pass finished the acquisition (its geometry report exists).
 bool RgbdGeometryDone(const RgbdFiles& files);
 

@@ -92,7 +92,9 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
   for (const Acquisition& a : acquisitions) {
     const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter);
     if (!RgbdGeometryDone(files)) continue;
-    const std::string changed = WhyRedo(run, files);
+    std::string changed = WhyRedo(run, files);
+    if (const std::string damaged = RgbdDamagedFile(files); changed.empty() && !damaged.empty())
+      changed = damaged + " cut short or replaced";
     if (changed.empty() && ColourLost(files)) {
       std::error_code ec;
       std::filesystem::remove(files.report, ec);
@@ -116,7 +118,7 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
 bool RgbdUpToDate(const CaptureRun& run, const std::filesystem::path& rgbd_folder) {
   for (const Acquisition& a : GroupAcquisitions(run.images)) {
     const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter);
-    if (!RgbdGeometryDone(files) || !IsRegularFile(files.report)) return false;
+    if (!RgbdGeometryDone(files) || !RgbdAcquisitionDone(files)) return false;
     if (!WhyRedo(run, files).empty() || ColourLost(files)) return false;
   }
   return true;
@@ -133,7 +135,7 @@ std::string RgbdBehind(const CaptureRun& run, const Workspace& workspace) {
   const std::set<std::pair<int, int>> left_out = LeftOut(folder / "report.json");
   for (const Acquisition& a : GroupAcquisitions(run.images)) {
     const RgbdFiles files = RgbdAcquisitionFiles(folder, a.module, a.counter);
-    const bool current = RgbdGeometryDone(files) && IsRegularFile(files.report) &&
+    const bool current = RgbdGeometryDone(files) && RgbdAcquisitionDone(files) &&
                          !ColourLost(files) && WhyRedo(run, files).empty();
     if (current || left_out.count({a.module, a.counter}) > 0) continue;
     return fmt::format(

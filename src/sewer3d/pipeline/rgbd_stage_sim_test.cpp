@@ -203,6 +203,10 @@ TEST_F(RgbdStageTiny, ARunAgainSkipsEverythingAndLostOutputsAreRedone) {
   const RgbdFiles m1 = RgbdAcquisitionFiles(ws_folder / "rgbd", 1, 0);
   fs::remove(m1.geometry);
   fs::remove(m1.report);
+  // And a fifth's cloud cut short (its report stays): the sizes its report recorded tell.
+  const RgbdFiles m4 = RgbdAcquisitionFiles(ws_folder / "rgbd", 4, 1);
+  fs::resize_file(m4.cloud, fs::file_size(m4.cloud) / 2);
+  EXPECT_EQ(RgbdDamagedFile(m4), m4.cloud.string());
   // A temporary left by a killed writer is removed when the workspace is opened again.
   const fs::path stale = ws_folder / "rgbd" / "m2" / ".000000_color.png.tmp-999-0.png";
   std::ofstream(stale) << "partial";
@@ -210,10 +214,12 @@ TEST_F(RgbdStageTiny, ARunAgainSkipsEverythingAndLostOutputsAreRedone) {
   EXPECT_EQ(reopened.stale_temporaries_removed(), 1);
   EXPECT_FALSE(fs::exists(stale));
   again = RunRgbdStage(run_, reopened, options);
-  EXPECT_EQ(again.done, 4);
-  EXPECT_EQ(again.skipped, 8);
+  EXPECT_EQ(again.done, 5);
+  EXPECT_EQ(again.skipped, 7);
   EXPECT_EQ(again.failed, 0);
   EXPECT_EQ(again.results[2].geometry.status, RgbdAcquisitionResult::Status::kDone);  // m1 c0
+  EXPECT_EQ(again.results[9].geometry.status, RgbdAcquisitionResult::Status::kDone);  // m4 c1
+  EXPECT_EQ(RgbdDamagedFile(m4), "");
   EXPECT_EQ(again.results[1].geometry.status, RgbdAcquisitionResult::Status::kSkipped);
   EXPECT_TRUE(fs::exists(m5.color));
   EXPECT_TRUE(fs::exists(m5.report));

@@ -163,7 +163,8 @@ namespace {
 // The outputs a later stage reads, by stage (paths relative to the workspace).
 std::vector<std::string> KeyOutputs(const std::string& stage) {
   if (stage == "register") return {"registration/poses.csv"};
-  if (stage == "model") return {"model/model.json"};
+  // Not the large maps: a stamp reads its file whole (displacement.tiff is GBs on a long run).
+  if (stage == "model") return {"model/model.json", "model/coverage.png"};
   if (stage == "inspect") return {"inspection/observations.json"};
   return {};
 }
