@@ -56,10 +56,14 @@ NominalModule LoadNominal(const std::string& nominal_file, const std::filesystem
                           const cv::Size& size);
 
 /// Adds every pose's captures (progress bar unless quiet); returns the names of the poses
-/// used, and prints why each other one was skipped (`board`: the --board text).
-std::vector<std::string> AddCaptures(ModuleCalibrator& calibrator,
-                                     const std::vector<std::filesystem::path>& poses,
-                                     const cv::Size& size, const std::string& board, bool quiet);
+/// used and how many repeated an earlier one, and prints why each other one was skipped
+/// (`board`: the --board text).
+struct CaptureTally {
+  std::vector<std::string> used;  ///< pose folder names used, in order
+  int repeated = 0;               ///< poses skipped as a repeat of one used before
+};
+CaptureTally AddCaptures(ModuleCalibrator& calibrator, const std::vector<std::filesystem::path>& poses,
+                         const cv::Size& size, const std::string& board, bool quiet);
 
 /// The estimate with its uncertainties and each used pose's reprojection RMS.
 void PrintModuleCalibration(const ModuleCalibrationResult& r, const std::vector<std::string>& used,

@@ -72,10 +72,10 @@ NominalModule LoadNominal(const std::string& nominal, const fs::path& first_imag
   return n;
 }
 
-std::vector<std::string> AddCaptures(ModuleCalibrator& calibrator,
-                                     const std::vector<fs::path>& poses, const cv::Size& size,
-                                     const std::string& board, bool quiet) {
-  std::vector<std::string> used;
+CaptureTally AddCaptures(ModuleCalibrator& calibrator, const std::vector<fs::path>& poses,
+                         const cv::Size& size, const std::string& board, bool quiet) {
+  CaptureTally tally;
+  std::vector<std::string>& used = tally.used;
   ProgressBar bar(quiet);
   for (const fs::path& pose : poses) {
     const cv::Mat texture = ReadImage(pose / "texture.png", cv::IMREAD_GRAYSCALE, kMaxCameraPixels);
@@ -96,6 +96,7 @@ std::vector<std::string> AddCaptures(ModuleCalibrator& calibrator,
     if (outcome.status == CaptureOutcome::Status::kRepeated) {
       fmt::print("{}: the board lies where it did in {}, skipped\n", pose.string(),
                  used[static_cast<std::size_t>(outcome.repeats)]);
+      ++tally.repeated;
       continue;
     }
     if (outcome.corners_missing > 0) {
@@ -106,7 +107,7 @@ std::vector<std::string> AddCaptures(ModuleCalibrator& calibrator,
     bar.Update("calibrate module", static_cast<int>(used.size()), static_cast<int>(poses.size()),
                "poses");
   }
-  return used;
+  return tally;
 }
 
 void PrintModuleCalibration(const ModuleCalibrationResult& r, const std::vector<std::string>& used,

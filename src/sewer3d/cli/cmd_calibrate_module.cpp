@@ -66,11 +66,16 @@ int RunModule(const ModuleArgs& a) {
   board_layout.square_mm = a.square_mm;
   CheckBoardFile(a.captures, board_layout);
   ModuleCalibrator calibrator(nominal.module, nominal.pattern, nominal.constraints, board_layout);
-  const std::vector<std::string> used = AddCaptures(calibrator, poses, size, a.board, a.quiet);
+  const CaptureTally tally = AddCaptures(calibrator, poses, size, a.board, a.quiet);
+  const std::vector<std::string>& used = tally.used;
   if (used.size() < 3) {
     const std::string hint =
-        a.nominal.empty() ? std::string("each skipped pose is named above")
-                          : "were these captures made with the --nominal module " + a.nominal + "?";
+        2 * static_cast<std::size_t>(tally.repeated) >= poses.size() - used.size()
+            ? fmt::format("{} poses repeat one used before: copies or links of one capture?",
+                          tally.repeated)
+        : a.nominal.empty()
+            ? std::string("each skipped pose is named above")
+            : "were these captures made with the --nominal module " + a.nominal + "?";
     fmt::print(stderr,
                "sewer3d: error: {} of {} poses usable; module calibration needs at least 3 ({})\n",
                used.size(), poses.size(), hint);

@@ -6,12 +6,14 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/evaluate_commands.hpp"
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/simeval/rgbd_evaluation.hpp"
@@ -21,31 +23,58 @@ namespace {
 
 // Evaluating outputs that workspace.json records as stale or not done judges an earlier run of
 // the stage, not the one the workspace now stands for: said on stderr, then evaluated.
-void WarnOfStageNotDone(const std::filesystem::path& workspace, const std::string& kind) {
+// The warning that the workspace records the evaluated stage as not done; empty when it is.
+std::string StageNotDone(const std::filesystem::path& workspace, const std::string& kind) {
   const std::string stage = kind == "registration" ? "register"
                             : kind == "inspection" ? "inspect"
                                                    : kind;
   const std::filesystem::path record_file = workspace / "workspace.json";
-  if (!std::filesystem::is_regular_file(record_file)) return;
+  if (!std::filesystem::is_regular_file(record_file)) return "";
   const WorkspaceRecord record = ReadWorkspaceRecord(record_file);
   const auto it = record.stages.find(stage);
-  if (it == record.stages.end() || it->second.done) return;
-  fmt::print(stderr,
-             "sewer3d: warning: {}: records the {} stage as {}: evaluating the outputs an earlier "
-             "run of it left (run `sewer3d process` to bring it up to date)\n",
-             record_file.string(), stage,
-             it->second.stale ? "stale" : "not done (failed or interrupted)");
+  if (it == record.stages.end() || it->second.done) return "";
+  return fmt::format(
+      "{}: records the {} stage as {}: evaluated the outputs an earlier run of it left (run "
+      "`sewer3d process` to bring it up to date)",
+      record_file.string(), stage, it->second.stale ? "stale" : "not done (failed or interrupted)");
+}
+
+struct Args {
+  std::string surface, cloud, truth, run, workspace, out;
+  int smoothing_px = RgbdEvaluationOptions{}.colour_smoothing_px;
+  int stride = 0;
+  double inner_fraction = 0.5;
+};
+
+// An evaluation of a workspace's stage against its run's truth.
+int EvaluateWorkspace(const Args& a) {
+  if (a.run.empty() || a.workspace.empty())
+    throw InvalidValue("--run, --workspace", "evaluate " + a.surface + " needs both");
+  CheckWorkspaceOfRun(a.workspace, a.run);
+  if (!a.out.empty()) CheckOutsideTheRun(a.out, a.run, "the evaluation's folder (--out)");
+  // Not while a stage writes the workspace (half-written outputs), nor two evaluations at once
+  // (they write WS/evaluation).
+  std::optional<FolderLock> lock;
+  std::error_code ec;
+  if (std::filesystem::is_directory(a.workspace, ec)) lock.emplace(a.workspace);
+  const std::string warning = StageNotDone(a.workspace, a.surface);
+  int rc = 0;
+  if (a.surface == "rgbd")
+    rc = RunEvaluateRgbd(a.run, a.workspace, a.out, a.smoothing_px);
+  else if (a.surface == "registration")
+    rc = RunEvaluateRegistration(a.run, a.workspace, a.out);
+  else if (a.surface == "model")
+    rc = RunEvaluateModel(a.run, a.workspace, a.out, a.stride);
+  else
+    rc = RunEvaluateInspection(a.run, a.workspace, a.out);
+  // After the result, so that a failure stays one line.
+  if (!warning.empty()) fmt::print(stderr, "sewer3d: warning: {}\n", warning);
+  return rc;
 }
 
 }  // namespace
 
 Command AddEvaluateCommand(CLI::App& app) {
-  struct Args {
-    std::string surface, cloud, truth, run, workspace, out;
-    int smoothing_px = RgbdEvaluationOptions{}.colour_smoothing_px;
-    int stride = 0;
-    double inner_fraction = 0.5;
-  };
   auto args = std::make_shared<Args>();
   CLI::App* sub =
       app.add_subcommand("evaluate",
@@ -99,32 +128,7 @@ Command AddEvaluateCommand(CLI::App& app) {
                 throw InvalidValue(name, "does not apply to evaluate " + args->surface);
               }
             }
-            if (of_workspace && !args->run.empty() && !args->workspace.empty()) {
-              CheckWorkspaceOfRun(args->workspace, args->run);
-              WarnOfStageNotDone(args->workspace, args->surface);
-            }
-            if (of_workspace && !args->run.empty() && !args->out.empty())
-              CheckOutsideTheRun(args->out, args->run, "the evaluation's folder (--out)");
-            if (args->surface == "rgbd") {
-              if (args->run.empty() || args->workspace.empty())
-                throw InvalidValue("--run, --workspace", "evaluate rgbd needs both");
-              return RunEvaluateRgbd(args->run, args->workspace, args->out, args->smoothing_px);
-            }
-            if (args->surface == "registration") {
-              if (args->run.empty() || args->workspace.empty())
-                throw InvalidValue("--run, --workspace", "evaluate registration needs both");
-              return RunEvaluateRegistration(args->run, args->workspace, args->out);
-            }
-            if (args->surface == "model") {
-              if (args->run.empty() || args->workspace.empty())
-                throw InvalidValue("--run, --workspace", "evaluate model needs both");
-              return RunEvaluateModel(args->run, args->workspace, args->out, args->stride);
-            }
-            if (args->surface == "inspection") {
-              if (args->run.empty() || args->workspace.empty())
-                throw InvalidValue("--run, --workspace", "evaluate inspection needs both");
-              return RunEvaluateInspection(args->run, args->workspace, args->out);
-            }
+            if (of_workspace) return EvaluateWorkspace(*args);
             if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
             return RunEvaluateSurface(args->surface, args->cloud, args->truth,
                                       args->inner_fraction);
