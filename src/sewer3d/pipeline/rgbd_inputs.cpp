@@ -93,7 +93,9 @@ std::vector<std::string> ForgetChangedAcquisitions(const CaptureRun& run,
     const RgbdFiles files = RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter);
     if (!RgbdGeometryDone(files)) continue;
     std::string changed = WhyRedo(run, files);
-    if (const std::string damaged = RgbdDamagedFile(files); changed.empty() && !damaged.empty())
+    // A colour image removed is ColourLost's (below: only the colour is redone).
+    if (const std::string damaged = RgbdDamagedFile(files);
+        changed.empty() && !damaged.empty() && !ColourLost(files))
       changed = damaged + " cut short or replaced";
     if (changed.empty() && ColourLost(files)) {
       std::error_code ec;

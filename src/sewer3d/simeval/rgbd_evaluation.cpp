@@ -144,11 +144,21 @@ double DeltaE(const cv::Vec3f& a, const cv::Vec3d& ga, const cv::Vec3f& b, const
   return DeltaE2000(Lab(a, ga), Lab(b, gb));
 }
 
+// A finished acquisition whose files changed since is an error, not one to pass over.
+bool FinishedIntact(const fs::path& rgbd, const Acquisition& a) {
+  const RgbdFiles files = RgbdAcquisitionFiles(rgbd, a.module, a.counter);
+  if (const std::string damaged = RgbdDamagedFile(files); !damaged.empty()) {
+    throw FileError(damaged,
+                    "not the size the rgbd stage wrote (cut short or replaced since); run "
+                    "`sewer3d rgbd` to redo the acquisition");
+  }
+  return RgbdAcquisitionDone(files);
+}
+
 std::vector<Acquisition> Chosen(const CaptureRun& run, const fs::path& rgbd, int per_module) {
   std::map<int, std::vector<Acquisition>> complete;
   for (const Acquisition& a : GroupAcquisitions(run.images)) {
-    if (RgbdAcquisitionDone(RgbdAcquisitionFiles(rgbd, a.module, a.counter)))
-      complete[a.module].push_back(a);
+    if (FinishedIntact(rgbd, a)) complete[a.module].push_back(a);
   }
   std::vector<Acquisition> chosen;
   for (const auto& [module, list] : complete) {
@@ -357,7 +367,7 @@ RgbdEvaluation EvaluateRgbd(const CaptureRun& run, const fs::path& workspace,
     const int next = (a.module + 1) % modules;
     for (const Acquisition& b : GroupAcquisitions(run.images)) {
       if (b.module != next || b.counter != a.counter) continue;
-      if (!RgbdAcquisitionDone(RgbdAcquisitionFiles(rgbd, b.module, b.counter))) continue;
+      if (!FinishedIntact(rgbd, b)) continue;
       SeamPair(run, truth, rgbd, a, b, o, e, e.seams, sum_before, sum_after);
     }
   }
