@@ -215,6 +215,11 @@ python3 -c "import json; s = json.load(open('scenario_ok.json')); s['motion']['t
 s['camera_width'] = 648; s['rig'] = {'modules': 1}; s['render'] = {'supersampling': 1}; \
 json.dump(s, open('scenario_two.json', 'w'))"
 "$S" simulate run --scenario scenario_two.json --out run_two --quiet >/dev/null
+# The same with truth albedo, processed: an evaluation that succeeds (evaluate rgbd needs it).
+python3 -c "import json; s = json.load(open('scenario_two.json')); s['truth_albedo'] = True; \
+json.dump(s, open('scenario_two_albedo.json', 'w'))"
+"$S" simulate run --scenario scenario_two_albedo.json --out run_albedo --quiet >/dev/null
+"$S" rgbd run_albedo --out ws_albedo --quiet >/dev/null 2>&1
 cp -r run_two run_stuck
 cp run_stuck/images/m0/000000_pattern.png run_stuck/images/m0/000001_pattern.png
 cp -r run_two run_white
