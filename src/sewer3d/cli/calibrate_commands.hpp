@@ -62,8 +62,9 @@ struct CaptureTally {
   std::vector<std::string> used;  ///< pose folder names used, in order
   int repeated = 0;               ///< poses skipped as a repeat of one used before
 };
-CaptureTally AddCaptures(ModuleCalibrator& calibrator, const std::vector<std::filesystem::path>& poses,
-                         const cv::Size& size, const std::string& board, bool quiet);
+CaptureTally AddCaptures(ModuleCalibrator& calibrator,
+                         const std::vector<std::filesystem::path>& poses, const cv::Size& size,
+                         const std::string& board, bool quiet);
 
 /// The estimate with its uncertainties and each used pose's reprojection RMS.
 void PrintModuleCalibration(const ModuleCalibrationResult& r, const std::vector<std::string>& used,

@@ -37,7 +37,8 @@ int RunModule(const ModuleArgs& a) {
   CheckOutputFile(a.out);  // before minutes of work
   std::error_code ec;
   if (!a.nominal.empty() && fs::equivalent(a.out, a.nominal, ec))
-    throw InvalidValue("--out", a.out + " is the --nominal module; write the calibration beside it");
+    throw InvalidValue("--out",
+                       a.out + " is the --nominal module; write the calibration beside it");
   // pattern.png is written beside the module file: they must be two files.
   if (fs::path(a.out).filename() == "pattern.png")
     throw InvalidValue("--out", "names the module file (JSON), got " + a.out +

@@ -80,12 +80,12 @@ void CheckColorFilterMatchesImages(const CaptureRun& run) {
   if (!first) return;
   const bool mosaic = run.info.color_filter != "none";
   if (mosaic == (first->channels == 1)) return;
-  throw FileError(run.folder / "run.json",
-                  fmt::format("color_filter \"{}\" ({}), but the texture images have {} "
-                              "channel{} ({}): run.json does not match the images",
-                              run.info.color_filter,
-                              mosaic ? "raw one-channel mosaics" : "colour images",
-                              first->channels, first->channels == 1 ? "" : "s", first->file));
+  throw FileError(
+      run.folder / "run.json",
+      fmt::format("color_filter \"{}\" ({}), but the texture images have {} "
+                  "channel{} ({}): run.json does not match the images",
+                  run.info.color_filter, mosaic ? "raw one-channel mosaics" : "colour images",
+                  first->channels, first->channels == 1 ? "" : "s", first->file));
 }
 
 }  // namespace

@@ -123,9 +123,9 @@ void NoteUndeblurred(RgbdStageReport& report) {
       n, complete));
   const std::string said = "texture triplet: deblurred";
   if (report.color_source.rfind(said, 0) == 0) {
-    report.color_source.replace(0, said.size(),
-                                fmt::format("{} (for {} of {}: no odometry for the others)", said,
-                                            complete - n, complete));
+    report.color_source.replace(
+        0, said.size(),
+        fmt::format("{} (for {} of {}: no odometry for the others)", said, complete - n, complete));
   }
 }
 

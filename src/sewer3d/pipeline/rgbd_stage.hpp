@@ -53,7 +53,7 @@ struct RgbdAcquisitionSummary {
   long long spots = 0;             ///< complete: from its report
   long long points = 0;
   std::vector<std::string> warnings;  ///< complete: its inputs' problems, from its report
-  bool without_odometry = false;  ///< complete: not deblurred, no odometry at its time
+  bool without_odometry = false;      ///< complete: not deblurred, no odometry at its time
   /// The failure of this acquisition (geometry's, else colour's), or null.
   const RgbdAcquisitionResult* Failure() const;
 };

@@ -130,7 +130,8 @@ void CheckWorkspaceOfRun(const std::filesystem::path& folder,
                          const std::filesystem::path& run_folder) {
   const std::filesystem::path record = folder / "workspace.json";
   if (!IsRegularFile(record)) {
-    if (const std::string why = UnrecordedOutputs(folder); !why.empty()) throw FileError(folder, why);
+    if (const std::string why = UnrecordedOutputs(folder); !why.empty())
+      throw FileError(folder, why);
     return;
   }
   const std::string recorded = ReadWorkspaceRecord(record).run, run = RunName(run_folder);

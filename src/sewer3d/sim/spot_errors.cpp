@@ -24,7 +24,8 @@ std::uint64_t LatticeKey(int r, int c) {
 void SpotErrors::Check() const {
   // Beyond a pitch's worth the spots would cross their neighbours; beyond these the pattern is
   // no longer a pattern.
-  SEWER3D_VALIDATE(placement_sigma_px >= 0.0 && placement_sigma_px <= 2.0, "spot_placement_sigma_px",
+  SEWER3D_VALIDATE(placement_sigma_px >= 0.0 && placement_sigma_px <= 2.0,
+                   "spot_placement_sigma_px",
                    "must be 0..2 projector px, got " << placement_sigma_px);
   SEWER3D_VALIDATE(gain_sigma >= 0.0 && gain_sigma <= 0.5, "spot_gain_sigma",
                    "must be 0..0.5, got " << gain_sigma);
@@ -51,9 +52,10 @@ void SpotErrors::Check() const {
   SEWER3D_VALIDATE(calibration_rotation_deg >= 0.0 && calibration_rotation_deg <= 1.0,
                    "calibration_rotation_deg",
                    "must be 0..1 deg, got " << calibration_rotation_deg);
-  SEWER3D_VALIDATE(reference_width_px == 0 || (reference_width_px >= 64 && reference_width_px <= 20000),
-                   "reference_width_px",
-                   "must be 0 (the module's own pixels) or 64..20000 px, got " << reference_width_px);
+  SEWER3D_VALIDATE(
+      reference_width_px == 0 || (reference_width_px >= 64 && reference_width_px <= 20000),
+      "reference_width_px",
+      "must be 0 (the module's own pixels) or 64..20000 px, got " << reference_width_px);
   SEWER3D_VALIDATE(wavelength_nm >= 300.0 && wavelength_nm <= 2000.0, "speckle_wavelength_nm",
                    "must be 300..2000 nm, got " << wavelength_nm);
 }

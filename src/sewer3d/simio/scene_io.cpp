@@ -57,8 +57,7 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
   // A flat scene file carries its render options, seed and module beside the geometry.
   in.OnlyKnown(j, "",
                {"type", "material", "material_seed", "distance_mm", "tilt_deg", "diameter_mm",
-                "axis", "axis_point_mm", "features", "render", "seed", "module",
-                "depth_range_mm"});
+                "axis", "axis_point_mm", "features", "render", "seed", "module", "depth_range_mm"});
   const std::string type = in.Text(j, "type", "", "");
   if (type == "plane")
     s.type = Scene::Type::kPlane;
@@ -340,11 +339,17 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
 namespace {
 
 // The members a realism profile sets.
-constexpr const char* kProfileMembers[] = {
-    "spot_placement_sigma_px", "spot_gain_sigma",       "speckle_contrast",
-    "lens_residual",           "relief_mm",             "subsurface_mm",
-    "subsurface_plastic_mm",   "calibration_focal_px",  "calibration_centre_px",
-    "calibration_baseline_mm", "calibration_rotation_deg"};
+constexpr const char* kProfileMembers[] = {"spot_placement_sigma_px",
+                                           "spot_gain_sigma",
+                                           "speckle_contrast",
+                                           "lens_residual",
+                                           "relief_mm",
+                                           "subsurface_mm",
+                                           "subsurface_plastic_mm",
+                                           "calibration_focal_px",
+                                           "calibration_centre_px",
+                                           "calibration_baseline_mm",
+                                           "calibration_rotation_deg"};
 
 }  // namespace
 
@@ -426,8 +431,9 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
     const auto given = [&](const char* key) { return j.contains(key); };
     if (std::all_of(std::begin(kProfileMembers), std::end(kProfileMembers), given)) {
       in.Fail(p + "realism",
-              "has no effect: every error source '" + name + "' sets is also given beside it "
-              "(a written scene or scenario lists them all); remove those members, or realism");
+              "has no effect: every error source '" + name +
+                  "' sets is also given beside it "
+                  "(a written scene or scenario lists them all); remove those members, or realism");
     }
     o.spot_errors = *profile;
   }
