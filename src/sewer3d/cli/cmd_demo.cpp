@@ -77,8 +77,10 @@ int RunDemo(const DemoArgs& a) {
   const auto start = Clock::now();
   const fs::path dir = a.out, run = dir / "run", ws = dir / "ws";
   CheckDemoFolder(dir);
-  fmt::print("== simulate: the '{}' run (0.56 m of DN300, 648 x 486 images) into {}\n", kPreset,
-             run.string());
+  fmt::print(
+      "== simulate: the '{}' run (0.56 m of DN300, 648 x 486 images, errors of real modules: "
+      "realism paper) into {}\n",
+      kPreset, run.string());
   std::fflush(stdout);
   bool simulated = false;
   if (const int rc = SimulateUnlessDone(run, a, simulated); rc != 0) return rc;
