@@ -178,6 +178,11 @@ json_with frame8/scene.json scene_tilt_typo.json 'scene.tilt_degs=30'
 printf '{"type": "plane", "distance_mm": 150, "realism": "paper"}' >scene_top_realism.json
 # Stage outputs without workspace.json (removed, or copied in).
 mkdir -p ws_unrecorded/registration
+# Probe 24: an empty joint id; a scenario's camera_width beside --module's camera.
+python3 -c "import json; s = json.load(open('scenario_ok.json')); s['pipe'].setdefault('joints', [{}]); \
+s['pipe']['joints'][0]['id'] = ''; json.dump(s, open('joint_id_empty.json', 'w'))"
+python3 -c "import json; s = json.load(open('scenario_ok.json')); s['camera_width'] = 320; \
+json.dump(s, open('width_320.json', 'w'))"
 scenario_with scenario_render_speed.json 'render={"speed_mm_s": 100}'
 scenario_with scenario_render_exposure.json 'render={"exposure_ms": 5}'
 mkfifo pfifo.json

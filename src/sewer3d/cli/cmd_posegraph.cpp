@@ -27,8 +27,8 @@ std::optional<double> ParseRobust(const std::string& text) {
   const std::string number = text.substr(kPrefix.size());
   char* end = nullptr;
   const double delta = std::strtod(number.c_str(), &end);
-  if (number.empty() || *end != '\0' || !(delta > 0.0) || !std::isfinite(delta))
-    return std::nullopt;
+  // Below 1e-3 sigma the loss's gradient vanishes and the solver stops where it starts.
+  if (number.empty() || *end != '\0' || !(delta >= 1e-3) || !(delta <= 1e6)) return std::nullopt;
   return delta;
 }
 
@@ -55,7 +55,9 @@ Command AddPoseGraphCommand(CLI::App& app) {
                   "Robust loss on every edge, e.g. huber:1.0 (sigma units)")
       ->check(CLI::Validator(
           [](std::string& s) {
-            return ParseRobust(s) ? std::string() : "expected huber:DELTA > 0, got " + s;
+            return ParseRobust(s)
+                       ? std::string()
+                       : "expected huber:DELTA with DELTA 1e-3..1e6 (sigma units), got " + s;
           },
           "huber:DELTA"));
   sub->add_option("--max-iterations", args->options.max_iterations,

@@ -65,6 +65,13 @@ int RunRun(const RunArgs& a) {
     LoadedModule loaded = LoadModule(module_file);
     module = loaded.module;
     pattern = loaded.pattern;
+    if (!a.scenario.empty() && s.camera_width != module.camera.width) {
+      fmt::print(stderr,
+                 "sewer3d: warning: {}: camera_width {} not used: the module {} has its own "
+                 "camera, {} px wide\n",
+                 a.scenario, s.camera_width, module_file.string(), module.camera.width);
+      s.camera_width = module.camera.width;
+    }
     // RUN/truth/scenario.json reproduces the run: it names the module used (--module included),
     // from its own folder.
     std::error_code ec;

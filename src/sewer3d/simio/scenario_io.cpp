@@ -115,6 +115,7 @@ PipeWorld ReadWorld(const JsonReader& in, const json& j) {
                   "deflection_clock_h"});
     PipeJoint t;
     t.id = in.Text(o, "id", p, fmt::format("J{}", i + 1));
+    if (t.id.empty()) in.Fail(p + "id", "must not be empty (truth files name joints by id)");
     t.gap_mm = in.Number(o, "gap_mm", p, t.gap_mm);
     t.gap_depth_mm = in.Number(o, "gap_depth_mm", p, t.gap_depth_mm);
     t.offset_mm = in.Number(o, "offset_mm", p, t.offset_mm);
@@ -138,6 +139,7 @@ PipeWorld ReadWorld(const JsonReader& in, const json& j) {
       in.Fail(p + "type", "must be connection, spalling, crack or deposit, got '" + type + "'");
     f.type = *kind;  // PipeWorld::Check rejects the kinds only a pipe-wall scene takes
     f.id = in.Text(o, "id", p, fmt::format("F{}", i + 1));
+    if (f.id.empty()) in.Fail(p + "id", "must not be empty (truth files name features by id)");
     f.station_mm = in.Number(o, "station_mm", p, f.station_mm);
     f.clock_h = in.Number(o, "clock_h", p, f.type == PipeFeature::Type::kDeposit ? 6.0 : f.clock_h);
     f.diameter_mm = in.Number(o, "diameter_mm", p, 0.0);
