@@ -139,12 +139,13 @@ printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_SE3:QUAT 1 1 0 0 0 0 0 1\nVERTEX
 scenario_with crack_long.json 'pipe.features.0={"id": "K1", "type": "crack", "station_mm": 600, "clock_h": 3, "length_mm": 5000, "width_mm": 1, "depth_mm": 2}'
 scenario_with deposit_crown.json 'pipe.features.0={"id": "D1", "type": "deposit", "station_mm": 300, "clock_h": 12, "length_mm": 100, "height_mm": 10}'
 # Scene files: a frame's scene.json with its render options or features broken.
+scene_with() { json_with frame8/scene.json "$@"; }
 "$S" simulate frame --module m/module.json --scene pipe-wall --supersampling 1 --out fpw >/dev/null
-json_with frame8/scene.json scene_bits16.json 'render.bits=16'
-json_with frame8/scene.json scene_dist_tiny.json 'scene.distance_mm=0.001'
-json_with frame8/scene.json scene_f0.json 'render.camera_f_number=0'
-json_with frame8/scene.json scene_module_gone.json 'module="gone/module.json"'
-json_with frame8/scene.json scene_sensor_tiny.json 'render.sensor_width_mm=1e-6'
+scene_with scene_bits16.json 'render.bits=16'
+scene_with scene_dist_tiny.json 'scene.distance_mm=0.001'
+scene_with scene_f0.json 'render.camera_f_number=0'
+scene_with scene_module_gone.json 'module="gone/module.json"'
+scene_with scene_sensor_tiny.json 'render.sensor_width_mm=1e-6'
 json_with fpw/scene.json scene_type_plane.json 'scene.type="plane"'
 json_with fpw/scene.json scene_pit_deep.json 'scene.features.2.depth_mm=1e6'
 printf '{"type": "cylinder", "diameter_mm": 1e400}' >scene_overflow.json
@@ -164,25 +165,23 @@ json_with m/module.json m/k_huge.json 'camera.k=[1e10,0,0]'
 json_with m/module.json m/baseline_y.json "projector_from_camera.translation_mm=[0,-77.6,0]"
 json_with m/module.json m/fy_ten.json "camera.fy=4334"
 python3 -c "import sys; t = open('m/module.json').read(); open('m/nul.json', 'w').write(t[:100] + chr(0) + t[100:])"
-json_with frame8/scene.json scene_psf_huge.json 'render.projector_psf_px=1e6'
+scene_with scene_psf_huge.json 'render.projector_psf_px=1e6'
 json_with fpw/scene.json scene_joint_offset.json 'scene.features.0.offset_mm=1000'
 json_with fpw/scene.json scene_axis_big.json 'scene.axis=[0,1e308,1e308]'
 # Probe 23: a realism profile beside every member it sets (a written file); members named as
 # the file spells them; per-shot members in a scenario's render; unknown scene members.
-json_with frame8/scene.json scene_realism_dead.json 'render.realism="paper"'
-json_with frame8/scene.json scene_gain_neg.json 'render.spot_gain_sigma=-1'
-json_with frame8/scene.json scene_wavelength.json 'render.speckle_wavelength_nm=0'
-json_with frame8/scene.json scene_centre_neg.json 'render.calibration_centre_px=-1'
-json_with frame8/scene.json scene_top_bits.json 'bits=12'
-json_with frame8/scene.json scene_tilt_typo.json 'scene.tilt_degs=30'
+scene_with scene_realism_dead.json 'render.realism="paper"'
+scene_with scene_gain_neg.json 'render.spot_gain_sigma=-1'
+scene_with scene_wavelength.json 'render.speckle_wavelength_nm=0'
+scene_with scene_centre_neg.json 'render.calibration_centre_px=-1'
+scene_with scene_top_bits.json 'bits=12'
+scene_with scene_tilt_typo.json 'scene.tilt_degs=30'
 printf '{"type": "plane", "distance_mm": 150, "realism": "paper"}' >scene_top_realism.json
 # Stage outputs without workspace.json (removed, or copied in).
 mkdir -p ws_unrecorded/registration
 # Probe 24: an empty joint id; a scenario's camera_width beside --module's camera.
-python3 -c "import json; s = json.load(open('scenario_ok.json')); s['pipe'].setdefault('joints', [{}]); \
-s['pipe']['joints'][0]['id'] = ''; json.dump(s, open('joint_id_empty.json', 'w'))"
-python3 -c "import json; s = json.load(open('scenario_ok.json')); s['camera_width'] = 320; \
-json.dump(s, open('width_320.json', 'w'))"
+scenario_with joint_id_empty.json 'pipe.joints.0.id=""'
+scenario_with width_320.json 'camera_width=320'
 scenario_with scenario_render_speed.json 'render={"speed_mm_s": 100}'
 scenario_with scenario_render_exposure.json 'render={"exposure_ms": 5}'
 mkfifo pfifo.json

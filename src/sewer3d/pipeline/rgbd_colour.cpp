@@ -237,8 +237,11 @@ RgbdAcquisitionResult RgbdColourPass(const CaptureRun& run, const Acquisition& a
   return result;
 }
 
-std::string RgbdColorSource(const RgbdColourOptions& options) {
-  return std::string("texture triplet: ") + (options.deblur ? "deblurred" : "not deblurred") +
+std::string RgbdColorSource(const RgbdColourOptions& options, const std::string& deblur_note) {
+  const std::string deblur =
+      !options.deblur ? "not deblurred"
+                      : "deblurred" + (deblur_note.empty() ? "" : " (" + deblur_note + ")");
+  return "texture triplet: " + deblur +
          ", mapped to the pattern instant, shading and colour corrected" +
          (options.correction.space == CorrectionSpace::kLab ? " (in Lab)" : "");
 }

@@ -48,8 +48,9 @@ struct RgbdColourOptions {
 
 /// Where the colour of the RGB-D outputs comes from, in words, as workspace.json and the
 /// reports record it; by default "texture triplet: deblurred, mapped to the pattern instant,
-/// shading and colour corrected" ("not deblurred" with --no-deblur, "(in Lab)" for Lab).
-std::string RgbdColorSource(const RgbdColourOptions& options);
+/// shading and colour corrected" ("not deblurred" with --no-deblur, "(in Lab)" for Lab);
+/// `deblur_note`, when given, in brackets after "deblurred" (how many were not, and why).
+std::string RgbdColorSource(const RgbdColourOptions& options, const std::string& deblur_note = "");
 
 /// The colour options as recorded in workspace.json (a JSON object).
 std::string RgbdColourOptionsJson(const RgbdColourOptions& options);

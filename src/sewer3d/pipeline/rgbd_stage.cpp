@@ -111,7 +111,7 @@ void ReadTotals(const std::filesystem::path& rgbd_folder, RgbdAcquisitionSummary
 
 // Acquisitions the colour pass could not deblur (no odometry reading around their time): the
 // summary says so, and one warning counts them.
-void NoteUndeblurred(RgbdStageReport& report) {
+void NoteUndeblurred(const RgbdColourOptions& options, RgbdStageReport& report) {
   const auto n = std::count_if(report.results.begin(), report.results.end(),
                                [](const RgbdAcquisitionSummary& s) { return s.without_odometry; });
   if (n == 0) return;
@@ -121,12 +121,8 @@ void NoteUndeblurred(RgbdStageReport& report) {
       "{} of {} acquisitions not deblurred and their texture triplets mapped without motion: "
       "odometry.csv gives no distance around their images' times",
       n, complete));
-  const std::string said = "texture triplet: deblurred";
-  if (report.color_source.rfind(said, 0) == 0) {
-    report.color_source.replace(
-        0, said.size(),
-        fmt::format("{} (for {} of {}: no odometry for the others)", said, complete - n, complete));
-  }
+  report.color_source = RgbdColorSource(
+      options, fmt::format("for {} of {}: no odometry for the others", complete - n, complete));
 }
 
 void Summarise(RgbdStageReport& report) {
@@ -364,7 +360,7 @@ RgbdStageReport RunRgbdStage(const CaptureRun& run, Workspace& workspace,
     ReadTotals(folder, s);
     for (const std::string& line : s.warnings) report.warnings.push_back(line);
   }
-  NoteUndeblurred(report);
+  NoteUndeblurred(options.colour, report);
   Summarise(report);
   report.seconds = SecondsSince(start);
   WriteTextFileAtomically(folder / "report.json", RgbdStageReportToJson(report));

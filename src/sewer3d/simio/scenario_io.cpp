@@ -26,6 +26,19 @@ const char* TruthDepthName(TruthDepth t) {
   return "pattern";
 }
 
+// Render options the run sets for every shot, and the scenario member that gives each: not
+// written into a scenario's render, refused there.
+struct PerShotMember {
+  const char* key;
+  const char* given_as;
+};
+constexpr PerShotMember kPerShotMembers[] = {
+    {"speed_mm_s", "motion.speed_mm_s"},
+    {"exposure_ms", "capture.exposure_ms"},
+    {"motion_direction", "the motion along the pipe (motion)"},
+    {"white_balance", "white_balance_error"},
+    {"truth_albedo", "truth_albedo"}};
+
 json WorldJson(const PipeWorld& w) {
   json j;
   j["material_seed"] = w.material_seed;
@@ -199,9 +212,7 @@ std::string ScenarioToJson(const Scenario& s) {
                                       {"fraction", slip.fraction}});
   }
   json render = RenderOptionsToJson(s.render);
-  for (const char* per_shot :
-       {"speed_mm_s", "exposure_ms", "motion_direction", "white_balance", "truth_albedo"})
-    render.erase(per_shot);
+  for (const PerShotMember& m : kPerShotMembers) render.erase(m.key);
   j["render"] = render;
   j["truth_depth"] = TruthDepthName(s.truth_depth);
   j["truth_albedo"] = s.truth_albedo;
@@ -283,15 +294,10 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
   }
   const json& render = in.Object(j, "render", "");
   // What the run sets per shot is the scenario's to give, not the renderer's.
-  for (const auto& [key, where] : std::initializer_list<std::pair<const char*, const char*>>{
-           {"speed_mm_s", "motion.speed_mm_s"},
-           {"exposure_ms", "capture.exposure_ms"},
-           {"motion_direction", "the motion along the pipe (motion)"},
-           {"white_balance", "white_balance_error"},
-           {"truth_albedo", "truth_albedo"}}) {
-    if (render.contains(key))
-      in.Fail(std::string("render.") + key,
-              std::string("is set by the run for every shot; give it as ") + where);
+  for (const PerShotMember& m : kPerShotMembers) {
+    if (render.contains(m.key))
+      in.Fail(std::string("render.") + m.key,
+              std::string("is set by the run for every shot; give it as ") + m.given_as);
   }
   ReadRenderOptions(in, render, "render.", s.render);
   s.truth_albedo = in.Bool(j, "truth_albedo", "", s.truth_albedo);
