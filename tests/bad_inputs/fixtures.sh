@@ -181,7 +181,9 @@ printf '{"type": "plane", "distance_mm": 150, "realism": "paper"}' >scene_top_re
 mkdir -p ws_unrecorded/registration
 # Probe 24: an empty joint id; a scenario's camera_width beside --module's camera.
 scenario_with joint_id_empty.json 'pipe.joints.0.id=""'
-scenario_with width_320.json 'camera_width=320'
+# (a 160 px module and 10 mm of travel: the case renders, and the sanitizer build is slow)
+scenario_with width_320.json 'camera_width=320' 'motion.travel_mm=10'
+"$S" module --out m160 --camera-size 160x120 >/dev/null
 scenario_with scenario_render_speed.json 'render={"speed_mm_s": 100}'
 scenario_with scenario_render_exposure.json 'render={"exposure_ms": 5}'
 mkfifo pfifo.json
@@ -368,3 +370,15 @@ with open('chain_loop.g2o', 'w') as f:
     f.writelines('VERTEX_SE3:QUAT %d %d 0 0 0 0 0 1\n' % (i, 1000 * i) for i in range(12))
     f.writelines(edge % (i, i + k, 1000 * k) for k in (1, 2) for i in range(12 - k))
     f.write('FIX 0\n')"
+# Session 40: a scene feature placed by the scenario's clock_h or a misspelt member; a scene of
+# 1000 bumps (rendered in seconds: a bump ends 8 sigma from its centre).
+json_with fpw/scene.json scene_feature_clock_h.json 'scene.features=[{"type": "bump", "station_mm": 0, "clock_h": 2, "height_mm": 2, "radius_mm": 4}]'
+json_with fpw/scene.json scene_feature_typo.json 'scene.features=[{"type": "bump", "station_mm": 0, "height_mm": 2, "radius_sigma": 4}]'
+python3 -c "
+import json, random
+random.seed(1)
+bump = lambda: {'type': 'bump', 'station_mm': random.uniform(-60, 60),
+                'clock_deg': random.uniform(-180, 180), 'height_mm': random.uniform(0.5, 3),
+                'radius_mm': random.uniform(1, 6)}
+json.dump({'type': 'pipe_wall', 'features': [bump() for _ in range(1000)]},
+          open('scene_bumps_1000.json', 'w'))"

@@ -103,6 +103,7 @@ double PipeFeatureReachMm(const PipeFeature& f) {
     case PipeFeature::Type::kPit:
       return f.radius_mm;
     case PipeFeature::Type::kBump:
+      return kBumpReachSigmas * f.radius_mm;
     case PipeFeature::Type::kJointStep:
       break;
   }
@@ -158,6 +159,7 @@ double PipeFeatureDisplacementMm(const PipeFeature& f, double ds, double dclock,
       return std::max(0.0, radius - (radius - h - grit) / c);
     }
     case PipeFeature::Type::kBump:
+      if (std::abs(arc) > kBumpReachSigmas * f.radius_mm) return 0.0;
       return f.height_mm * std::exp(-0.5 * (ds * ds + arc * arc) / (f.radius_mm * f.radius_mm));
     case PipeFeature::Type::kPit: {
       const double q = (ds * ds + arc * arc) / (f.radius_mm * f.radius_mm);

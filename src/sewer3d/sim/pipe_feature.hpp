@@ -67,8 +67,12 @@ const char* PipeFeatureTypeName(PipeFeature::Type type);
 /// The kind a scene or scenario file names `name`; nullopt for an unknown name.
 std::optional<PipeFeature::Type> PipeFeatureTypeFromName(const std::string& name);
 
+/// A bump ends this many sigmas from its centre (along and around the pipe), where its
+/// Gaussian has fallen to e^-32 of its height: a scene of many bumps visits only the near ones.
+inline constexpr double kBumpReachSigmas = 8.0;
+
 /// Distance along the pipe from the feature's station beyond which it leaves the wall alone
-/// (infinite for bumps and joint steps).
+/// (infinite for joint steps).
 double PipeFeatureReachMm(const PipeFeature& f);
 
 /// Displacement (mm, toward the axis) of one feature at a wall point `ds_mm` along the pipe

@@ -42,6 +42,43 @@ const char* TypeName(Scene::Type t) {
 double ClockDegToHours(double clock_deg) { return clock_deg / 30.0; }
 double ClockHoursToDeg(double clock_h) { return clock_h * 30.0; }
 
+// One feature of a pipe-wall scene file, `prefix` "features[i].".
+PipeFeature ParseSceneFeature(const JsonReader& in, const json& f, const std::string& prefix) {
+  if (!f.is_object()) in.Fail(prefix, "must be an object");
+  if (f.contains("clock_h")) {
+    in.Fail(prefix + "clock_h",
+            "is a scenario's clock; a scene places features by clock_deg (degrees from "
+            "where the camera's optical axis meets the wall)");
+  }
+  in.OnlyKnown(f, prefix,
+               {"type", "station_mm", "clock_deg", "gap_mm", "offset_mm", "radius_mm", "width_mm",
+                "length_mm", "angle_deg", "height_mm", "depth_mm"});
+  PipeFeature ft;
+  const std::string kind = in.Text(f, "type", prefix, "");
+  const auto type = PipeFeatureTypeFromName(kind);
+  if (!type) in.Fail(prefix + "type", "must be joint, bump, pit or crack, got '" + kind + "'");
+  ft.type = *type;  // Scene::Check rejects the kinds only a pipe world takes
+  ft.station_mm = in.Number(f, "station_mm", prefix, 0.0);
+  // The file's angle, in the file's unit: Scene::Check's ±12 h would name clock_h.
+  const double clock_deg = in.Number(f, "clock_deg", prefix, 0.0);
+  if (!(std::abs(clock_deg) <= 360.0))
+    in.Fail(prefix + "clock_deg", fmt::format("must be within ±360°, got {:g}", clock_deg));
+  ft.clock_h = ClockDegToHours(clock_deg);
+  ft.gap_mm = in.Number(f, "gap_mm", prefix, 0.0);
+  ft.offset_mm = in.Number(f, "offset_mm", prefix, 0.0);
+  ft.radius_mm = in.Number(f, "radius_mm", prefix, 0.0);
+  ft.width_mm = in.Number(f, "width_mm", prefix, 0.0);
+  ft.length_mm = in.Number(f, "length_mm", prefix, 0.0);
+  ft.angle_deg = in.Number(f, "angle_deg", prefix, 0.0);
+  // A bump's height rises out of the wall; pits, cracks and joint gaps have a depth into it,
+  // which files before depth_mm gave as height_mm.
+  if (ft.type == PipeFeature::Type::kBump)
+    ft.height_mm = in.Number(f, "height_mm", prefix, 0.0);
+  else
+    ft.depth_mm = in.Number(f, "depth_mm", prefix, in.Number(f, "height_mm", prefix, 0.0));
+  return ft;
+}
+
 }  // namespace
 
 Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
@@ -88,33 +125,7 @@ Scene ParseScene(const std::string& text, const std::filesystem::path& path) {
   if (const auto it = j.find("features"); it != j.end()) {
     if (!it->is_array()) in.Fail("features", "must be an array");
     for (size_t i = 0; i < it->size(); ++i) {
-      const json& f = (*it)[i];
-      const std::string prefix = "features[" + std::to_string(i) + "].";
-      if (!f.is_object()) in.Fail(prefix, "must be an object");
-      PipeFeature ft;
-      const std::string kind = in.Text(f, "type", prefix, "");
-      const auto type = PipeFeatureTypeFromName(kind);
-      if (!type) in.Fail(prefix + "type", "must be joint, bump, pit or crack, got '" + kind + "'");
-      ft.type = *type;  // Scene::Check rejects the kinds only a pipe world takes
-      ft.station_mm = in.Number(f, "station_mm", prefix, 0.0);
-      // The file's angle, in the file's unit: Scene::Check's ±12 h would name clock_h.
-      const double clock_deg = in.Number(f, "clock_deg", prefix, 0.0);
-      if (!(std::abs(clock_deg) <= 360.0))
-        in.Fail(prefix + "clock_deg", fmt::format("must be within ±360°, got {:g}", clock_deg));
-      ft.clock_h = ClockDegToHours(clock_deg);
-      ft.gap_mm = in.Number(f, "gap_mm", prefix, 0.0);
-      ft.offset_mm = in.Number(f, "offset_mm", prefix, 0.0);
-      ft.radius_mm = in.Number(f, "radius_mm", prefix, 0.0);
-      ft.width_mm = in.Number(f, "width_mm", prefix, 0.0);
-      ft.length_mm = in.Number(f, "length_mm", prefix, 0.0);
-      ft.angle_deg = in.Number(f, "angle_deg", prefix, 0.0);
-      // A bump's height rises out of the wall; pits, cracks and joint gaps have a depth into it,
-      // which files before depth_mm gave as height_mm.
-      if (ft.type == PipeFeature::Type::kBump)
-        ft.height_mm = in.Number(f, "height_mm", prefix, 0.0);
-      else
-        ft.depth_mm = in.Number(f, "depth_mm", prefix, in.Number(f, "height_mm", prefix, 0.0));
-      s.features.push_back(ft);
+      s.features.push_back(ParseSceneFeature(in, (*it)[i], "features[" + std::to_string(i) + "]."));
     }
   }
   ValidateFileContents(path, [&] { s.Check(); });

@@ -83,6 +83,7 @@ void ReferenceLightOptions::Check() const {
   SEWER3D_VALIDATE(grid_cols >= 1 && grid_rows >= 1, "grid",
                    "must have at least 1 x 1 cells, got " << grid_cols << "x" << grid_rows);
   SEWER3D_VALIDATE(bins_per_stop >= 1, "bins_per_stop", "must be >= 1, got " << bins_per_stop);
+  SEWER3D_VALIDATE(min_cell_px >= 1, "min_cell_px", "must be >= 1, got " << min_cell_px);
   SEWER3D_VALIDATE(log2_max > log2_min, "log2_max", "must exceed log2_min (" << log2_min << ")");
   ValidatePositive("dark_linear", dark_linear);
   SEWER3D_VALIDATE(saturated_linear > dark_linear, "saturated_linear",
@@ -174,6 +175,8 @@ ReferenceLightEstimator::ReferenceLightEstimator(const CameraModel& camera,
     : options_(options) {
   options_.Check();
   size_ = cv::Size(camera.intrinsics().width, camera.intrinsics().height);
+  options_.grid_cols = std::clamp(size_.width / options_.min_cell_px, 1, options_.grid_cols);
+  options_.grid_rows = std::clamp(size_.height / options_.min_cell_px, 1, options_.grid_rows);
   normalised_ = NormalisedCoordinates(camera);
   histograms_.assign(static_cast<size_t>(options_.grid_cols) * options_.grid_rows * 3 * Bins(), 0);
   report_.cells = options_.grid_cols * options_.grid_rows * 3;

@@ -68,6 +68,9 @@ struct ReferenceLight {
 
 struct ReferenceLightOptions {
   int grid_cols = 64, grid_rows = 48;  ///< coarse grid of the statistics
+  /// A cell spans at least this many pixels each way: a small image gets fewer cells (a 320 px
+  /// camera 32 x 24), so that one frame gives a cell min_samples_per_cell samples.
+  int min_cell_px = 10;
   /// Histogram of log2(observed / G) per cell and channel: bins of 1/bins_per_stop stop over
   /// [log2_min, log2_max); values outside count in an under- or overflow bin.
   int bins_per_stop = 16;

@@ -411,6 +411,26 @@ TEST_F(ShadingTest, MemoryDoesNotGrowWithFrames) {
   EXPECT_EQ(a_->memory_after_last, histograms + 320 * 240 * sizeof(cv::Vec2f));
 }
 
+// The default 64 x 48 grid on a 320 x 240 camera would give a cell 25 pixels of a frame, under
+// min_samples_per_cell (100): a run of one acquisition per module had no reference at all. The
+// grid shrinks to 10 px cells (32 x 24), so one frame fills every cell.
+TEST_F(ShadingTest, OneFrameOfASmallCameraFillsEveryCell) {
+  std::mt19937 rng(5);
+  ReferenceLightOptions options;
+  options.geometry.reference_distance_mm = kRefDistanceMm;
+  ReferenceLightEstimator estimator(Camera(), options);
+  const Wall wall = MakeWall(normalised_, rng, false);
+  estimator.Add(
+      Observe(RandomAlbedo(wall.g.size(), rng), SyntheticModule().Light(normalised_), wall.g, rng),
+      wall.depth_mm);
+  const ReferenceLightResult result = estimator.Estimate();
+  ASSERT_TRUE(result.reference);
+  EXPECT_EQ(result.reference->grid_cols, 32);
+  EXPECT_EQ(result.reference->grid_rows, 24);
+  EXPECT_EQ(result.report.cells, 32 * 24 * 3);
+  EXPECT_EQ(result.report.cells_filled, 0);
+}
+
 TEST_F(ShadingTest, PixelsWithoutDepthGetTheReferenceOnlyAndAreMarked) {
   TestView view = View(SyntheticModule(), normalised_, 11);
   view.wall.depth_mm(cv::Rect(0, 0, 40, 30)).setTo(NAN);
