@@ -164,13 +164,15 @@ TEST_F(RegisterStageTiny, OdometryInOtherUnitsOrScaleIsWarnedOf) {
     EXPECT_EQ(w.find("along the pipe"), std::string::npos) << w;
     EXPECT_EQ(w.find("disagrees with the registrations"), std::string::npos) << w;
   }
-  // A counter reading twice the distance (a drum calibration): the fusion keeps the odometry
-  // edges, far off (median χ² 4296 on the 648 px tiny run; about 6 when right).
+  // A counter reading twice the distance (a drum calibration): either the gate rejects the
+  // registrations along the pipe (as for inches; with the registrations' covariance floor of
+  // 0.15 mm / 0.04° on the 648 px tiny run) or the fusion keeps the odometry edges far off
+  // (median χ² in the thousands; about 6 when right). Either way the scale is named.
   CaptureRun doubled = run_;
   for (OdometryReading& reading : doubled.odometry) reading.distance_mm *= 2.0;
   const RegisterStageReport d = register_run(doubled);
   ASSERT_FALSE(d.odometry_warnings.empty());
-  EXPECT_NE(d.odometry_warnings.back().find("is the counter's scale right"), std::string::npos)
+  EXPECT_NE(d.odometry_warnings.back().find("scale"), std::string::npos)
       << d.odometry_warnings.back();
 }
 

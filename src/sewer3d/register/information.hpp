@@ -40,6 +40,14 @@ Matrix6d ToResidualOrder(const Matrix6d& hessian);
 /// more measurements do not average away (biases shared by the whole overlap).
 Matrix6d WithCovarianceFloor(const Matrix6d& information, double sigma_t_mm, double sigma_r_deg);
 
+/// The registrations' default floor (σ per translation axis, mm; per rotation axis, degrees):
+/// measured on simulated runs with modules calibrated as a real build is (the `paper` profile:
+/// each module's own focal, centre and baseline error and lens residual bias a pair's relative
+/// pose alike for all its matches), where it puts the edges' mean NEES in [3, 12]
+/// (docs/registration.md, "Information under the paper profile").
+inline constexpr double kFloorTranslationMm = 0.15;
+inline constexpr double kFloorRotationDeg = 0.04;
+
 /// Eigen-decomposition of an information matrix with rotations expressed as arc lengths at a
 /// characteristic distance L (the scene's distance from the camera), so that translation and
 /// rotation are comparable: Ω_s = S Ω S, S = diag(1, 1, 1, 1/L, 1/L, 1/L) (units 1/mm²).

@@ -12,6 +12,7 @@
 
 #include "sewer3d/core/rigid3.hpp"
 #include "sewer3d/posegraph/pose_graph.hpp"
+#include "sewer3d/register/information.hpp"
 
 namespace sewer3d {
 
@@ -58,8 +59,8 @@ struct PointRegistrationOptions {
   /// Errors that no number of matches averages away (the module's calibration, a depth bias
   /// shared by the whole overlap) as a covariance floor added to the estimate's: σ of each
   /// translation axis (mm) and of each rotation axis (degrees). 0: none.
-  double floor_translation_mm = 0.03;
-  double floor_rotation_deg = 0.01;
+  double floor_translation_mm = kFloorTranslationMm;
+  double floor_rotation_deg = kFloorRotationDeg;
 
   void Check() const;
 };

@@ -208,11 +208,13 @@ ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
   out.sigma_mm = std::sqrt(n.weighted_r2 / std::max(1.0, n.weights - 6.0));
   out.rms_mm = std::sqrt(n.r2 / static_cast<double>(s.size()));
   out.a_from_b = pose;
+  const Matrix6d measured =
+      ToResidualOrder(ObservableInformation(Observable(n, length_mm, options)) /
+                      std::max(out.sigma_mm * out.sigma_mm, 1e-12));
+  // Degeneracy is the geometry's: judged before the floor, which caps every direction alike.
+  out.report.spectrum = AnalyseInformation(measured, length_mm, options.degeneracy_ratio);
   out.information =
-      WithCovarianceFloor(ToResidualOrder(ObservableInformation(Observable(n, length_mm, options)) /
-                                          std::max(out.sigma_mm * out.sigma_mm, 1e-12)),
-                          options.floor_translation_mm, options.floor_rotation_deg);
-  out.report.spectrum = AnalyseInformation(out.information, length_mm, options.degeneracy_ratio);
+      WithCovarianceFloor(measured, options.floor_translation_mm, options.floor_rotation_deg);
   out.degenerate = out.report.spectrum.degenerate;
   out.weak_direction = out.report.spectrum.weak_direction;
   out.converged = converged;

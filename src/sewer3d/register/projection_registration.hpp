@@ -61,8 +61,8 @@ struct ProjectionRegistrationOptions {
   /// Covariance floor (WithCovarianceFloor) over the constrained directions: depth-map errors
   /// shared by the whole overlap (calibration, the decoder's interpolation between spots) that
   /// thousands of samples do not average away.
-  double floor_translation_mm = 0.03;
-  double floor_rotation_deg = 0.01;
+  double floor_translation_mm = kFloorTranslationMm;
+  double floor_rotation_deg = kFloorRotationDeg;
 
   void Check() const;
 };
@@ -72,7 +72,8 @@ struct ProjectionRegistrationReport {
   int correspondences = 0;  ///< associated and inside the gate at the end
   int iterations = 0;
   double gate_mm = 0.0;          ///< the last association gate
-  InformationSpectrum spectrum;  ///< of the information, L = mean distance of b's points
+  InformationSpectrum spectrum;  ///< of the information before the covariance floor, L = mean
+                                 ///< distance of b's points
 };
 
 struct ProjectionRegistrationResult {

@@ -62,11 +62,16 @@ Rigid3d Guess() {
   return error * Truth();
 }
 
-ProjectionRegistrationResult Register(const Scene& scene, const Rigid3d& guess = Guess()) {
+// The geometry's own information: without the covariance floor (which caps every direction
+// alike, for biases these exact depth maps do not have), unless `floored`.
+ProjectionRegistrationResult Register(const Scene& scene, const Rigid3d& guess = Guess(),
+                                      bool floored = false) {
   const CameraModel camera(testing::SmallDefaultModule(648).camera);
   const cv::Mat1f a = DepthMap(scene, camera, Rigid3d::Identity(), 1);
   const cv::Mat1f b = DepthMap(scene, camera, Truth(), 2);
-  return RegisterProjection(a, camera, b, camera, guess, ProjectionRegistrationOptions{});
+  ProjectionRegistrationOptions options;
+  if (!floored) options.floor_translation_mm = options.floor_rotation_deg = 0.0;
+  return RegisterProjection(a, camera, b, camera, guess, options);
 }
 
 // Residual-order directions (information.hpp: r = [−δt; δθ]) of the cylinder's symmetries:
@@ -105,6 +110,14 @@ TEST(ProjectionRegistration, CylinderLeavesAxisSlideAndTurnUnconstrained) {
   EXPECT_LT(std::abs(e(2)), 0.02);
   // Where the data say nothing, the guess stays: 2 mm off along the axis.
   EXPECT_NEAR(std::abs(e(1)), 2.0, 0.5);
+  // The floor caps what the data say, and adds nothing where they say nothing: the same
+  // degeneracy (judged before it), still no information along the symmetries.
+  const ProjectionRegistrationResult floored = Register(Wall({}), Guess(), true);
+  EXPECT_TRUE(floored.degenerate);
+  EXPECT_NEAR(floored.report.spectrum.ratio, s.ratio, 1e-3 * s.ratio);
+  EXPECT_LT(RelativeInformationAlong(s, floored.information, Slide()), 1e-4);
+  EXPECT_LT(RelativeInformationAlong(s, floored.information, Turn()), 1e-4);
+  EXPECT_LT(floored.information.trace(), r.information.trace());
 }
 
 TEST(ProjectionRegistration, BumpConstrainsEveryDirection) {
