@@ -382,3 +382,30 @@ bump = lambda: {'type': 'bump', 'station_mm': random.uniform(-60, 60),
                 'radius_mm': random.uniform(1, 6)}
 json.dump({'type': 'pipe_wall', 'features': [bump() for _ in range(1000)]},
           open('scene_bumps_1000.json', 'w'))"
+# Session 40 (probe 25): an empty module name; a dark or blown-out render; a module whose
+# projector sits on the other side or is turned away; pattern images all black; a truth cut short.
+broken_run name_empty rig.json 'modules.1.name=""'
+scenario_with scenario_ambient_5.json 'render={"ambient_level": 5}'
+scenario_with scenario_pattern_level_0.json 'render={"pattern_level": 0}'
+module_with m/projector_flipped.json 'projector_from_camera.translation_mm=[77.58527530676709,0,0]'
+module_with m/projector_rot180.json 'projector_from_camera.rotation=[-1,0,0,0,-1,0,0,0,1]'
+cp -r run_two run_black
+python3 -c "
+import glob, struct, zlib
+def chunk(kind, data):
+    return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data))
+for f in glob.glob('run_black/images/*/*_pattern.png'):
+    w, h = struct.unpack('>II', open(f, 'rb').read()[16:24])
+    raw = zlib.compress(b''.join(b'\x00' * (1 + w) for _ in range(h)))
+    open(f, 'wb').write(b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 0, 0, 0, 0))
+                        + chunk(b'IDAT', raw) + chunk(b'IEND', b''))"
+cp -r run_albedo run_truth_short
+"$S" rgbd run_truth_short --out ws_truth_short --quiet >/dev/null 2>&1
+sed -i '$d' run_truth_short/truth/poses.csv
+mkdir -p above && cp -r run_ok above/run
+cp -r run_ok run_odo_micro
+python3 -c "
+import csv
+rows = list(csv.reader(open('run_ok/odometry.csv')))
+out = [rows[0]] + [[r[0], repr(float(r[1]) * 1000.0)] + r[2:] for r in rows[1:]]
+csv.writer(open('run_odo_micro/odometry.csv', 'w'), lineterminator='\n').writerows(out)"

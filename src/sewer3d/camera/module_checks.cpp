@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/camera/default_module.hpp"
 
 namespace sewer3d {
@@ -45,6 +46,40 @@ std::string SpotSizeProblem(const ModuleDescription& m) {
       spot, pitch, kMinSpotPx, kMinPitchPx);
 }
 
+double LitShare(const ModuleDescription& m, double z_mm) {
+  const CameraModel camera(m.camera), projector(m.projector);
+  constexpr int kSteps = 24;
+  int seen = 0, lit = 0;
+  for (int i = 0; i < kSteps; ++i) {
+    for (int j = 0; j < kSteps; ++j) {
+      const Eigen::Vector2d pixel((i + 0.5) * m.camera.width / kSteps - 0.5,
+                                  (j + 0.5) * m.camera.height / kSteps - 0.5);
+      const auto xy = camera.Unproject(pixel);
+      if (!xy) continue;
+      ++seen;
+      const Eigen::Vector3d wall(xy->x() * z_mm, xy->y() * z_mm, z_mm);
+      const auto uv = projector.Project(m.projector_from_camera * wall);
+      lit += uv && uv->x() >= -0.5 && uv->y() >= -0.5 && uv->x() <= m.projector.width - 0.5 &&
+             uv->y() <= m.projector.height - 0.5;
+    }
+  }
+  return seen > 0 ? static_cast<double>(lit) / seen : 0.0;
+}
+
+std::string FieldOverlapProblem(const ModuleDescription& m) {
+  constexpr double kMinShare = 1.0 / 3.0;
+  double best = 0.0, at = kWorkingDistanceMinMm;
+  for (double z = kWorkingDistanceMinMm; z <= kWorkingDistanceMaxMm + 1e-9; z += 25.0) {
+    if (const double share = LitShare(m, z); share > best) best = share, at = z;
+  }
+  if (best >= kMinShare) return "";
+  return fmt::format(
+      "the projector lights at most {:.0f} % of the camera's view on a wall {:g}-{:g} mm away "
+      "({:g} mm): the fields do not meet (is projector_from_camera's translation on the right "
+      "side, its rotation turned toward the camera's view?)",
+      100.0 * best, kWorkingDistanceMinMm, kWorkingDistanceMaxMm, at);
+}
+
 std::string WindowFitProblem(const ModuleDescription& m, int window) {
   const double window_px = window * m.pattern.pitch_px;
   if (window_px <= std::min(m.projector.width, m.projector.height)) return "";
@@ -61,6 +96,8 @@ std::optional<UsabilityProblem> FindUsabilityProblem(const ModuleDescription& mo
     return UsabilityProblem{Cause::kDepthPrecision, std::move(text)};
   if (std::string text = SpotSizeProblem(module); !text.empty())
     return UsabilityProblem{Cause::kSpotSize, std::move(text)};
+  if (std::string text = FieldOverlapProblem(module); !text.empty())
+    return UsabilityProblem{Cause::kFieldOverlap, std::move(text)};
   if (std::string text = WindowFitProblem(module, window); !text.empty())
     return UsabilityProblem{Cause::kWindowFit, std::move(text)};
   const DisparityRange range =

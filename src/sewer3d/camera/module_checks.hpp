@@ -32,13 +32,22 @@ std::string WindowFitProblem(const ModuleDescription& module, int window);
 /// resolves them.
 std::string SpotSizeProblem(const ModuleDescription& module);
 
+/// Share of the camera's view (a grid of pixels) that the projector lights on a wall facing the
+/// camera at `z_mm` (its rays meeting the plane z = z_mm inside the projector image).
+double LitShare(const ModuleDescription& module, double z_mm);
+
+/// "" when the projector lights at least a third of the camera's view somewhere in the working
+/// range (the default module: 0.89 at 150 mm), else why the fields do not meet (a projector on
+/// the wrong side or turned away).
+std::string FieldOverlapProblem(const ModuleDescription& module);
+
 struct UsabilityProblem {
-  enum class Cause { kDepthPrecision, kSpotSize, kWindowFit, kPatternSpan };
+  enum class Cause { kDepthPrecision, kSpotSize, kWindowFit, kPatternSpan, kFieldOverlap };
   Cause cause = Cause::kDepthPrecision;
   std::string text;
 };
 
-/// The first of the four problems above (the pattern span: PatternSpanProblem over the working
+/// The first of the five problems above (the pattern span: PatternSpanProblem over the working
 /// distances, for a `rows` x `cols` matrix read in `window` x `window` windows), or nullopt for a
 /// module the decoder can use.
 std::optional<UsabilityProblem> FindUsabilityProblem(const ModuleDescription& module, int rows,

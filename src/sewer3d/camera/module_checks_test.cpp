@@ -50,6 +50,16 @@ TEST(FindUsabilityProblem, NamesEachCause) {
   ASSERT_TRUE(problem.has_value());
   EXPECT_EQ(problem->cause, Cause::kWindowFit);
 
+  // The projector moved to the camera's other side, still turned as before: its field leaves
+  // the camera's (a rendered plane at 140 mm decodes 0 spots).
+  ModuleDescription flipped = MakeDefaultModule(Reduced());
+  flipped.projector_from_camera.translation.x() *= -1.0;
+  problem = FindUsabilityProblem(flipped, 6, 200, 6);
+  ASSERT_TRUE(problem.has_value());
+  EXPECT_EQ(problem->cause, Cause::kFieldOverlap);
+  EXPECT_LT(LitShare(flipped, 150.0), 0.2);
+  EXPECT_GT(LitShare(MakeDefaultModule(Reduced()), 150.0), 0.8);
+
   problem = Problem(Reduced(), 8);  // eight columns cannot span the disparity range
   ASSERT_TRUE(problem.has_value());
   EXPECT_EQ(problem->cause, Cause::kPatternSpan);

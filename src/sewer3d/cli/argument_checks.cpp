@@ -3,8 +3,11 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/core/edit_distance.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -17,13 +20,17 @@ bool IsNan(const std::string& value) {
   return !value.empty() && end == value.c_str() + value.size() && std::isnan(x);
 }
 
-// Whether some (sub)command of `app` has the long option `--name`.
-bool HasLongOption(const CLI::App& app, const std::string& name) {
-  if (app.get_option_no_throw("--" + name) != nullptr) return true;
+// The long option `--name` of `app` or one of its (sub)commands; nullptr when none has it.
+const CLI::Option* FindLongOption(const CLI::App& app, const std::string& name) {
+  if (const CLI::Option* o = app.get_option_no_throw("--" + name)) return o;
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-    if (HasLongOption(*sub, name)) return true;
+    if (const CLI::Option* o = FindLongOption(*sub, name)) return o;
   }
-  return false;
+  return nullptr;
+}
+
+bool HasLongOption(const CLI::App& app, const std::string& name) {
+  return FindLongOption(app, name) != nullptr;
 }
 
 }  // namespace
@@ -96,6 +103,59 @@ std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
       continue;
     }
     if (HasLongOption(app, arg.substr(1, arg.find('=') - 1))) return arg;
+  }
+  return {};
+}
+
+namespace {
+
+// Every long option name (without the dashes) of `app` and its (sub)commands.
+void LongOptionNames(const CLI::App& app, std::vector<std::string>& names) {
+  for (const CLI::Option* o : app.get_options()) {
+    for (const std::string& name : o->get_lnames()) names.push_back(name);
+  }
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    LongOptionNames(*sub, names);
+}
+
+}  // namespace
+
+std::string UnknownLongOption(const CLI::App& app, int argc, char** argv) {
+  std::vector<std::string> names;
+  LongOptionNames(app, names);
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--") break;
+    if (arg.size() < 3 || arg.rfind("--", 0) != 0) continue;
+    const std::string name = arg.substr(2, arg.find('=') - 2);
+    if (HasLongOption(app, name)) continue;
+    std::string nearest;
+    std::size_t best = 3;  // at most two edits away
+    for (const std::string& known : names) {
+      if (const std::size_t d = EditDistance(name, known); d < best) best = d, nearest = known;
+    }
+    return "unknown option --" + name +
+           (nearest.empty() ? "" : " (did you mean --" + nearest + "?)");
+  }
+  return {};
+}
+
+std::string FlagGivenAsValue(const CLI::App& app, int argc, char** argv) {
+  const auto long_name = [](const std::string& arg) {
+    return arg.size() > 2 && arg.rfind("--", 0) == 0 ? arg.substr(2, arg.find('=') - 2)
+                                                     : std::string();
+  };
+  for (int i = 1; i + 1 < argc; ++i) {
+    const std::string arg = argv[i], next = argv[i + 1];
+    if (arg == "--") break;
+    if (arg.find('=') != std::string::npos) continue;
+    const CLI::Option* option = FindLongOption(app, long_name(arg));
+    if (option == nullptr || option->get_items_expected_min() == 0) continue;  // a flag
+    const std::string name = long_name(next);
+    if (!name.empty() && HasLongOption(app, name)) {
+      return arg + ": takes a value, but the next argument is the option " + next + " (give " +
+             arg + " its value first)";
+    }
   }
   return {};
 }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "sewer3d/cli/command.hpp"
+#include "sewer3d/cli/exit_code.hpp"
 #include "sewer3d/cli/summary.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/sim/rig.hpp"
@@ -86,7 +87,14 @@ Command AddDescribeCommand(CLI::App& app) {
             const LoadedModule loaded = LoadModule(*module_path);
             fmt::print("{}: read\n", *module_path);
             const std::string problem = PrintModuleSummary(loaded.module, loaded.pattern);
-            const bool gaps = *rig && WarnOfGaps(PrintRigOverlap(loaded.module));
+            bool gaps = false;
+            try {
+              gaps = *rig && WarnOfGaps(PrintRigOverlap(loaded.module));
+            } catch (const InvalidValue& e) {  // the module's geometry, not a flag's value
+              std::fflush(stdout);
+              fmt::print(stderr, "sewer3d: error: {}: --rig: {}\n", *module_path, e.problem());
+              return static_cast<int>(kExitBadFile);
+            }
             if (problem.empty()) {
               fmt::print("{}: {}\n", *module_path,
                          gaps ? "a valid module, but six on the carrier do not cover the pipe "

@@ -118,6 +118,7 @@ Command AddModuleCommand(CLI::App& app) {
                                                    ": choose a smaller stereo angle or field "
                                                    "of view");
                 case Cause::kDepthPrecision:
+                case Cause::kFieldOverlap:
                   throw InvalidValue(geometry, problem->text);
               }
             }

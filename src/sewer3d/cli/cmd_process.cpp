@@ -32,8 +32,10 @@ void PrintStage(const ProcessStageResult& r) {
   PrintStageOutcome(r.outcome);
   if (r.skipped)
     fmt::print("{}: {:.1f} s when it was done\n", r.name, r.seconds);
-  else
+  else if (r.outcome.ok)
     fmt::print("{}: {:.1f} s; wrote {}\n", r.name, r.seconds, r.outcome.output.string());
+  else
+    fmt::print("{}: {:.1f} s; failed\n", r.name, r.seconds);
   std::fflush(stdout);  // before the next stage's progress on stderr
 }
 

@@ -90,7 +90,7 @@ Command AddRegisterCommand(CLI::App& app) {
             }
             const StageOutcome outcome = RegisterOutcome(report, args->out);
             PrintStageOutcome(outcome);
-            fmt::print("wrote {}\n", outcome.output.string());
+            if (outcome.ok) fmt::print("wrote {}\n", outcome.output.string());
             if (!outcome.ok) {
               fmt::print(stderr, "sewer3d: error: {}\n", outcome.error);
               return 1;

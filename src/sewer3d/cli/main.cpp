@@ -76,6 +76,12 @@ int main(int argc, char** argv) {
                arg);
     return sewer3d::cli::kExitUsage;
   }
+  std::string problem = sewer3d::cli::UnknownLongOption(app, argc, argv);
+  if (problem.empty()) problem = sewer3d::cli::FlagGivenAsValue(app, argc, argv);
+  if (!problem.empty()) {
+    fmt::print(stderr, "sewer3d: error: {} (see sewer3d --help)\n", problem);
+    return sewer3d::cli::kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -43,6 +43,7 @@ std::string PrintModuleSummary(const ModuleDescription& m, const BinaryArray& pa
              DepthErrorMm(m, kWorkingDistanceMaxMm), kWorkingDistanceMaxMm, kDisparityErrorPx);
   if (std::string problem = DepthPrecisionProblem(m); !problem.empty()) return problem;
   if (std::string problem = SpotSizeProblem(m); !problem.empty()) return problem;
+  if (std::string problem = FieldOverlapProblem(m); !problem.empty()) return problem;
 
   PatternConstraints constraints;
   PatternReport report = VerifyPattern(pattern, constraints);

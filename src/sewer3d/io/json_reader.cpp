@@ -9,6 +9,8 @@
 #include <sstream>
 #include <vector>
 
+#include "sewer3d/core/edit_distance.hpp"
+
 namespace sewer3d {
 namespace {
 
@@ -16,24 +18,6 @@ std::string Format(double x) {
   std::ostringstream out;
   out << x;
   return out.str();
-}
-
-// Edits (insert, delete, replace a character; case ignored) from a to b.
-size_t EditDistance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                        std::tolower(static_cast<unsigned char>(b[j - 1]));
-      const size_t next = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
-      diagonal = row[j];
-      row[j] = next;
-    }
-  }
-  return row[b.size()];
 }
 
 // At most the last 30 characters of text[from, end) with each run of white space as one space

@@ -463,7 +463,9 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
   CheckAcquisitionPeriod(folder / "run.json", run.info.acquisition_period_s, median_gap_s);
   CheckTripletTimes(index, median_gap_s > 0.0 ? median_gap_s : run.info.acquisition_period_s,
                     run.images);
-  OdometryCheck odometry = CheckOdometry(ReadOdometry(folder / "odometry.csv"));
+  const std::vector<OdometryReading> readings = ReadOdometry(folder / "odometry.csv");
+  OdometryCheck odometry;
+  ValidateFileContents(folder / "odometry.csv", [&] { odometry = CheckOdometry(readings); });
   CheckOdometrySpan(folder / "odometry.csv", odometry.kept, run.images);
   run.odometry = std::move(odometry.kept);
   run.odometry_findings = std::move(odometry.findings);

@@ -322,7 +322,8 @@ void SubmapSearchOptions::Check() const {
                    "the " << rows << "x" << cols << " array holds one " << n << "x" << n
                           << " window: a perfect submap needs at least 2 (a larger array, or a "
                              "torus)");
-  SEWER3D_VALIDATE(distinct >= needed, "min_weight",
+  // With no spots required the window itself is too small (or the array too large).
+  SEWER3D_VALIDATE(distinct >= needed, constraints.min_weight > 0 ? "min_weight" : "window",
                    "only " << distinct << " distinct " << n << "x" << n << " windows have at least "
                            << constraints.min_weight << " spots"
                            << (constraints.isolated ? " with none 8-adjacent" : "") << ", and the "

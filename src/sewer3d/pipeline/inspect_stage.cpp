@@ -82,7 +82,9 @@ std::string InspectStageReportToJson(const InspectStageReport& r) {
       {"observations", r.observations},
       {"per_code", r.per_code},
       {"coarse_map", {{"rows", i.coarse_rows}, {"cols", i.coarse_cols}, {"cell_mm", i.cell_mm}}},
-      {"residual_sigma_mm", i.residual_sigma_mm},
+      // null where no station was inspected (nothing measured the wall's noise)
+      {"residual_sigma_mm",
+       std::isfinite(r.inspected_from_mm) ? json(i.residual_sigma_mm) : json(nullptr)},
       {"sections", i.sections},
       {"inspected_from_mm", r.inspected_from_mm},
       {"inspected_to_mm", r.inspected_to_mm},

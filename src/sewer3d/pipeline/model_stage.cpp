@@ -282,6 +282,15 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
   samples.clear();
   report.grid = info.grid;
   report.splat_radius_mm = SplatRadius(run, options);
+  // Beyond a few millimetres the maps hold splats, not the wall's detail (joints, cracks).
+  constexpr double kCoarseSplatMm = 2.0;
+  if (report.splat_radius_mm > kCoarseSplatMm) {
+    report.warnings.push_back(fmt::format(
+        "a pixel step of {} (--pixel-step) samples the wall every {:.1f} mm: the {:g} mm maps hold "
+        "{:.1f} mm splats, "
+        "not the wall's detail (joint gaps, cracks); a step of 1 to 4 keeps it",
+        options.pixel_step, report.splat_radius_mm, options.resolution_mm, report.splat_radius_mm));
+  }
   WriteTiles(run, ws, info.centreline, acquisitions, options, info, report, progress);
 
   const MapFilesReport files = FinishTiledModel(folder, info, options.files);

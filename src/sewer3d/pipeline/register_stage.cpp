@@ -149,10 +149,14 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   report.prior_edges = static_cast<int>(priors.size());
   edges.insert(edges.end(), priors.begin(), priors.end());
 
+  if (std::string parts = GraphWarning(static_cast<int>(nodes.size()), edges); !parts.empty())
+    report.graph_warnings.push_back(std::move(parts));
   const FusionResult fused = FuseRegistration(nodes, edges, options.fusion);
   report.fusion = fused.report;
   report.module_pairs = ModulePairAgreements(nodes, edges, fused);
   report.rig_warnings = RigWarnings(run, report.module_pairs);
+  if (std::string carrier = CarrierWarning(run, report.carrier_offset); !carrier.empty())
+    report.rig_warnings.push_back(std::move(carrier));
   if (const std::string along = AlongWarning(run, AlongAgreement(nodes, edges, fused));
       !along.empty())
     report.odometry_warnings.push_back(along);

@@ -64,6 +64,8 @@ struct RegisterStageReport {
   std::vector<ModulePairAgreement> module_pairs;
   /// One line per pair of modules whose registrations contradict rig.json (RigWarnings).
   std::vector<std::string> rig_warnings;
+  /// A line when the edges given leave the graph in unconnected parts (GraphWarning).
+  std::vector<std::string> graph_warnings;
   double seconds = 0.0;           ///< the whole stage now, wall clock
   double seconds_per_pair = 0.0;  ///< mean over the pairs registered now (one worker)
   double seconds_per_node = 0.0;  ///< seconds / nodes

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <map>
 
+#include "sewer3d/core/union_find.hpp"
+
 namespace sewer3d {
 namespace {
 
@@ -118,6 +120,29 @@ std::vector<std::string> RigWarnings(const CaptureRun& run,
         file, p.module_a, p.module_b, p.rejected, p.edges, p.median_rejected_offset_mm, likely));
   }
   return lines;
+}
+
+std::string GraphWarning(int nodes, const std::vector<RegistrationEdge>& edges) {
+  UnionFind sets(nodes);
+  for (const RegistrationEdge& e : edges) sets.Join(e.a, e.b);
+  std::map<int, int> parts;
+  for (int i = 0; i < nodes; ++i) ++parts[sets.Root(i)];
+  if (parts.size() <= 1) return {};
+  int largest = 0;
+  for (const auto& [r, n] : parts) largest = std::max(largest, n);
+  return fmt::format(
+      "the edges leave the pose graph in {} unconnected parts (the largest {} of {} "
+      "acquisitions): their poses relative to each other are the odometry's and rig's initial "
+      "guess, not measured (give --edges more kinds, e.g. the default)",
+      parts.size(), largest, nodes);
+}
+
+std::string CarrierWarning(const CaptureRun& run, const CarrierOffsetEstimate& walls) {
+  if (!walls.valid || walls.diameter_mm > run.rig.carrier_diameter_mm) return {};
+  return fmt::format(
+      "{}: carrier.diameter_mm is {:g} mm, but the walls its modules see at the first instant "
+      "are a pipe of {:.0f} mm: the carrier cannot be wider than the pipe (units?)",
+      (run.folder / "rig.json").string(), run.rig.carrier_diameter_mm, walls.diameter_mm);
 }
 
 std::string AlongWarning(const CaptureRun& run, const ModulePairAgreement& along) {

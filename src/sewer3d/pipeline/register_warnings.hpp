@@ -10,6 +10,7 @@
 
 #include "sewer3d/register/initial_poses.hpp"
 #include "sewer3d/register/module_agreement.hpp"
+#include "sewer3d/register/prior_edges.hpp"
 #include "sewer3d/run/capture_run.hpp"
 
 namespace sewer3d {
@@ -24,6 +25,15 @@ std::vector<std::string> OdometryWarnings(const CaptureRun& run,
 /// registrations put them; a module in two such pairs is named as the likely one.
 std::vector<std::string> RigWarnings(const CaptureRun& run,
                                      const std::vector<ModulePairAgreement>& pairs);
+
+/// A line when the pipe the first instant's walls show (`walls`, when valid) is no wider than
+/// rig.json's carrier: the carrier's diameter is wrong (units?); "" otherwise.
+std::string CarrierWarning(const CaptureRun& run, const CarrierOffsetEstimate& walls);
+
+/// A line when `edges` (between node indices) leave the `nodes` in more than one connected
+/// part: their poses relative to each other are then the initial guess's (`--edges` naming
+/// too few kinds); "" otherwise.
+std::string GraphWarning(int nodes, const std::vector<RegistrationEdge>& edges);
 
 /// A line when the gate rejected (nearly) all registrations along the pipe (Disagrees on
 /// AlongAgreement): odometry.csv in other units or scale; "" otherwise.

@@ -68,6 +68,7 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
   const int n = std::min<int>(options.reference_frames, static_cast<int>(usable.size()));
   std::string unreadable;  // the first image that could not be read
   int without_depth = 0;   // read, but no pixel of depth
+  int without_points = 0;  // read, but not one point (nothing decoded)
   for (int k = 0; k < n; ++k) {
     const Acquisition& a = *usable[(2 * k + 1) * usable.size() / (2 * n)];
     try {
@@ -76,6 +77,7 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
           ReadRgbdGeometry(RgbdAcquisitionFiles(rgbd_folder, a.module, a.counter));
       estimator.Add(linear, geometry.depth_mm);
       without_depth += CountDepthPixels(geometry.depth_mm) == 0 ? 1 : 0;
+      without_points += geometry.points.empty() ? 1 : 0;
     } catch (const FileError& e) {
       // Passed over here; the colour pass fails the acquisition with the file and reason.
       if (unreadable.empty()) unreadable = e.what();
@@ -88,6 +90,11 @@ RgbdReferenceResult RgbdReferencePass(const CaptureRun& run, int module,
     result.file = file.string();
     if (!unreadable.empty()) {
       result.reason = "no reference light: a texture image could not be read (" + unreadable + ")";
+    } else if (n > 0 && without_points == n) {
+      result.reason = "no reference light: the module's " + std::to_string(n) +
+                      " acquisitions read have not one point (no spot pattern decoded: are the "
+                      "pattern images blank, blown out or of another module? see the geometry "
+                      "reports)";
     } else if (n > 0 && without_depth == n) {
       result.reason = "no reference light: the depth maps of the module's " + std::to_string(n) +
                       " acquisitions read are empty (every triangle between their points is "

@@ -62,6 +62,7 @@ StageOutcome RegisterOutcome(const RegisterStageReport& report,
       report.seconds_per_pair);
   for (const std::string& w : report.odometry_warnings) o.details.push_back("warning: " + w);
   for (const std::string& w : report.rig_warnings) o.details.push_back("warning: " + w);
+  for (const std::string& w : report.graph_warnings) o.details.push_back("warning: " + w);
   for (const LeftOutAcquisition& l : report.left_out)
     o.details.push_back(fmt::format("left out: m{} counter {}: {}", l.module, l.counter, l.reason));
   if (report.nodes == 0) {
@@ -115,12 +116,15 @@ StageOutcome InspectOutcome(const InspectStageReport& r, const std::filesystem::
           ? fmt::format("stations {:.0f}..{:.0f} mm inspected", r.inspected_from_mm,
                         r.inspected_to_mm)
           : std::string("no station inspected (no ring of the wall measured all round)");
+  const std::string noise = std::isfinite(r.inspected_from_mm)
+                                ? fmt::format("{:.3f} mm", r.inspection.residual_sigma_mm)
+                                : std::string("not measured");
   o.summary = fmt::format(
-      "inspect: {} observations{}; {} ({:.0f} % of the map), wall noise {:.3f} mm; profile {} "
-      "rows ({} measured all round); {:.1f} s",
+      "inspect: {} observations{}; {} ({:.0f} % of the map), wall noise {}; profile {} rows ({} "
+      "measured all round); {:.1f} s",
       r.observations, codes.empty() ? "" : " (" + codes + ")", stations,
-      100.0 * r.inspection.inspected_share, r.inspection.residual_sigma_mm, r.profile_rows,
-      r.profile_rows_measured, r.seconds);
+      100.0 * r.inspection.inspected_share, noise, r.profile_rows, r.profile_rows_measured,
+      r.seconds);
   return o;
 }
 

@@ -105,6 +105,11 @@ void CheckOutsideTheRun(const std::filesystem::path& folder,
     throw FileError(folder,
                     "holds a capture run (run.json): " + role + " must be a folder of its own");
   }
+  // A folder above the run would hold the run, and every workspace beside it, as its own.
+  if (std::mismatch(out.begin(), out.end(), run.begin(), run.end()).first == out.end()) {
+    throw FileError(folder, "holds the capture run " + run_folder.string() + ": " + role +
+                                " must be a folder of its own, beside the run");
+  }
 }
 
 namespace {
@@ -166,7 +171,7 @@ std::vector<std::string> KeyOutputs(const std::string& stage) {
   if (stage == "register") return {"registration/poses.csv"};
   // Not the large maps: a stamp reads its file whole (displacement.tiff is GBs on a long run).
   if (stage == "model") return {"model/model.json", "model/coverage.png"};
-  if (stage == "inspect") return {"inspection/observations.json"};
+  if (stage == "inspect") return {"inspection/observations.json", "inspection/profile.csv"};
   return {};
 }
 

@@ -98,6 +98,22 @@ std::string MapsSection(const ModelPictures& model, int jpeg_quality, Notes& not
                   p.col_factor * 2.0 * M_PI * model.info->centreline.radius_mm / g.cols);
   out += "<script type=\"application/json\" id=\"map-data\">" + html::ScriptJson(meta.dump()) +
          "</script>\n";
+  // A texture black wherever the wall was measured was replaced or damaged (a measured wall
+  // has light on it): said, and shown as it is.
+  int covered = 0, lit = 0;
+  for (int r = 0; r < p.texture.rows; ++r) {
+    for (int c = 0; c < p.texture.cols; ++c) {
+      if (p.coverage(r, c) <= 0.5f) continue;
+      ++covered;
+      const cv::Vec3b& v = p.texture(r, c);
+      lit += v[0] + v[1] + v[2] > 0;
+    }
+  }
+  if (covered > 0 && lit == 0) {
+    out += notes.Add(
+        "model/texture.png is black wherever coverage.png has the wall measured: replaced or "
+        "damaged? (`sewer3d model --force` writes it again)");
+  }
   out +=
       "<h3>Texture</h3><div class=\"mapview\"><canvas></canvas><img hidden alt=\"texture\" "
       "src=\"" +

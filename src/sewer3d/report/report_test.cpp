@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "sewer3d/io/model_io.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -143,6 +144,21 @@ TEST_F(ReportTest, OlderModelVersionAndMissingMapAreNamed) {
   const ReportSummary s = Write(Inputs(), html);
   EXPECT_NE(s.maps_problem.find("version"), std::string::npos) << s.maps_problem;
   EXPECT_NE(html.find("id=\"summary\""), std::string::npos);
+}
+
+// A texture.png replaced by a black image of its size is read (the sizes agree) but is no
+// measured wall: noted. The model of WholeModelGivesEverySectionSelfContained has no such note.
+TEST_F(ReportTest, ABlackTextureIsNoted) {
+  WritePipeModel(dir_ / "model", centreline_, maps_, 0.0, ModelFileOptions{});
+  const cv::Mat texture = cv::imread((dir_ / "model" / "texture.png").string(), cv::IMREAD_COLOR);
+  ASSERT_FALSE(texture.empty());
+  cv::imwrite((dir_ / "model" / "texture.png").string(), cv::Mat3b::zeros(texture.size()));
+  std::string html;
+  const ReportSummary s = Write(Inputs(), html);
+  EXPECT_TRUE(s.maps);
+  int noted = 0;
+  for (const std::string& n : s.notes) noted += n.find("texture.png is black") != std::string::npos;
+  EXPECT_EQ(noted, 1);
 }
 
 TEST_F(ReportTest, MissingObservationsAndProfileAreNoted) {

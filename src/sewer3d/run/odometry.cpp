@@ -26,6 +26,7 @@ void OdometryCheckOptions::Check() const {
   ValidatePositive("reversal_tolerance_mm", reversal_tolerance_mm);
   ValidatePositive("max_gap_s", max_gap_s);
   ValidatePositive("gap_speed_sigma_mm_s", gap_speed_sigma_mm_s);
+  ValidatePositive("max_mean_speed_mm_s", max_mean_speed_mm_s);
 }
 
 OdometryCheck CheckOdometry(const std::vector<OdometryReading>& readings,
@@ -51,6 +52,16 @@ OdometryCheck CheckOdometry(const std::vector<OdometryReading>& readings,
     ++rev.readings;
     rev.lowest_mm = std::min(rev.lowest_mm, r.distance_mm);
     in_reversal = true;
+  }
+  if (out.kept.size() >= 2) {
+    const OdometryReading& first = out.kept.front();
+    const OdometryReading& last = out.kept.back();
+    const double speed = (last.distance_mm - first.distance_mm) / (last.time_s - first.time_s);
+    SEWER3D_VALIDATE(speed <= options.max_mean_speed_mm_s, "odometry",
+                     "the counter covers " << last.distance_mm - first.distance_mm << " mm in "
+                                           << last.time_s - first.time_s << " s (" << speed
+                                           << " mm/s; a crawler moves under 1000 mm/s): is "
+                                              "distance_mm in millimetres?");
   }
   for (size_t i = 1; i < out.kept.size(); ++i) {
     const OdometryReading& a = out.kept[i - 1];

@@ -36,6 +36,9 @@ struct OdometryCheckOptions {
   /// (σ, mm/s, > 0). An interpolated distance at t in the gap (a, b) then has
   /// σ(t) = speed_sigma · (t − a)(b − t)/(b − a), at most speed_sigma · (b − a)/4 mid-gap.
   double gap_speed_sigma_mm_s = 100.0;
+  /// The carrier's mean speed over the kept readings may not exceed this (mm/s, > 0): a
+  /// crawler moves well under 1 m/s, so a faster counter is in other units (metres × 1000).
+  double max_mean_speed_mm_s = 5000.0;
 
   /// Throws std::invalid_argument naming the option.
   void Check() const;

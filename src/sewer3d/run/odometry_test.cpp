@@ -36,6 +36,20 @@ TEST(CheckOdometry, KeepsASteadyCounterWithNoise) {
   EXPECT_EQ(OdometryUncertaintyAt(c.findings, 0.33).sigma_mm, 0.0);
 }
 
+// Distances in micrometres (or metres read as mm × 1000): 100 m/s, no crawler moves so fast.
+TEST(CheckOdometry, RefusesACounterFasterThanACrawler) {
+  std::vector<OdometryReading> r = Steady(20);
+  EXPECT_NO_THROW(CheckOdometry(r));  // 100 mm/s
+  for (OdometryReading& reading : r) reading.distance_mm *= 1000.0;
+  try {
+    CheckOdometry(r);
+    ADD_FAILURE() << "100 m/s accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("is distance_mm in millimetres?"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(CheckOdometry, DropsReadingsGoingBackwardsAndNamesTheirLines) {
   std::vector<OdometryReading> r = Steady(20);
   for (int i = 9; i <= 12; ++i) r[i].distance_mm -= 60.0;  // lines 11..14

@@ -17,6 +17,7 @@ void Rig::Check() const {
   for (size_t i = 0; i < modules.size(); ++i) {
     const RigModule& m = modules[i];
     const std::string field = "modules[" + std::to_string(i) + "].";
+    SEWER3D_VALIDATE(!m.name.empty(), field + "name", "must not be empty");
     SEWER3D_VALIDATE(names.insert(m.name).second, field + "name",
                      "module name '" << m.name << "' is used twice");
     ValidateClockHours(field + "clock_h", m.clock_h);

@@ -255,8 +255,13 @@ void RenderOptions::Check() const {
                    "must be > 0 and at most 20 px, got " << projector_psf_px);
   // Levels are fractions of the sensor's full scale for a white wall at the reference.
   within("texture_level", texture_level, 0.0, 10.0);
-  within("pattern_level", pattern_level, 0.0, 10.0);
-  within("ambient_level", ambient_level, 0.0, 10.0);
+  SEWER3D_VALIDATE(pattern_level > 0.0 && pattern_level <= 10.0, "pattern_level",
+                   "must be > 0 (0 projects no spots) and at most 10, got " << pattern_level);
+  // The light of a sewer without the module's own: above full scale every pixel saturates.
+  SEWER3D_VALIDATE(ambient_level >= 0.0 && ambient_level <= 1.0, "ambient_level",
+                   "must be 0..1 (a fraction of the sensor's full scale; above 1 every pixel "
+                   "saturates), got "
+                       << ambient_level);
   within("ring_light_exponent", ring_light_exponent, 0.0, 16.0);
   SEWER3D_VALIDATE(std::abs(ring_light_color_shift) <= 0.5, "ring_light_color_shift",
                    "must be within ±0.5, got " << ring_light_color_shift);

@@ -31,7 +31,7 @@ class Truth {
  public:
   explicit Truth(const CaptureRun& run)
       : run_(run), pipe_(ReadScenario(run.folder / "truth" / "scenario.json").world) {
-    for (const TruthPose& p : ReadTruthPoses(run.folder / "truth" / "poses.csv"))
+    for (const TruthPose& p : ReadTruthPoses(run.folder / "truth" / "poses.csv", run.images.size()))
       poses_[{p.module, p.counter, static_cast<int>(p.kind)}] = p.world_from_carrier;
   }
 

@@ -12,7 +12,7 @@ TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
                                         const std::filesystem::path& run_folder,
                                         const std::filesystem::path& workspace) {
   TruthAlignment a;
-  for (const TruthPose& t : ReadTruthPoses(run_folder / "truth" / "poses.csv")) {
+  for (const TruthPose& t : ReadTruthPoses(run_folder / "truth" / "poses.csv", run.images.size())) {
     if (t.kind != ImageKind::kPattern || t.module >= static_cast<int>(run.rig.modules.size()))
       continue;
     a.truth[RegistrationVertexId(t.module, t.counter)] =

@@ -96,6 +96,17 @@ std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path) {
   return out;
 }
 
+std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path, std::size_t images) {
+  std::vector<TruthPose> poses = ReadTruthPoses(path);
+  if (poses.size() != images) {
+    throw FileError(path, fmt::format("holds {} poses, but the run's acquisitions.csv lists {} "
+                                      "images (one pose each): the truth is cut short or of "
+                                      "another run",
+                                      poses.size(), images));
+  }
+  return poses;
+}
+
 void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pipe) {
   const PipeWorld& w = pipe.world();
   json list = json::array();

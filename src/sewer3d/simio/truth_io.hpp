@@ -31,6 +31,8 @@ struct TruthPose {
 };
 void WriteTruthPoses(const std::filesystem::path& path, const std::vector<TruthPose>& poses);
 std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path);
+/// ReadTruthPoses, refusing a file without exactly `images` rows (the run's images).
+std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path, std::size_t images);
 
 /// truth/camera_gains.csv: each module's white-balance gains (module,gain_r,gain_g,gain_b).
 void WriteCameraGains(const std::filesystem::path& path,

@@ -6,6 +6,7 @@
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/neighbours.hpp"
+#include "sewer3d/core/union_find.hpp"
 #include "sewer3d/triangulate/dlt.hpp"
 
 namespace sewer3d {
@@ -192,7 +193,36 @@ void DepthOutlierOptions::Check() const {
   ValidatePositive("radius_px", radius_px);
   ValidateNotNegative("min_step_mm", min_step_mm);
   ValidateNotNegative("fraction", fraction);
+  ValidateNotNegative("min_segment_points", min_segment_points);
 }
+
+namespace {
+
+// Clears keep[i] of the kept points whose segment (kept neighbours joined where their depths
+// differ by at most the step the test allows) has fewer than min_points points.
+void DropSmallSegments(const std::vector<TriangulatedPoint>& points,
+                       const NeighbourLists& neighbours, const DepthOutlierOptions& options,
+                       std::vector<char>& keep) {
+  const int n = static_cast<int>(points.size());
+  UnionFind segments(n);
+  for (int i = 0; i < n; ++i) {
+    if (!keep[i]) continue;
+    const double z = points[i].point_mm.z();
+    const auto [first, last] = neighbours.Of(i);
+    for (const int* j = first; j != last; ++j) {
+      const double zj = points[*j].point_mm.z();
+      const double step = std::max(options.min_step_mm, options.fraction * std::max(z, zj));
+      if (keep[*j] && std::abs(z - zj) <= step) segments.Join(*j, i);
+    }
+  }
+  std::vector<int> size(n, 0);
+  for (int i = 0; i < n; ++i) size[segments.Root(i)] += keep[i];
+  for (int i = 0; i < n; ++i) {
+    if (keep[i] && size[segments.Root(i)] < options.min_segment_points) keep[i] = 0;
+  }
+}
+
+}  // namespace
 
 int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
                         const std::vector<CodedObservation>& observations,
@@ -217,6 +247,7 @@ int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
     const double z = points[i].point_mm.z();
     if (std::abs(z - median) > std::max(options.min_step_mm, options.fraction * z)) keep[i] = 0;
   }
+  DropSmallSegments(points, neighbours, options, keep);
   std::vector<TriangulatedPoint> kept;
   kept.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i) {

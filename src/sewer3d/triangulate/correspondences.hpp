@@ -85,12 +85,18 @@ struct DepthOutlierOptions {
   double radius_px = 30.0;   ///< image neighbours compared with
   double min_step_mm = 5.0;  ///< depth differences up to max(min_step_mm, fraction · z) pass
   double fraction = 0.05;
+  /// Surface segments (points joined through image neighbours whose depths pass the test
+  /// above) of fewer points are removed: a spot group decoded with a wrong tile lies tens of
+  /// millimetres off its surroundings, and where spots are sparse its few members are each
+  /// other's majority. 0: none removed.
+  int min_segment_points = 5;
   void Check() const;
 };
 
 /// Removes points whose depth disagrees with the median depth of their image neighbours
-/// (within `radius_px`) by more than max(min_step_mm, fraction · z), and points with fewer
-/// than two neighbours. Returns the number removed.
+/// (within `radius_px`) by more than max(min_step_mm, fraction · z), points with fewer than
+/// two neighbours, then the segments of fewer than `min_segment_points` points. Returns the
+/// number removed.
 int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
                         const std::vector<CodedObservation>& observations,
                         const DepthOutlierOptions& options = {});

@@ -1,0 +1,75 @@
+// RejectDepthOutliers on points laid out by hand: the per-point median test and the removal of
+// small surface segments (a spot group decoded with a wrong tile).
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "sewer3d/triangulate/correspondences.hpp"
+
+namespace sewer3d {
+namespace {
+
+struct Layout {
+  std::vector<TriangulatedPoint> points;
+  std::vector<CodedObservation> observations;
+  void Add(double u, double v, double z, int label) {
+    CodedObservation o;
+    o.camera_px = {u, v};
+    observations.push_back(o);
+    TriangulatedPoint p;
+    p.observation = static_cast<int>(points.size());
+    p.point_mm = {0.0, 0.0, z};
+    p.row = label;  // the test's label: 0 wall, 1 deep patch, 2 wrong group
+    points.push_back(p);
+  }
+  int Count(const std::vector<TriangulatedPoint>& kept, int label) const {
+    int n = 0;
+    for (const TriangulatedPoint& p : kept) n += p.row == label;
+    return n;
+  }
+};
+
+// A wall of spots 20 px apart at 150 mm (a gentle ramp), with a 6 x 6 patch 60 mm deeper (a
+// bore seen through a connection) and, in a 5 x 5 hole without decodes, four spots 60 mm off
+// 6 px apart: each is the others' only neighbour within 30 px, so the median test keeps them.
+Layout Wall() {
+  Layout l;
+  for (int r = 0; r < 30; ++r) {
+    for (int c = 0; c < 40; ++c) {
+      const bool hole = r >= 12 && r < 17 && c >= 28 && c < 33;
+      const bool deep = r >= 5 && r < 11 && c >= 5 && c < 11;
+      if (!hole) l.Add(20.0 * c, 20.0 * r, 150.0 + 0.05 * c + (deep ? 60.0 : 0.0), deep ? 1 : 0);
+    }
+  }
+  for (int k = 0; k < 4; ++k) l.Add(600.0 + 6.0 * (k % 2), 280.0 + 6.0 * (k / 2), 210.0, 2);
+  return l;
+}
+
+TEST(RejectDepthOutliers, RemovesASmallWrongGroupAndKeepsADeepPatch) {
+  Layout l = Wall();
+  const int walls = l.Count(l.points, 0);
+  std::vector<TriangulatedPoint> points = l.points;
+  const int removed = RejectDepthOutliers(points, l.observations);
+  EXPECT_EQ(l.Count(points, 2), 0);
+  EXPECT_EQ(l.Count(points, 0), walls);
+  // The patch loses its four corners (each sees 3 patch and 5 wall neighbours); the rest stays.
+  EXPECT_EQ(l.Count(points, 1), 32);
+  EXPECT_EQ(removed, 4 + 4);
+
+  DepthOutlierOptions without;
+  without.min_segment_points = 0;
+  points = l.points;
+  RejectDepthOutliers(points, l.observations, without);
+  EXPECT_EQ(l.Count(points, 2), 4);  // the median test alone keeps the wrong group
+}
+
+TEST(RejectDepthOutliers, RefusesANegativeSegmentSize) {
+  Layout l = Wall();
+  DepthOutlierOptions options;
+  options.min_segment_points = -1;
+  EXPECT_THROW(RejectDepthOutliers(l.points, l.observations, options), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sewer3d
