@@ -1,5 +1,7 @@
 #include "sewer3d/cli/argument_checks.hpp"
 
+#include <fmt/core.h>
+
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -153,8 +155,9 @@ std::string FlagGivenAsValue(const CLI::App& app, int argc, char** argv) {
     if (option == nullptr || option->get_items_expected_min() == 0) continue;  // a flag
     const std::string name = long_name(next);
     if (!name.empty() && HasLongOption(app, name)) {
-      return arg + ": takes a value, but the next argument is the option " + next + " (give " +
-             arg + " its value first)";
+      return fmt::format(
+          "{0}: takes a value, but the next argument is the option {1} (give {0} its value first)",
+          arg, next);
     }
   }
   return {};

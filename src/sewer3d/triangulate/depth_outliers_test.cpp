@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
 
 #include "sewer3d/triangulate/correspondences.hpp"
@@ -42,7 +43,8 @@ Layout Wall() {
       if (!hole) l.Add(20.0 * c, 20.0 * r, 150.0 + 0.05 * c + (deep ? 60.0 : 0.0), deep ? 1 : 0);
     }
   }
-  for (int k = 0; k < 4; ++k) l.Add(600.0 + 6.0 * (k % 2), 280.0 + 6.0 * (k / 2), 210.0, 2);
+  for (const auto& [du, dv] : {std::pair(0.0, 0.0), {6.0, 0.0}, {0.0, 6.0}, {6.0, 6.0}})
+    l.Add(600.0 + du, 280.0 + dv, 210.0, 2);
   return l;
 }
 
