@@ -99,8 +99,9 @@ TEST(ModuleCalibrator, TwoPassesRecoverTheTrueModuleFromRenderedCaptures) {
     // Every pose shows the whole board; far ones may lose corners (too few spots on a square).
     EXPECT_NE(outcome.status, CaptureOutcome::Status::kBoardNotFound) << "pose " << i;
     EXPECT_EQ(outcome.corners, board.cols * board.rows) << "pose " << i;
-    if (outcome.status == CaptureOutcome::Status::kCornersNotCarried)
+    if (outcome.status == CaptureOutcome::Status::kCornersNotCarried) {
       EXPECT_GT(outcome.corners_missing, outcome.corners / 2) << "pose " << i;
+    }
     if (outcome.status == CaptureOutcome::Status::kUsed && first_texture.empty()) {
       first_texture = texture_grey;
       first_pattern = pattern8;
