@@ -1,15 +1,11 @@
 #include "sewer3d/cli/argument_checks.hpp"
 
-#include <fmt/core.h>
-
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <string>
-#include <vector>
 
 #include "sewer3d/core/check.hpp"
-#include "sewer3d/core/edit_distance.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -20,19 +16,6 @@ bool IsNan(const std::string& value) {
   char* end = nullptr;
   const double x = std::strtod(value.c_str(), &end);
   return !value.empty() && end == value.c_str() + value.size() && std::isnan(x);
-}
-
-// The long option `--name` of `app` or one of its (sub)commands; nullptr when none has it.
-const CLI::Option* FindLongOption(const CLI::App& app, const std::string& name) {
-  if (const CLI::Option* o = app.get_option_no_throw("--" + name)) return o;
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-    if (const CLI::Option* o = FindLongOption(*sub, name)) return o;
-  }
-  return nullptr;
-}
-
-bool HasLongOption(const CLI::App& app, const std::string& name) {
-  return FindLongOption(app, name) != nullptr;
 }
 
 }  // namespace
@@ -93,74 +76,6 @@ std::string MissingArgument(const CLI::App& app, const std::string& message) {
       deepest->get_option_no_throw(message.substr(0, message.size() - required.size()));
   if (option == nullptr || !option->get_positional()) return {};
   return command + " needs its " + option->get_name() + " argument: " + option->get_description();
-}
-
-// The first argument written as a long option with one dash ("-out"), which CLI11 would read as
-// the short flags -o -u -t and then report --out as missing; empty when none.
-std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    std::string arg = argv[i];
-    if (arg == "--") break;
-    if (arg.size() < 3 || arg[0] != '-' || std::isalpha(static_cast<unsigned char>(arg[1])) == 0) {
-      continue;
-    }
-    if (HasLongOption(app, arg.substr(1, arg.find('=') - 1))) return arg;
-  }
-  return {};
-}
-
-namespace {
-
-// Every long option name (without the dashes) of `app` and its (sub)commands.
-void LongOptionNames(const CLI::App& app, std::vector<std::string>& names) {
-  for (const CLI::Option* o : app.get_options()) {
-    for (const std::string& name : o->get_lnames()) names.push_back(name);
-  }
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
-    LongOptionNames(*sub, names);
-}
-
-}  // namespace
-
-std::string UnknownLongOption(const CLI::App& app, int argc, char** argv) {
-  std::vector<std::string> names;
-  LongOptionNames(app, names);
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--") break;
-    if (arg.size() < 3 || arg.rfind("--", 0) != 0) continue;
-    const std::string name = arg.substr(2, arg.find('=') - 2);
-    if (HasLongOption(app, name)) continue;
-    std::string nearest;
-    std::size_t best = 3;  // at most two edits away
-    for (const std::string& known : names) {
-      if (const std::size_t d = EditDistance(name, known); d < best) best = d, nearest = known;
-    }
-    return "unknown option --" + name +
-           (nearest.empty() ? "" : " (did you mean --" + nearest + "?)");
-  }
-  return {};
-}
-
-std::string FlagGivenAsValue(const CLI::App& app, int argc, char** argv) {
-  const auto long_name = [](const std::string& arg) {
-    return arg.size() > 2 && arg.rfind("--", 0) == 0 ? arg.substr(2, arg.find('=') - 2)
-                                                     : std::string();
-  };
-  for (int i = 1; i + 1 < argc; ++i) {
-    const std::string arg = argv[i], next = argv[i + 1];
-    if (arg == "--") break;
-    if (arg.find('=') != std::string::npos) continue;
-    const CLI::Option* option = FindLongOption(app, long_name(arg));
-    if (option == nullptr || option->get_items_expected_min() == 0) continue;  // a flag
-    const std::string name = long_name(next);
-    if (!name.empty() && HasLongOption(app, name)) {
-      return fmt::format(
-          "{0}: takes a value, but the next argument is the option {1} (give {0} its value first)",
-          arg, next);
-    }
-  }
-  return {};
 }
 
 CLI::Validator FileNameEnding(const std::string& extension, const std::string& why) {

@@ -23,18 +23,6 @@ bool TakesWholeNumbers(const CLI::App& app, const std::string& message);
 /// required" or "A subcommand is required"; empty for any other message.
 std::string MissingArgument(const CLI::App& app, const std::string& message);
 
-/// The first argument written as a long option with one dash ("-out"), which CLI11 would read
-/// as the short flags -o -u -t and then report --out as missing; empty when none.
-std::string SingleDashLongOption(const CLI::App& app, int argc, char** argv);
-
-/// "unknown option --modul (did you mean --module?)" for the first long option no command
-/// has (CLI11 would first report a required option as missing); empty when none.
-std::string UnknownLongOption(const CLI::App& app, int argc, char** argv);
-
-/// Why an option that takes a value is followed by another option's name ("--out --quiet",
-/// which CLI11 would take as a folder named --quiet); empty when none is.
-std::string FlagGivenAsValue(const CLI::App& app, int argc, char** argv);
-
 /// A CLI11 check that a file name to write ends in `extension` (".png") and has a stem; its
 /// refusal says why (`why`: "the matrix is written losslessly as PNG").
 CLI::Validator FileNameEnding(const std::string& extension, const std::string& why);

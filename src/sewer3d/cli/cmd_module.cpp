@@ -114,9 +114,8 @@ Command AddModuleCommand(CLI::App& app) {
                 case Cause::kWindowFit:
                   throw InvalidValue("--pitch-px", problem->text);
                 case Cause::kPatternSpan:
-                  throw InvalidValue(geometry, problem->text +
-                                                   ": choose a smaller stereo angle or field "
-                                                   "of view");
+                  throw InvalidValue(
+                      geometry, problem->text + ": choose a smaller stereo angle or field of view");
                 case Cause::kDepthPrecision:
                 case Cause::kFieldOverlap:
                   throw InvalidValue(geometry, problem->text);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sewer3d/cli/argument_checks.hpp"
+#include "sewer3d/cli/argv_checks.hpp"
 #include "sewer3d/cli/command.hpp"
 #include "sewer3d/cli/exit_code.hpp"
 #include "sewer3d/cli/library_logs.hpp"
