@@ -258,4 +258,19 @@ int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
   return removed;
 }
 
+int RejectSharedElements(std::vector<TriangulatedPoint>& points) {
+  std::vector<std::pair<int, int>> elements;
+  elements.reserve(points.size());
+  for (const TriangulatedPoint& p : points) elements.emplace_back(p.row, p.col);
+  std::sort(elements.begin(), elements.end());
+  const auto shared = [&](const TriangulatedPoint& p) {
+    const auto [first, last] =
+        std::equal_range(elements.begin(), elements.end(), std::pair<int, int>(p.row, p.col));
+    return last - first > 1;
+  };
+  const auto before = points.size();
+  points.erase(std::remove_if(points.begin(), points.end(), shared), points.end());
+  return static_cast<int>(before - points.size());
+}
+
 }  // namespace sewer3d

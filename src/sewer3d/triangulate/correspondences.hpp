@@ -101,4 +101,10 @@ int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
                         const std::vector<CodedObservation>& observations,
                         const DepthOutlierOptions& options = {});
 
+/// Removes every point whose projector element another point also claims: an element lights
+/// one spot, so of two spots decoded as the same element at least one is wrong (a label
+/// slipped across a depth step) or both are fragments of one spot split by an edge, their
+/// centres off. Returns the number removed.
+int RejectSharedElements(std::vector<TriangulatedPoint>& points);
+
 }  // namespace sewer3d

@@ -1,5 +1,5 @@
 // RejectDepthOutliers on points laid out by hand: the per-point median test and the removal of
-// small surface segments (a spot group decoded with a wrong tile).
+// small surface segments (a spot group decoded with a wrong tile); RejectSharedElements.
 
 #include <gtest/gtest.h>
 
@@ -71,6 +71,25 @@ TEST(RejectDepthOutliers, RefusesANegativeSegmentSize) {
   DepthOutlierOptions options;
   options.min_segment_points = -1;
   EXPECT_THROW(RejectDepthOutliers(l.points, l.observations, options), std::invalid_argument);
+}
+
+// Two spots decoded as one element (a label slipped across a joint's step): both go, every
+// other point stays, in its order.
+TEST(RejectSharedElements, RemovesEveryClaimOfAnElementClaimedTwice) {
+  std::vector<TriangulatedPoint> points(6);
+  const int elements[6][2] = {{19, 30}, {19, 31}, {20, 30}, {19, 30}, {-3, 30}, {19, -30}};
+  for (int i = 0; i < 6; ++i) {
+    points[i].observation = i;
+    points[i].row = elements[i][0];
+    points[i].col = elements[i][1];
+  }
+  EXPECT_EQ(RejectSharedElements(points), 2);
+  ASSERT_EQ(points.size(), 4u);
+  EXPECT_EQ(points[0].observation, 1);
+  EXPECT_EQ(points[1].observation, 2);
+  EXPECT_EQ(points[2].observation, 4);
+  EXPECT_EQ(points[3].observation, 5);
+  EXPECT_EQ(RejectSharedElements(points), 0);
 }
 
 }  // namespace

@@ -99,6 +99,7 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
   auto t = Clock::now();
   TriangulationStats stats;
   std::vector<TriangulatedPoint> points = triangulator_.Triangulate(observations, &stats);
+  report.rejected.element_claimed_twice = RejectSharedElements(points);
   report.rejected.depth_outlier_or_isolated =
       RejectDepthOutliers(points, observations, options_.outliers);
   const auto decoded_spots = static_cast<double>(decoded.codes.size());

@@ -65,6 +65,7 @@ struct FrameReport {
     int beyond_lens_fold = 0;           ///< camera pixel the lens model cannot unproject
     int no_tile_on_epipolar_line = 0;   ///< no tile of the decoded position fits
     int several_tiles_fit = 0;          ///< more than one tile fits
+    int element_claimed_twice = 0;      ///< RejectSharedElements
     int depth_outlier_or_isolated = 0;  ///< RejectDepthOutliers
     int not_of_module = 0;              ///< dropped with the whole frame (not_of_module)
   } rejected;
