@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <opencv2/imgproc.hpp>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
@@ -229,13 +230,18 @@ Observation Surface(const Wall& wall, const cv::Mat1f& res, const MapComponent& 
     return o;
   }
   o.code = "BAF";
-  const std::vector<double> core = SignedValues(res, wall, Core(wall, res, comp.cells, 1.0), 1.0);
-  double core_sum = 0.0;
-  for (double d : core) core_sum += d;
+  const std::vector<cv::Point> core = Core(wall, res, comp.cells, 1.0);
+  std::vector<cv::Point> inner =
+      InteriorCells(core, static_cast<int>(std::lround(opt.spall_rim_mm / wall.RowMm())),
+                    static_cast<int>(std::lround(opt.spall_rim_mm / wall.ColMm())));
+  if (inner.empty()) inner = core;  // too narrow for its rim: all of it
+  const std::vector<double> inner_depth = SignedValues(res, wall, inner, 1.0);
+  double inner_sum = 0.0;
+  for (double d : inner_depth) inner_sum += d;
   const double area = static_cast<double>(core.size()) * wall.CellMm2();
   o.quantities = {{"depth_max_mm", max_depth, "mm"},
                   {"area_mm2", area, "mm2"},
-                  {"depth_mean_mm", core_sum / static_cast<double>(core.size()), "mm"},
+                  {"depth_mean_mm", inner_sum / static_cast<double>(inner_depth.size()), "mm"},
                   {"width_mm", (comp.col_max - comp.col_min + 1) * wall.ColMm(), "mm"}};
   o.remark = fmt::format("spalling {:.0f} cm² up to {:.1f} mm deep", area / 100.0, max_depth);
   return o;
@@ -253,6 +259,26 @@ void Grow(MapComponent& box, const MapComponent& c) {
 }
 
 }  // namespace
+
+std::vector<cv::Point> InteriorCells(const std::vector<cv::Point>& cells, int radius_rows,
+                                     int radius_cols) {
+  if (cells.empty()) return {};
+  cv::Rect box = cv::boundingRect(cells);
+  // Padded so that the outside of the box erodes like any cell outside the region.
+  const cv::Point pad(radius_cols + 1, radius_rows + 1);
+  cv::Mat1b mask = cv::Mat1b::zeros(box.height + 2 * pad.y, box.width + 2 * pad.x);
+  const cv::Point origin = box.tl() - pad;
+  for (const cv::Point& p : cells) mask(p - origin) = 255;
+  const cv::Mat kernel =
+      cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * radius_cols + 1, 2 * radius_rows + 1});
+  cv::Mat1b eroded;
+  cv::erode(mask, eroded, kernel);
+  std::vector<cv::Point> inner;
+  for (const cv::Point& p : cells) {
+    if (eroded(p - origin)) inner.push_back(p);
+  }
+  return inner;
+}
 
 std::vector<Observation> FindDefects(const CoarseMap& map, const cv::Mat1f& residual,
                                      double radius_mm, double nominal_diameter_mm, double sigma_mm,
@@ -341,6 +367,7 @@ void DefectOptions::Check() const {
   ValidateNotNegative("connection_margin_mm", connection_margin_mm);
   SEWER3D_VALIDATE(invert_half_h > 0.0 && invert_half_h <= 6.0, "invert_half_h",
                    "must be in (0, 6] h, got " << invert_half_h);
+  ValidateNotNegative("spall_rim_mm", spall_rim_mm);
 }
 
 }  // namespace sewer3d

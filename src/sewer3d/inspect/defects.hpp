@@ -26,8 +26,18 @@ struct DefectOptions {
   double crack_elongation = 4.0;  ///< length / width from which an outward region is a crack
   double crack_max_width_mm = 6.0;
   double invert_half_h = 1.0;  ///< a deposit's deepest point lies within ± this of 6 o'clock
+  /// A spall's mean depth is taken over its cells at least this far inside its outline: the
+  /// rim's slope, widened by the depth maps' interpolation between spots, would make it read
+  /// shallow by an amount that depends on the cameras' resolution.
+  double spall_rim_mm = 2.0;
   void Check() const;
 };
+
+/// The cells of `cells` (row y, column x; any order, no duplicates) whose every cell within
+/// the ellipse of half-axes `radius_rows`, `radius_cols` is also one of `cells`: the region
+/// eroded by that ellipse. Empty when nothing is left.
+std::vector<cv::Point> InteriorCells(const std::vector<cv::Point>& cells, int radius_rows,
+                                     int radius_cols);
 
 /// Observations (ids, at_joint left to the caller) from `residual` (rows × cols of `map`,
 /// NaN where unknown or masked, e.g. joint bands). `radius_mm`: the model radius;

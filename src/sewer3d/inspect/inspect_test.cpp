@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -10,6 +11,7 @@
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
+#include "sewer3d/inspect/defects.hpp"
 #include "sewer3d/model/axis_curve.hpp"
 
 namespace sewer3d {
@@ -25,7 +27,7 @@ double ClockDiff(double a, double b) { return std::remainder(a - b, 2.0 * kPi); 
 // A DN300 pipe 600 mm long, straight along z, with one feature of each kind (displacement in
 // mm, outward positive, as the model's maps hold it):
 // - section 1 (s < 200): deformed 3 % toward 12 h (r = R − 4.5 cos 2θ), spalling 50 × 40 mm,
-//   5 mm deep at s = 120, 4 h;
+//   5 mm deep at s = 120, 4 h, its rim sloping to the wall over 2.5 mm more;
 // - joint at s = 200: an 8 mm gap with no data in it; the next pipe 4 mm inward at 2 h and
 //   its axis turned 1° toward 9 h;
 // - a connection at s = 350, 10 h: bore Ø80 open 40 mm deep, its end 12 mm inward over a
@@ -36,7 +38,10 @@ float Wall(double s, double th) {
   if (s < 200.0) {
     double d = -4.5 * std::cos(2.0 * th);
     const double arc = kRadius * ClockDiff(th, ClockHoursToRad(4.0));
-    if (std::abs(s - 120.0) < 25.0 && std::abs(arc) < 20.0) d += 5.0;
+    // The floor 50 x 40 mm, its rim sloping over 2.5 mm as a depth map blurs it.
+    const double ramp = std::clamp((27.5 - std::abs(s - 120.0)) / 2.5, 0.0, 1.0) *
+                        std::clamp((22.5 - std::abs(arc)) / 2.5, 0.0, 1.0);
+    d += 5.0 * ramp;
     return static_cast<float>(d);
   }
   double d = -4.0 * std::cos(th - ClockHoursToRad(2.0)) +
@@ -54,7 +59,19 @@ float Wall(double s, double th) {
   return static_cast<float>(d);
 }
 
-CoarseMap SyntheticMap(double resolution_mm = 0.5) {
+// A DN300 pipe whose joint at s = 300 the depth maps bridged: no gap in the data, the next
+// pipe's 4 mm step toward 12 h spread over ± 5 mm; from the joint that pipe's ovality (5 %,
+// toward 12 h) grows over 100 mm, as the simulator's deformed sections do.
+float BridgedJointWall(double s, double th) {
+  const auto ramp = [](double u) {
+    const double t = std::clamp(u, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+  };
+  return static_cast<float>(-4.0 * ramp((s - 295.0) / 10.0) * std::cos(th) -
+                            7.5 * ramp((s - 300.0) / 100.0) * std::cos(2.0 * th));
+}
+
+CoarseMap SyntheticMap(double resolution_mm = 0.5, float (*wall)(double, double) = Wall) {
   const MapGrid grid = MakeMapGrid(0.0, 600.0, kRadius, resolution_mm);
   PipeMaps maps;
   maps.grid = grid;
@@ -64,7 +81,7 @@ CoarseMap SyntheticMap(double resolution_mm = 0.5) {
   cv::randn(noise, 0.0, 0.05);  // a model's surface noise
   for (int r = 0; r < grid.rows; ++r) {
     for (int c = 0; c < grid.cols; ++c) {
-      maps.displacement_mm(r, c) = Wall(grid.RowStationMm(r), grid.ColClockRad(c)) + noise(r, c);
+      maps.displacement_mm(r, c) = wall(grid.RowStationMm(r), grid.ColClockRad(c)) + noise(r, c);
     }
   }
   CoarseMapBuilder builder(grid, 1.0);
@@ -121,8 +138,9 @@ TEST(Inspect, FindsAndMeasuresEveryKindOnASyntheticPipe) {
   const Observation* spall = Only(in, "BAF");
   EXPECT_NEAR(spall->station_mm, 120.0, 2.0);
   EXPECT_NEAR(spall->clock_h, 4.0, 0.25);
-  EXPECT_NEAR(Q(spall, "area_mm2"), 2000.0, 300.0);
-  EXPECT_NEAR(Q(spall, "depth_mean_mm"), 5.0, 0.3);
+  EXPECT_NEAR(Q(spall, "area_mm2"), 52.5 * 42.5, 300.0);  // out to the half-depth contour
+  // The floor's depth: with the cells on the rim's slope (down to half depth) it reads 4.92.
+  EXPECT_NEAR(Q(spall, "depth_mean_mm"), 5.0, 0.03);
   const Observation* crack = Only(in, "BAB");
   EXPECT_NEAR(crack->station_mm, 450.0, 3.0);
   EXPECT_NEAR(Q(crack, "length_mm"), 100.0, 10.0);
@@ -135,6 +153,33 @@ TEST(Inspect, FindsAndMeasuresEveryKindOnASyntheticPipe) {
   EXPECT_NEAR(Q(deformation, "deformation_pct"), 3.0, 0.3);
   EXPECT_EQ(deformation->characterisation, "A");
   EXPECT_NEAR(deformation->station_mm, 0.0, 2.0);
+}
+
+// The side lines start clear of the step's blur, and the change of shape along the next pipe
+// (its second harmonic) is no deflection.
+TEST(Inspect, MeasuresAJointWhoseGapWasBridged) {
+  const Inspection in = Inspect(SyntheticMap(0.5, BridgedJointWall), Straight(), {});
+  const Observation* joint = Only(in, "BAJ");
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(joint->station_mm, 300.0, 2.0);
+  EXPECT_NEAR(Q(joint, "offset_mm"), 4.0, 0.15);
+  EXPECT_NEAR(std::remainder(joint->clock_h, 12.0), 0.0, 0.25);  // 12 h
+  EXPECT_LT(Q(joint, "deflection_deg"), 0.1);
+}
+
+TEST(InteriorCells, ErodesARegionByAnEllipse) {
+  std::vector<cv::Point> rect;  // 10 columns x 8 rows, at negative and positive coordinates
+  for (int y = -3; y < 5; ++y) {
+    for (int x = -4; x < 6; ++x) rect.emplace_back(x, y);
+  }
+  const std::vector<cv::Point> inner = InteriorCells(rect, 1, 2);
+  ASSERT_EQ(inner.size(), 6U * 6U);
+  for (const cv::Point& p : inner) {
+    EXPECT_TRUE(p.x >= -2 && p.x < 4 && p.y >= -2 && p.y < 4) << p;
+  }
+  EXPECT_EQ(InteriorCells(rect, 0, 0).size(), rect.size());
+  EXPECT_TRUE(InteriorCells(rect, 4, 0).empty());
+  EXPECT_TRUE(InteriorCells({}, 1, 1).empty());
 }
 
 TEST(Inspect, MapsTooCoarseForTheThresholdsAreRefused) {

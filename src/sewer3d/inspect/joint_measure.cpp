@@ -16,6 +16,7 @@ namespace {
 struct SideLine {
   double value = 0.0;
   double slope = 0.0;
+  double rms = 0.0;  ///< of the values about the line
   bool ok = false;
 };
 
@@ -37,6 +38,12 @@ SideLine FitSide(const cv::Mat1f& d, int col, int row_begin, int row_end,
   if (2 * n < row_end - row_begin || n < 4 || det <= 0.0) return line;
   line.slope = (n * sxy - sx * sy) / det;
   line.value = (sy - line.slope * sx) / n;
+  double sum2 = 0.0;
+  for (int r = std::max(0, row_begin); r < std::min(d.rows, row_end); ++r) {
+    const float v = d(r, col);
+    if (std::isfinite(v)) sum2 += std::pow(v - line.value - line.slope * x_of_row[r], 2);
+  }
+  line.rms = std::sqrt(sum2 / n);
   line.ok = true;
   return line;
 }
@@ -45,6 +52,27 @@ struct Sides {
   std::vector<int> cols;
   std::vector<SideLine> before, after;
 };
+
+/// `sides` without the columns where either side's wall is no straight line (a connection, a
+/// deposit or a spall in the side's rows): line RMS over `factor` times the median of all
+/// sides' RMS.
+Sides WithoutCrookedColumns(const Sides& sides, double factor) {
+  std::vector<double> rms;
+  for (std::size_t i = 0; i < sides.cols.size(); ++i) {
+    rms.push_back(sides.before[i].rms);
+    rms.push_back(sides.after[i].rms);
+  }
+  if (rms.empty()) return sides;
+  const double limit = factor * Median(rms);
+  Sides kept;
+  for (std::size_t i = 0; i < sides.cols.size(); ++i) {
+    if (std::max(sides.before[i].rms, sides.after[i].rms) > limit) continue;
+    kept.cols.push_back(sides.cols[i]);
+    kept.before.push_back(sides.before[i]);
+    kept.after.push_back(sides.after[i]);
+  }
+  return kept;
+}
 
 /// The two side lines of every column measured on both sides of a gap `gap_mm` wide.
 Sides FitSides(const CoarseMap& map, double station_mm, double gap_mm, const JointOptions& o,
@@ -64,7 +92,7 @@ Sides FitSides(const CoarseMap& map, double station_mm, double gap_mm, const Joi
     sides.before.push_back(before);
     sides.after.push_back(after);
   }
-  return sides;
+  return WithoutCrookedColumns(sides, o.max_side_rms_factor);
 }
 
 struct GapMeasure {
@@ -134,20 +162,21 @@ JointMeasure MeasureJoint(const CoarseMap& map, const Centreline& centreline, do
     m.station_mm = station_mm += g.centre_mm;
     for (double& xr : x) xr -= g.centre_mm;
   }
-  const Sides sides = FitSides(map, station_mm, m.gap_mm, o, x);
+  const double cleared = m.gap_mm > 0.0 ? m.gap_mm : o.unseen_gap_mm;
+  const Sides sides = FitSides(map, station_mm, cleared, o, x);
   std::vector<double> theta, step, bend;
   for (std::size_t i = 0; i < sides.cols.size(); ++i) {
     theta.push_back(map.ColClockRad(sides.cols[i]));
     step.push_back(sides.after[i].value - sides.before[i].value);
     bend.push_back(sides.after[i].slope - sides.before[i].slope);
   }
-  const double inner = 0.5 * m.gap_mm + o.side_margin_mm;
+  const double inner = 0.5 * cleared + o.side_margin_mm;
   m.row_begin = std::max(0, static_cast<int>(std::floor((station_mm - inner - s0) / row_mm)));
   m.row_end = std::min(d.rows, static_cast<int>(std::ceil((station_mm + inner - s0) / row_mm)));
   m.side_coverage = static_cast<double>(theta.size()) / d.cols;
-  const Eigen::VectorXd k_step = RobustHarmonicFit(theta, step, 1);
-  const Eigen::VectorXd k_bend = RobustHarmonicFit(theta, bend, 1);
-  if (k_step.size() != 3 || k_bend.size() != 3) return m;
+  const Eigen::VectorXd k_step = RobustHarmonicFit(theta, step, 2);
+  const Eigen::VectorXd k_bend = RobustHarmonicFit(theta, bend, 2);
+  if (k_step.size() != 5 || k_bend.size() != 5) return m;
   m.offset_mm = std::hypot(k_step(1), k_step(2));
   m.offset_clock_rad = WrapClock(std::atan2(-k_step(2), -k_step(1)));
   // An axis turning toward clock c moves the wall there outward along the pipe (slope +α at c,

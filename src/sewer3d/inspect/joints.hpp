@@ -19,6 +19,14 @@ struct JointOptions {
   double min_offset_mm = 0.7;     ///< without a gap, an axis-offset step at least this large
   double side_length_mm = 40.0;   ///< wall used on each side of the joint
   double side_margin_mm = 2.0;    ///< left out between the gap and each side
+  /// A joint whose gap is not in the data (found by its step): the width left out around it,
+  /// for the gap the depth maps bridged and the blur of its edges (at 648 px, spots ~3 mm
+  /// apart on the wall, the step spreads over ±5 mm).
+  double unseen_gap_mm = 10.0;
+  /// Columns whose wall on either side departs from a straight line by more than this many
+  /// times the median side's RMS are left out of the offset and deflection (a connection,
+  /// deposit or spall in the side's rows).
+  double max_side_rms_factor = 5.0;
   /// A row is open where it is missing, or deeper than min_gap_depth_mm below its column's
   /// median; a gap is a run of rows open over at least this share of the turn.
   double min_gap_share = 0.5;

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "sewer3d/core/units.hpp"
+#include "sewer3d/inspect/defects.hpp"
 #include "sewer3d/model/unroll.hpp"
 
 namespace sewer3d {
@@ -33,31 +34,41 @@ struct SpallTruth {
 };
 
 /// The true spalled patch measured as the inspection measures one (defects.hpp): its cells at
-/// least half as deep as its median, on a 0.25 mm grid of the simulator's own rough patch.
+/// least half as deep as its median (the area), and their mean depth at least the inspection's
+/// `spall_rim_mm` inside that outline, on a 0.25 mm grid of the simulator's own rough patch.
 SpallTruth MeasureSpall(const PipeFeature& f, std::uint64_t seed, double radius_mm) {
   constexpr double kStep = 0.25;
+  std::vector<cv::Point> cells;
   std::vector<double> depth;
-  for (double ds = -0.5 * f.length_mm - 1.0; ds <= 0.5 * f.length_mm + 1.0; ds += kStep) {
-    for (double arc = -0.5 * f.width_mm - 1.0; arc <= 0.5 * f.width_mm + 1.0; arc += kStep) {
+  const int rows = static_cast<int>(std::floor((f.length_mm + 2.0) / kStep)) + 1;
+  const int cols = static_cast<int>(std::floor((f.width_mm + 2.0) / kStep)) + 1;
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      const double ds = -0.5 * f.length_mm - 1.0 + i * kStep;
+      const double arc = -0.5 * f.width_mm - 1.0 + j * kStep;
       const double d = -PipeFeatureDisplacementMm(f, ds, arc / radius_mm, radius_mm, seed, nullptr);
-      if (d > 0.0) depth.push_back(d);
+      if (d <= 0.0) continue;
+      cells.emplace_back(j, i);
+      depth.push_back(d);
     }
   }
   std::vector<double> sorted = depth;
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
                    sorted.end());
   const double half = 0.5 * sorted[sorted.size() / 2];
-  SpallTruth t;
-  double sum = 0.0;
-  int n = 0;
-  for (double d : depth) {
-    if (d < half) continue;
-    sum += d;
-    ++n;
+  std::vector<cv::Point> core;
+  cv::Mat1f grid(rows, cols, 0.0F);
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    grid(cells[k]) = static_cast<float>(depth[k]);
+    if (depth[k] >= half) core.push_back(cells[k]);
   }
-  t.area_mm2 = n * kStep * kStep;
-  t.depth_mean_mm = sum / n;
-  return t;
+  const int rim = static_cast<int>(std::lround(DefectOptions{}.spall_rim_mm / kStep));
+  std::vector<cv::Point> inner = InteriorCells(core, rim, rim);
+  if (inner.empty()) inner = core;
+  double sum = 0.0;
+  for (const cv::Point& p : inner) sum += grid(p);
+  return {static_cast<double>(core.size()) * kStep * kStep,
+          sum / static_cast<double>(inner.size())};
 }
 
 std::vector<TrueItem> TrueItems(const PipeGeometry& g) {
