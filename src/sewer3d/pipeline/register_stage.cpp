@@ -157,13 +157,15 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   report.rig_warnings = RigWarnings(run, report.module_pairs);
   if (std::string carrier = CarrierWarning(run, report.carrier_offset); !carrier.empty())
     report.rig_warnings.push_back(std::move(carrier));
-  if (const std::string along = AlongWarning(run, AlongAgreement(nodes, edges, fused));
-      !along.empty())
-    report.odometry_warnings.push_back(along);
-  else if (const std::string fit = OdometryFitWarning(
-               run, fused.report.by_type[static_cast<int>(RegistrationEdgeType::kOdometry)]);
-           !fit.empty())
-    report.odometry_warnings.push_back(fit);
+  const EdgeTypeStatistics& odometry =
+      fused.report.by_type[static_cast<int>(RegistrationEdgeType::kOdometry)];
+  if (std::string rejected = OdometryRejectedWarning(run, odometry); !rejected.empty())
+    report.odometry_warnings.push_back(std::move(rejected));
+  else if (std::string along = AlongWarning(run, AlongAgreement(nodes, edges, fused));
+           !along.empty())
+    report.odometry_warnings.push_back(std::move(along));
+  else if (std::string fit = OdometryFitWarning(run, odometry); !fit.empty())
+    report.odometry_warnings.push_back(std::move(fit));
   report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   report.seconds_per_node = report.seconds / report.nodes;
   // A resumed stage that registered nothing new and fused the same poses changes nothing

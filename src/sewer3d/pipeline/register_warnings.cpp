@@ -156,6 +156,17 @@ std::string AlongWarning(const CaptureRun& run, const ModulePairAgreement& along
       along.median_rejected_offset_mm);
 }
 
+std::string OdometryRejectedWarning(const CaptureRun& run, const EdgeTypeStatistics& odometry) {
+  const int rejected = odometry.edges - odometry.accepted;
+  if (odometry.edges < 2 || 2 * rejected < odometry.edges) return {};
+  return fmt::format(
+      "{}: the gate rejected {} of the {} odometry edges: the images put the acquisitions "
+      "elsewhere than the counter's distances say; is distance_mm in millimetres and the "
+      "counter's scale right (not inches, metres, a drum or wheel calibration)? The poses follow "
+      "the images",
+      (run.folder / "odometry.csv").string(), rejected, odometry.edges);
+}
+
 std::string OdometryFitWarning(const CaptureRun& run, const EdgeTypeStatistics& odometry) {
   constexpr double kMaxMedianChi2 = 100.0;
   if (odometry.accepted < 2 || !(odometry.median_chi2 > kMaxMedianChi2)) return {};

@@ -39,6 +39,12 @@ std::string GraphWarning(int nodes, const std::vector<RegistrationEdge>& edges);
 /// AlongAgreement): odometry.csv in other units or scale; "" otherwise.
 std::string AlongWarning(const CaptureRun& run, const ModulePairAgreement& along);
 
+/// A line when the gate rejected at least half of the odometry edges (of at least 2): along
+/// the whole run the images put the acquisitions elsewhere than the counter's distances say,
+/// odometry.csv in other units or scale (a counter that slips rejects a few edges, where it
+/// slipped, and is not named); "" otherwise.
+std::string OdometryRejectedWarning(const CaptureRun& run, const EdgeTypeStatistics& odometry);
+
 /// A line when the odometry edges, kept by the fusion, disagree with the solution far beyond
 /// their noise (median χ² over 100 of at least 2 edges; about 6 when the odometry is right):
 /// a counter whose scale is wrong (a factor 2 measured 4296); "" otherwise.

@@ -26,6 +26,13 @@ EdgeKind KindOf(RegistrationEdgeType type) {
   return EdgeKind::kGeneric;
 }
 
+// Edges that may be wrong: the pairwise registrations, and the odometry, whose cable slips
+// (a counter that runs on while the robot stands, or the reverse) contradict what the images
+// say. The robust loss and the gate apply to them; rig and straightness edges are priors.
+bool IsRobustEdge(RegistrationEdgeType type) {
+  return IsPairwiseEdge(type) || type == RegistrationEdgeType::kOdometry;
+}
+
 PoseEdge ToPoseEdge(const RegistrationEdge& e, double huber_delta) {
   PoseEdge p;
   p.from = e.a;
@@ -33,7 +40,7 @@ PoseEdge ToPoseEdge(const RegistrationEdge& e, double huber_delta) {
   p.a_from_b = e.a_from_b;
   p.information = e.information;
   p.kind = KindOf(e.type);
-  p.huber_delta = IsPairwiseEdge(e.type) ? huber_delta : 0.0;
+  p.huber_delta = IsRobustEdge(e.type) ? huber_delta : 0.0;
   return p;
 }
 
@@ -129,8 +136,7 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
     for (size_t k = 0; k < edges.size(); ++k) {
       const Vector6d r = Residual(edges[k], poses);
       result.chi2[k] = r.dot(edges[k].information * r);
-      if (result.accepted[k] && IsPairwiseEdge(edges[k].type) &&
-          result.chi2[k] > options.gate_chi2) {
+      if (result.accepted[k] && IsRobustEdge(edges[k].type) && result.chi2[k] > options.gate_chi2) {
         result.accepted[k] = false;
         ++rejected_now;
       }

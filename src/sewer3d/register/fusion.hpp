@@ -4,9 +4,10 @@
 /// their initial poses, edges the pairwise registrations (feature, projection) and the prior
 /// edges (rig, odometry, straightness, prior_edges.hpp), weighted by their information.
 ///
-/// 1. Levenberg–Marquardt with a Huber loss on the pairwise edges (scale `huber_delta` on the
-///    Mahalanobis length √(rᵀΩr)), so that an outlier pulls with bounded force;
-/// 2. χ² gate: a pairwise edge whose rᵀΩr at that solution exceeds the 6-DoF χ² quantile
+/// 1. Levenberg–Marquardt with a Huber loss on the pairwise and the odometry edges (scale
+///    `huber_delta` on the Mahalanobis length √(rᵀΩr)), so that an outlier pulls with bounded
+///    force: a wrong registration, or the cable counter slipping;
+/// 2. χ² gate: such an edge whose rᵀΩr at that solution exceeds the 6-DoF χ² quantile
 ///    (99.9 %: 22.46) is rejected; the rest are solved again by plain least squares (no robust
 ///    loss, so the information weights hold), gating again until no edge is rejected;
 /// 3. the certificate (posegraph/certificate.hpp) on the last graph, where enabled.
