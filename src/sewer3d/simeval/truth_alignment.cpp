@@ -3,10 +3,30 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/simio/truth_io.hpp"
 
 namespace sewer3d {
+
+Rigid3d AlignCameras(const std::vector<Rigid3d>& model, const std::vector<Rigid3d>& world) {
+  SEWER3D_CHECK(model.size() == world.size());
+  const auto n = static_cast<Eigen::Index>(model.size());
+  // The centres alone lie near one line (the carrier's path: its cameras sit on its axis),
+  // which leaves the roll about it to the carrier's wander; a point on each optical axis,
+  // where the camera looks at the wall, fixes it.
+  constexpr double kViewMm = 150.0;
+  Eigen::Matrix3Xd m(3, 2 * n), w(3, 2 * n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto k = static_cast<size_t>(i);
+    m.col(2 * i) = model[k].translation;
+    m.col(2 * i + 1) = model[k] * Eigen::Vector3d(0.0, 0.0, kViewMm);
+    w.col(2 * i) = world[k].translation;
+    w.col(2 * i + 1) = world[k] * Eigen::Vector3d(0.0, 0.0, kViewMm);
+  }
+  const Eigen::Matrix4d t = Eigen::umeyama(m, w, false);
+  return {Eigen::Matrix3d(t.topLeftCorner<3, 3>()), Eigen::Vector3d(t.topRightCorner<3, 1>())};
+}
 
 TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
                                         const std::filesystem::path& run_folder,
@@ -36,9 +56,12 @@ TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
     a.true_centres.col(i) = it->second.translation;
   }
   if (n >= 3) {
-    const Eigen::Matrix4d t = Eigen::umeyama(a.model_centres, a.true_centres, false);
-    a.truth_from_model = Rigid3d(Eigen::Matrix3d(t.topLeftCorner<3, 3>()),
-                                 Eigen::Vector3d(t.topRightCorner<3, 1>()));
+    std::vector<Rigid3d> model, world;
+    for (const RegistrationPoseRow& pose : a.poses) {
+      model.push_back(pose.world_from_camera);
+      world.push_back(a.truth.at(RegistrationVertexId(pose.module, pose.counter)));
+    }
+    a.truth_from_model = AlignCameras(model, world);
   }
   return a;
 }

@@ -2,8 +2,10 @@
 /// \file
 /// The model frame of a processed simulated run aligned onto the truth's world: the registered
 /// camera centres (WS/registration/poses.csv) against the true ones (truth/poses.csv with
-/// rig.json's carrier_from_camera), one rigid transform by Umeyama (no scale). Shared by the
-/// registration and model evaluations, so both judge the same alignment.
+/// rig.json's carrier_from_camera), one rigid transform by Umeyama (no scale) on each camera's
+/// centre and the point 150 mm along its optical axis (the centres alone are nearly collinear:
+/// the roll about the carrier's path would be free). Shared by the registration, model and
+/// inspection evaluations, so all judge the same alignment.
 
 #include <Eigen/Core>
 #include <filesystem>
@@ -23,6 +25,11 @@ struct TruthAlignment {
   Eigen::Matrix3Xd true_centres;           ///< the same cameras' true centres (world)
   Rigid3d truth_from_model;                ///< identity when fewer than 3 poses
 };
+
+/// truth_from_model of cameras posed in both frames (world_from_camera each, same order, at
+/// least 3): Umeyama without scale on every camera's centre and the point 150 mm along its
+/// optical axis.
+Rigid3d AlignCameras(const std::vector<Rigid3d>& model, const std::vector<Rigid3d>& world);
 
 /// Reads truth/poses.csv of `run_folder` and WS/registration/poses.csv and aligns them;
 /// FileError when a file is missing or malformed, or a registered pose has no truth.

@@ -1,0 +1,47 @@
+// AlignCameras on cameras whose centres lie on one line, as a carrier's do: the roll about that
+// line comes from where the cameras look.
+
+#include "sewer3d/simeval/truth_alignment.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <vector>
+
+#include "sewer3d/core/units.hpp"
+
+namespace sewer3d {
+namespace {
+
+// Six cameras per station on the z axis, looking outward at clock positions 60° apart, at ten
+// stations 67 mm apart: every centre on one line.
+std::vector<Rigid3d> CarrierCameras() {
+  std::vector<Rigid3d> cameras;
+  for (int station = 0; station < 10; ++station) {
+    for (int m = 0; m < 6; ++m) {
+      const Eigen::Quaterniond clock(
+          Eigen::AngleAxisd(DegToRad(60.0 * m), Eigen::Vector3d::UnitZ()));
+      const Eigen::Quaterniond outward(Eigen::AngleAxisd(DegToRad(90.0), Eigen::Vector3d::UnitX()));
+      cameras.emplace_back(clock * outward, Eigen::Vector3d(0.0, 0.0, 67.0 * station + 15.0 * m));
+    }
+  }
+  return cameras;
+}
+
+TEST(AlignCameras, RecoversTheRollAboutACollinearPath) {
+  const std::vector<Rigid3d> model = CarrierCameras();
+  // The truth: the model rolled 5° about the path, turned a little and moved.
+  const Rigid3d truth_from_model(
+      Eigen::Quaterniond(Eigen::AngleAxisd(DegToRad(5.0), Eigen::Vector3d::UnitZ()) *
+                         Eigen::AngleAxisd(DegToRad(0.5), Eigen::Vector3d::UnitX())),
+      Eigen::Vector3d(3.0, -15.0, 300.0));
+  std::vector<Rigid3d> world;
+  for (const Rigid3d& m : model) world.push_back(truth_from_model * m);
+  const Rigid3d found = AlignCameras(model, world);
+  EXPECT_LT(found.rotation.angularDistance(truth_from_model.rotation), 1e-9);
+  EXPECT_LT((found.translation - truth_from_model.translation).norm(), 1e-6);
+}
+
+}  // namespace
+}  // namespace sewer3d
