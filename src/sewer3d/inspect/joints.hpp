@@ -20,9 +20,10 @@ struct JointOptions {
   double side_length_mm = 40.0;   ///< wall used on each side of the joint
   double side_margin_mm = 2.0;    ///< left out between the gap and each side
   /// A joint whose gap is not in the data (found by its step): the width left out around it,
-  /// for the gap the depth maps bridged and the blur of its edges (at 648 px, spots ~3 mm
-  /// apart on the wall, the step spreads over ±5 mm).
-  double unseen_gap_mm = 10.0;
+  /// for the gap the depth maps bridged and the blur of its edges (their triangles span up to
+  /// 5.5 spot steps, ~15 mm of wall at 648 px: a side line that starts in the blur takes part
+  /// of the step as slope, a deflection toward the offset's clock).
+  double unseen_gap_mm = 18.0;
   /// Columns whose wall on either side departs from a straight line by more than this many
   /// times the median side's RMS are left out of the offset and deflection (a connection,
   /// deposit or spall in the side's rows).
