@@ -38,35 +38,33 @@ struct SpallTruth {
 /// `spall_rim_mm` inside that outline, on a 0.25 mm grid of the simulator's own rough patch.
 SpallTruth MeasureSpall(const PipeFeature& f, std::uint64_t seed, double radius_mm) {
   constexpr double kStep = 0.25;
-  std::vector<cv::Point> cells;
-  std::vector<double> depth;
   const int rows = static_cast<int>(std::floor((f.length_mm + 2.0) / kStep)) + 1;
   const int cols = static_cast<int>(std::floor((f.width_mm + 2.0) / kStep)) + 1;
+  cv::Mat1f depth(rows, cols);  // into the wall; ≤ 0 outside the patch
+  std::vector<double> inside;
   for (int i = 0; i < rows; ++i) {
     for (int j = 0; j < cols; ++j) {
       const double ds = -0.5 * f.length_mm - 1.0 + i * kStep;
       const double arc = -0.5 * f.width_mm - 1.0 + j * kStep;
-      const double d = -PipeFeatureDisplacementMm(f, ds, arc / radius_mm, radius_mm, seed, nullptr);
-      if (d <= 0.0) continue;
-      cells.emplace_back(j, i);
-      depth.push_back(d);
+      depth(i, j) = static_cast<float>(
+          -PipeFeatureDisplacementMm(f, ds, arc / radius_mm, radius_mm, seed, nullptr));
+      if (depth(i, j) > 0.0F) inside.push_back(depth(i, j));
     }
   }
-  std::vector<double> sorted = depth;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
-                   sorted.end());
-  const double half = 0.5 * sorted[sorted.size() / 2];
+  std::nth_element(inside.begin(), inside.begin() + static_cast<std::ptrdiff_t>(inside.size() / 2),
+                   inside.end());
+  const double half = 0.5 * inside[inside.size() / 2];
   std::vector<cv::Point> core;
-  cv::Mat1f grid(rows, cols, 0.0F);
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    grid(cells[k]) = static_cast<float>(depth[k]);
-    if (depth[k] >= half) core.push_back(cells[k]);
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      if (depth(i, j) > 0.0F && depth(i, j) >= half) core.emplace_back(j, i);
+    }
   }
   const int rim = static_cast<int>(std::lround(DefectOptions{}.spall_rim_mm / kStep));
   std::vector<cv::Point> inner = InteriorCells(core, rim, rim);
   if (inner.empty()) inner = core;
   double sum = 0.0;
-  for (const cv::Point& p : inner) sum += grid(p);
+  for (const cv::Point& p : inner) sum += depth(p);
   return {static_cast<double>(core.size()) * kStep * kStep,
           sum / static_cast<double>(inner.size())};
 }

@@ -43,6 +43,7 @@ TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
   const auto n = static_cast<Eigen::Index>(a.poses.size());
   a.model_centres.resize(3, n);
   a.true_centres.resize(3, n);
+  std::vector<Rigid3d> model, world;
   for (Eigen::Index i = 0; i < n; ++i) {
     const RegistrationPoseRow& pose = a.poses[static_cast<size_t>(i)];
     const auto it = a.truth.find(RegistrationVertexId(pose.module, pose.counter));
@@ -52,17 +53,12 @@ TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
                           std::to_string(pose.counter) + ", which " + poses_file.string() +
                           " lists: is the workspace from another run, or the truth cut short?");
     }
+    model.push_back(pose.world_from_camera);
+    world.push_back(it->second);
     a.model_centres.col(i) = pose.world_from_camera.translation;
     a.true_centres.col(i) = it->second.translation;
   }
-  if (n >= 3) {
-    std::vector<Rigid3d> model, world;
-    for (const RegistrationPoseRow& pose : a.poses) {
-      model.push_back(pose.world_from_camera);
-      world.push_back(a.truth.at(RegistrationVertexId(pose.module, pose.counter)));
-    }
-    a.truth_from_model = AlignCameras(model, world);
-  }
+  if (n >= 3) a.truth_from_model = AlignCameras(model, world);
   return a;
 }
 
