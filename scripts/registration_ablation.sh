@@ -14,8 +14,9 @@ rows=(
   "odometry-only none"
   "features feature"
   "features+projection feature,projection"
-  "+rig+odometry feature,projection,rig,odometry"
-  "+straightness feature,projection,rig,odometry,straightness"
+  "+texture feature,projection,texture"
+  "+rig+odometry feature,projection,texture,rig,odometry"
+  "+straightness feature,projection,texture,rig,odometry,straightness"
 )
 printf '| evidence | ATE RMS (mm) | max (mm) | per material (RMS mm) | edges accepted / rejected |\n'
 printf '|---|---|---|---|---|\n'

@@ -27,7 +27,8 @@ Command AddRegisterCommand(CLI::App& app) {
     std::string run, out;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     bool quiet = false, force = false;
-    std::vector<std::string> edges{"feature", "projection", "rig", "odometry", "straightness"};
+    std::vector<std::string> edges{"feature", "projection", "texture",
+                                   "rig",     "odometry",   "straightness"};
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -40,10 +41,12 @@ Command AddRegisterCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
   sub->add_option("--edges", args->edges,
-                  "Edge types the graph may use (ablation): feature, projection, rig, odometry, "
-                  "straightness; `none` keeps the odometry + rig poses")
+                  "Edge types the graph may use (ablation): feature, projection, texture (the "
+                  "projection edges' photometric term), rig, odometry, straightness; `none` "
+                  "keeps the odometry + rig poses")
       ->delimiter(',')
-      ->check(CLI::IsMember({"feature", "projection", "rig", "odometry", "straightness", "none"}))
+      ->check(CLI::IsMember(
+          {"feature", "projection", "texture", "rig", "odometry", "straightness", "none"}))
       ->capture_default_str();
   sub->add_flag("--force", args->force,
                 "Redo the stage from scratch, also when it was run with other options");
@@ -62,6 +65,7 @@ Command AddRegisterCommand(CLI::App& app) {
             };
             options.pairs.feature_registration = use("feature");
             options.pairs.projection_fallback = use("projection");
+            options.pairs.projection.photometric.enabled = use("texture");
             options.priors.rig = use("rig");
             options.priors.odometry = use("odometry");
             options.priors.straightness = use("straightness");

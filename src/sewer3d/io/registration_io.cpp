@@ -132,6 +132,7 @@ void WritePairRecord(const std::filesystem::path& path, const PairRecord& r) {
       {"rms_mm", r.rms_mm},
       {"seconds", r.seconds},
       {"degenerate", r.degenerate},
+      {"photometric", r.photometric},
       {"message", r.message}};
   WriteTextFileAtomically(path, j.dump(1) + "\n");
 }
@@ -155,6 +156,7 @@ std::optional<PairRecord> ReadPairRecord(const std::filesystem::path& path) {
     r.rms_mm = j.at("rms_mm");
     r.seconds = j.at("seconds");
     r.degenerate = j.at("degenerate");
+    r.photometric = j.value("photometric", false);  // absent in records before 2026-12-05
     r.message = j.at("message");
     return r;
   } catch (const json::exception& e) {

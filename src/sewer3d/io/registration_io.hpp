@@ -60,8 +60,9 @@ struct PairRecord {
   int inliers = 0;
   double rms_mm = 0.0;
   double seconds = 0.0;
-  bool degenerate = false;  ///< projection: the information's spectrum is degenerate
-  std::string message;      ///< why the feature registration (or both) failed
+  bool degenerate = false;   ///< projection: the information's spectrum is degenerate
+  bool photometric = false;  ///< projection: the texture term was used (photometric.hpp)
+  std::string message;       ///< why the feature registration (or both) failed
 };
 /// `pairs_folder`/m<a>_<counter 6 digits>-m<b>_<counter 6 digits>.json.
 std::filesystem::path PairRecordFile(const std::filesystem::path& pairs_folder, int a_module,

@@ -1,5 +1,7 @@
 #include "sewer3d/pipeline/register_pairs.hpp"
 
+#include <fmt/format.h>
+
 #include <chrono>
 
 #include "sewer3d/camera/camera_model.hpp"
@@ -9,6 +11,8 @@ namespace sewer3d {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+std::string Fixed(double x) { return fmt::format("{:.2f}", x); }
 
 PairRecord Register(const AcquisitionNode& a, const AcquisitionNode& b, const Rig& rig,
                     const std::filesystem::path& rgbd_folder,
@@ -37,7 +41,8 @@ PairRecord Register(const AcquisitionNode& a, const AcquisitionNode& b, const Ri
     if (options.projection_fallback) {
       const Rigid3d guess = a.world_from_camera.Inverse() * b.world_from_camera;
       const ProjectionRegistrationResult p = RegisterProjection(
-          in_a.depth_mm, camera_a, in_b.depth_mm, camera_b, guess, options.projection);
+          RgbdImage{in_a.color_bgr, in_a.depth_mm}, camera_a,
+          RgbdImage{in_b.color_bgr, in_b.depth_mm}, camera_b, guess, options.projection);
       if (p.converged) {
         r.method = "projection";
         r.a_from_b = p.a_from_b;
@@ -45,6 +50,15 @@ PairRecord Register(const AcquisitionNode& a, const AcquisitionNode& b, const Ri
         r.inliers = p.correspondences;
         r.rms_mm = p.rms_mm;
         r.degenerate = p.degenerate;
+        r.photometric = p.report.photometric;
+        r.message += "; texture: " + std::to_string(p.report.texture_overlap) +
+                     " samples overlap, correlation " + Fixed(p.report.ncc_start) +
+                     " at the guess, " + Fixed(p.report.ncc_peak) + " at the peak (" +
+                     Fixed(p.report.ncc_other) + (p.report.texture_ridge ? " off the ridge" : "") +
+                     " elsewhere), moved " + Fixed(p.report.search_shift_mm.norm()) + " mm" +
+                     (p.report.photometric        ? ""
+                      : p.report.texture_diverged ? ", not used (did not converge with it)"
+                                                  : ", not used");
       } else {
         r.message += "; projection: " + std::to_string(p.correspondences) +
                      " correspondences, did not converge in " +
@@ -100,7 +114,8 @@ PairRegistrationOutcome RegisterPairs(const std::vector<AcquisitionNode>& nodes,
   return outcome;
 }
 
-std::optional<RegistrationEdge> PairEdge(const PairRecord& record, const NeighbourPair& pair) {
+std::optional<RegistrationEdge> PairEdge(const PairRecord& record, const NeighbourPair& pair,
+                                         const PairRegistrationOptions& options) {
   if (record.method == "none") return std::nullopt;
   RegistrationEdge e;
   e.a = pair.a;
@@ -109,6 +124,9 @@ std::optional<RegistrationEdge> PairEdge(const PairRecord& record, const Neighbo
                                       : RegistrationEdgeType::kProjection;
   e.a_from_b = record.a_from_b;
   e.information = 0.5 * (record.information + record.information.transpose());
+  if (record.a_module != record.b_module)
+    e.information = WithCovarianceFloor(e.information, options.between_modules_floor_mm,
+                                        options.between_modules_floor_deg);
   if (!IsSymmetricPositiveDefinite(e.information)) {
     Vector6d floor;
     floor << 1e-6, 1e-6, 1e-6, 1e-2, 1e-2, 1e-2;

@@ -23,6 +23,11 @@ struct PairRegistrationOptions {
   ProjectionRegistrationOptions projection;
   bool feature_registration = true;  ///< try feature registration first (ablation: off)
   bool projection_fallback = true;   ///< try projection registration where features fail
+  /// A further covariance floor (information.hpp, WithCovarianceFloor) on pairs of two modules:
+  /// each module's own calibration error biases their relative pose, and unlike in a pair of
+  /// one module it does not cancel (docs/registration.md, "Pairs of two modules").
+  double between_modules_floor_mm = 0.25;
+  double between_modules_floor_deg = 0.07;
 };
 
 struct PairRegistrationOutcome {
@@ -41,9 +46,11 @@ PairRegistrationOutcome RegisterPairs(const std::vector<AcquisitionNode>& nodes,
                                       const PairRegistrationOptions& options, int threads,
                                       const std::function<void(int)>& done);
 
-/// The edge of a pair record (none when its method is "none"); information that is not
-/// symmetric positive definite (a frozen direction exactly zero) gets a vanishing floor
-/// (σ 1 m, 10 rad) so that the solver accepts it.
-std::optional<RegistrationEdge> PairEdge(const PairRecord& record, const NeighbourPair& pair);
+/// The edge of a pair record (none when its method is "none"), with the between-modules floor
+/// where the two acquisitions are of different modules; information that is not symmetric
+/// positive definite (a frozen direction exactly zero) gets a vanishing floor (σ 1 m, 10 rad)
+/// so that the solver accepts it.
+std::optional<RegistrationEdge> PairEdge(const PairRecord& record, const NeighbourPair& pair,
+                                         const PairRegistrationOptions& options);
 
 }  // namespace sewer3d

@@ -136,11 +136,12 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   std::vector<RegistrationEdge> edges;
   for (size_t i = 0; i < pairs.pairs.size(); ++i) {
     const PairRecord& r = outcome.records[i];
-    if (const std::optional<RegistrationEdge> e = PairEdge(r, pairs.pairs[i])) {
+    if (const std::optional<RegistrationEdge> e = PairEdge(r, pairs.pairs[i], options.pairs)) {
       edges.push_back(*e);
       ++(e->type == RegistrationEdgeType::kFeature ? report.feature_edges
                                                    : report.projection_edges);
       if (r.degenerate) ++report.degenerate_edges;
+      if (r.photometric) ++report.textured_edges;
     } else {
       ++report.pairs_failed;
     }

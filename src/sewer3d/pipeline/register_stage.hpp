@@ -58,6 +58,7 @@ struct RegisterStageReport {
   NeighbourReport neighbours;
   int pairs = 0, pairs_done = 0, pairs_skipped = 0, pairs_failed = 0;
   int feature_edges = 0, projection_edges = 0, degenerate_edges = 0;
+  int textured_edges = 0;  ///< projection edges with the photometric term
   int prior_edges = 0;
   FusionReport fusion;
   /// Per pair of modules with registrations between them: how many the gate rejected.

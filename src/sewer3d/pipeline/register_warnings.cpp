@@ -162,8 +162,8 @@ std::string OdometryRejectedWarning(const CaptureRun& run, const EdgeTypeStatist
   return fmt::format(
       "{}: the gate rejected {} of the {} odometry edges: the images put the acquisitions "
       "elsewhere than the counter's distances say; is distance_mm in millimetres and the "
-      "counter's scale right (not inches, metres, a drum or wheel calibration)? The poses follow "
-      "the images",
+      "counter's scale right (not inches, metres, a drum or wheel calibration), or did the cable "
+      "slip over a stretch of the run? The poses follow the images",
       (run.folder / "odometry.csv").string(), rejected, odometry.edges);
 }
 

@@ -54,12 +54,12 @@ StageOutcome RegisterOutcome(const RegisterStageReport& report,
   o.output = folder / "poses.csv";
   o.summary = fmt::format(
       "register: {} acquisitions, {} nodes, {} left out; {} pairs ({} registered now, {} from an "
-      "earlier run): {} feature, {} projection ({} degenerate), {} failed; {} "
+      "earlier run): {} feature, {} projection ({} with texture, {} degenerate), {} failed; {} "
       "rig/odometry/straightness edges; {} rejected by the gate; {:.1f} s ({:.2f} s per pair)",
       report.acquisitions, report.nodes, report.left_out.size(), report.pairs, report.pairs_done,
-      report.pairs_skipped, report.feature_edges, report.projection_edges, report.degenerate_edges,
-      report.pairs_failed, report.prior_edges, report.fusion.rejected, report.seconds,
-      report.seconds_per_pair);
+      report.pairs_skipped, report.feature_edges, report.projection_edges, report.textured_edges,
+      report.degenerate_edges, report.pairs_failed, report.prior_edges, report.fusion.rejected,
+      report.seconds, report.seconds_per_pair);
   for (const std::string& w : report.odometry_warnings) o.details.push_back("warning: " + w);
   for (const std::string& w : report.rig_warnings) o.details.push_back("warning: " + w);
   for (const std::string& w : report.graph_warnings) o.details.push_back("warning: " + w);

@@ -13,6 +13,13 @@
 
 namespace sewer3d {
 
+/// One acquisition as the RGB-D stage writes it (docs/rgbd.md): colour and depth aligned,
+/// both the camera's size; depth z in mm in the camera frame, NaN where none.
+struct RgbdImage {
+  cv::Mat3b color_bgr;
+  cv::Mat1f depth;
+};
+
 /// The point of every pixel: P = z · (x, y, 1) with (x, y) the pixel's undistorted normalised
 /// coordinates (camera frame, mm); NaN where the depth is not finite or positive, or the pixel
 /// lies beyond the lens fold. Throws std::invalid_argument when the sizes differ.

@@ -10,16 +10,10 @@
 #include <opencv2/core.hpp>
 
 #include "sewer3d/camera/camera_model.hpp"
+#include "sewer3d/register/depth_geometry.hpp"
 #include "sewer3d/register/point_registration.hpp"
 
 namespace sewer3d {
-
-/// One acquisition as the RGB-D stage writes it (docs/rgbd.md): colour and depth aligned,
-/// both the camera's size; depth z in mm in the camera frame, NaN where none.
-struct RgbdImage {
-  cv::Mat3b color_bgr;
-  cv::Mat1f depth;
-};
 
 struct FeatureRegistrationOptions {
   int max_keypoints = 0;  ///< per image, strongest first; 0: all

@@ -6,8 +6,10 @@
 /// there (bilinear in a's point and normal maps) — and the point-to-plane cost
 ///   E = Σ_i ρ(n_iᵀ (R p_i + t − q_i))
 /// is minimised by Gauss–Newton from an initial guess (odometry), ρ Huber with its scale from
-/// the residuals' median absolute deviation. No photometric term (not implemented: the
-/// geometric term alone, with honest information, is what the plastic case needs).
+/// the residuals' median absolute deviation. Where colour is given, a photometric term joins
+/// it (photometric.hpp): the geometry's weak directions are first searched for the textures'
+/// best correlation, and where that peak is clear, the intensity residuals, weighted by their own
+/// robust σ, add their rows to the same Gauss–Newton steps and their information to Ω.
 ///
 /// The information is the Gauss–Newton Hessian divided by the residual variance,
 /// Ω = D (Σ w_i J_iᵀ J_i) D / σ² (information.hpp for D and the update convention), so that
@@ -22,7 +24,9 @@
 
 #include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/register/depth_geometry.hpp"
 #include "sewer3d/register/information.hpp"
+#include "sewer3d/register/photometric.hpp"
 
 namespace sewer3d {
 
@@ -63,6 +67,7 @@ struct ProjectionRegistrationOptions {
   /// thousands of samples do not average away.
   double floor_translation_mm = kFloorTranslationMm;
   double floor_rotation_deg = kFloorRotationDeg;
+  PhotometricOptions photometric;  ///< used only where both colours are given
 
   void Check() const;
 };
@@ -74,6 +79,19 @@ struct ProjectionRegistrationReport {
   double gate_mm = 0.0;          ///< the last association gate
   InformationSpectrum spectrum;  ///< of the information before the covariance floor, L = mean
                                  ///< distance of b's points
+  /// The photometric term: whether it was used, the search's correlations (at the guess after
+  /// the geometry, at its peak, best elsewhere) and shift along the weak directions (mm), the
+  /// textured samples and their residual σ (intensity 0–1) at the end.
+  bool photometric = false;
+  int texture_overlap = 0;     ///< TextureSearchResult::overlap
+  bool texture_ridge = false;  ///< TextureSearchResult::ridge
+  /// The search found a clear peak but the steps with the texture did not converge: the
+  /// result is the geometry's alone.
+  bool texture_diverged = false;
+  double ncc_start = 0.0, ncc_peak = 0.0, ncc_other = 0.0;
+  Eigen::Vector2d search_shift_mm = Eigen::Vector2d::Zero();
+  int texture_samples = 0;
+  double sigma_intensity = 0.0;
 };
 
 struct ProjectionRegistrationResult {
@@ -89,9 +107,15 @@ struct ProjectionRegistrationResult {
   ProjectionRegistrationReport report;
 };
 
-/// Registers b's depth map onto a's from `initial_a_from_b`. Expected failures (too few
-/// correspondences, no convergence) give converged = false; throws std::invalid_argument for
-/// bad options or depth maps whose sizes differ from their cameras.
+/// Registers b's depth map onto a's from `initial_a_from_b`, with the photometric term where
+/// both colour images are given (not empty) and options.photometric.enabled. Expected failures
+/// (too few correspondences, no convergence) give converged = false; throws
+/// std::invalid_argument for bad options or maps whose sizes differ from their cameras.
+ProjectionRegistrationResult RegisterProjection(const RgbdImage& a, const CameraModel& camera_a,
+                                                const RgbdImage& b, const CameraModel& camera_b,
+                                                const Rigid3d& initial_a_from_b,
+                                                const ProjectionRegistrationOptions& options);
+/// The geometry alone (no colour).
 ProjectionRegistrationResult RegisterProjection(const cv::Mat1f& depth_a,
                                                 const CameraModel& camera_a,
                                                 const cv::Mat1f& depth_b,
