@@ -25,7 +25,9 @@ for row in "${rows[@]}"; do
   dir="$out/$name"
   rm -rf "$dir" && mkdir -p "$dir"
   cp -al "$ws/rgbd" "$dir/rgbd"
-  "$bin" register "$run" --out "$dir" --edges "$edges" --threads 2 --quiet >"$dir/register.log"
+  cp "$ws/workspace.json" "$dir/"  # records the rgbd stage; --force replaces any register record
+  "$bin" register "$run" --out "$dir" --edges "$edges" --threads 2 --quiet --force \
+    >"$dir/register.log"
   "$bin" evaluate registration --run "$run" --workspace "$dir" >"$dir/evaluate.log"
   ate=$(grep -m1 'absolute trajectory error' "$dir/evaluate.log" | sed -E 's/.*RMS ([0-9.]+) mm, max ([0-9.]+) mm.*/\1 \2/')
   materials=$(grep -E '^  [a-z_]+ +[0-9]+ nodes' "$dir/evaluate.log" | awk '{printf "%s%s %s", (NR>1?", ":""), $1, $5}')
