@@ -35,6 +35,12 @@ Rigid3d PoseFromJson(const std::filesystem::path& path, const json& j) {
   return {quaternion, Eigen::Vector3d(t[0], t[1], t[2])};
 }
 
+// The node with its clock in [0, 12): the crown (12 h) on the strip's top line.
+GraphPictureNode OnClockFace(GraphPictureNode n) {
+  n.clock_h = std::fmod(std::fmod(n.clock_h, 12.0) + 12.0, 12.0);
+  return n;
+}
+
 }  // namespace
 
 void WriteRegistrationPoses(const std::filesystem::path& path,
@@ -210,6 +216,8 @@ void WriteRegistrationGraphPicture(const std::filesystem::path& path,
     cv::putText(image, fmt::format("{}h", h == 0 ? 12 : h), {8, y + 5}, cv::FONT_HERSHEY_SIMPLEX,
                 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
+  const int strip_top = pixel({lo, 0.0}).y, strip_bottom = pixel({lo, 12.0}).y;
+  const cv::Rect strip(0, strip_top, width, strip_bottom - strip_top + 1);
   // Priors first, measurements last: the feature and projection edges stay visible where a
   // straightness or odometry edge runs along the same row.
   for (int type = 4; type >= 0; --type) {
@@ -217,14 +225,24 @@ void WriteRegistrationGraphPicture(const std::filesystem::path& path,
       if (e.type != type || e.a < 0 || e.b < 0 || e.a >= static_cast<int>(nodes.size()) ||
           e.b >= static_cast<int>(nodes.size()))
         continue;
-      const cv::Point pa = pixel(nodes[e.a]), pb = pixel(nodes[e.b]);
-      // Edges across 12 o'clock would cross the whole picture: drawn only within the strip.
-      if (std::abs(nodes[e.a].clock_h - nodes[e.b].clock_h) > 6.0) continue;
-      cv::line(image, pa, pb, e.accepted ? colours[e.type] : cv::Scalar(0, 0, 230),
-               e.accepted ? 2 : 1, cv::LINE_AA);
+      const GraphPictureNode a = OnClockFace(nodes[e.a]), b = OnClockFace(nodes[e.b]);
+      const cv::Scalar colour = e.accepted ? colours[e.type] : cv::Scalar(0, 0, 230);
+      const int thickness = e.accepted ? 2 : 1;
+      if (std::abs(a.clock_h - b.clock_h) <= 6.0) {
+        cv::line(image, pixel(a), pixel(b), colour, thickness, cv::LINE_AA);
+        continue;
+      }
+      // Across 12 o'clock the edge leaves the strip at one border and comes back at the other.
+      const double turn = a.clock_h > b.clock_h ? 12.0 : -12.0;
+      const std::pair<cv::Point, cv::Point> halves[2] = {
+          {pixel(a), pixel({b.station_mm, b.clock_h + turn})},
+          {pixel({a.station_mm, a.clock_h - turn}), pixel(b)}};
+      for (auto [p, q] : halves)
+        if (cv::clipLine(strip, p, q)) cv::line(image, p, q, colour, thickness, cv::LINE_AA);
     }
   }
-  for (const GraphPictureNode& n : nodes) cv::circle(image, pixel(n), 3, cv::Scalar(0, 0, 0), -1);
+  for (const GraphPictureNode& n : nodes)
+    cv::circle(image, pixel(OnClockFace(n)), 3, cv::Scalar(0, 0, 0), -1);
   for (int t = 0; t < 5; ++t) {
     const cv::Point at(margin + 170 * t, 22);
     cv::line(image, at, at + cv::Point(30, 0), colours[t], 3);
