@@ -15,7 +15,7 @@ int GreenPixels(const cv::Mat3b& image, int top, int bottom, int left, int right
   int n = 0;
   for (int y = top; y < bottom; ++y)
     for (int x = left; x < right; ++x) {
-      const cv::Vec3b p = image(y, x);
+      const cv::Vec3b& p = image(y, x);
       n += p[1] > 120 && p[0] < 110 && p[2] < 110;
     }
   return n;

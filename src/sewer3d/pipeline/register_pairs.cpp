@@ -12,7 +12,17 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string Fixed(double x) { return fmt::format("{:.2f}", x); }
+// What the texture term's search found, for the pair record's message.
+std::string TextureMessage(const ProjectionRegistrationReport& t) {
+  const char* use = t.photometric        ? ""
+                    : t.texture_diverged ? ", not used (did not converge with it)"
+                                         : ", not used";
+  return fmt::format(
+      "; texture: {} samples overlap, correlation {:.2f} at the guess, {:.2f} at the peak "
+      "({:.2f}{} elsewhere), moved {:.2f} mm{}",
+      t.texture_overlap, t.ncc_start, t.ncc_peak, t.ncc_other,
+      t.texture_ridge ? " off the ridge" : "", t.search_shift_mm.norm(), use);
+}
 
 PairRecord Register(const AcquisitionNode& a, const AcquisitionNode& b, const Rig& rig,
                     const std::filesystem::path& rgbd_folder,
@@ -51,14 +61,7 @@ PairRecord Register(const AcquisitionNode& a, const AcquisitionNode& b, const Ri
         r.rms_mm = p.rms_mm;
         r.degenerate = p.degenerate;
         r.photometric = p.report.photometric;
-        r.message += "; texture: " + std::to_string(p.report.texture_overlap) +
-                     " samples overlap, correlation " + Fixed(p.report.ncc_start) +
-                     " at the guess, " + Fixed(p.report.ncc_peak) + " at the peak (" +
-                     Fixed(p.report.ncc_other) + (p.report.texture_ridge ? " off the ridge" : "") +
-                     " elsewhere), moved " + Fixed(p.report.search_shift_mm.norm()) + " mm" +
-                     (p.report.photometric        ? ""
-                      : p.report.texture_diverged ? ", not used (did not converge with it)"
-                                                  : ", not used");
+        r.message += TextureMessage(p.report);
       } else {
         r.message += "; projection: " + std::to_string(p.correspondences) +
                      " correspondences, did not converge in " +

@@ -26,6 +26,26 @@ std::optional<Eigen::Matrix<double, 2, 3>> ProjectionJacobian(const CameraModel&
   return j;
 }
 
+// Gaussian blur of σ px; a wide one on an area-averaged copy (steps of σ / 4, blurred there and
+// interpolated back): a σ of 60 px on a 5 MP texture would otherwise cost a second a map.
+cv::Mat1f Smooth(const cv::Mat1f& image, double sigma_px) {
+  cv::Mat1f out;
+  const int step = static_cast<int>(std::floor(sigma_px / 4.0));
+  if (step < 2) {
+    cv::GaussianBlur(image, out, cv::Size(), sigma_px, sigma_px, cv::BORDER_REPLICATE);
+    return out;
+  }
+  cv::Mat1f small;
+  cv::resize(image, small, cv::Size((image.cols + step - 1) / step, (image.rows + step - 1) / step),
+             0, 0, cv::INTER_AREA);
+  // The area average is itself a box of one small pixel (variance 1/12 of a small pixel²).
+  const double sigma_small =
+      std::sqrt(std::max(sigma_px * sigma_px / (step * step) - 1.0 / 12.0, 0.25));
+  cv::GaussianBlur(small, small, cv::Size(), sigma_small, sigma_small, cv::BORDER_REPLICATE);
+  cv::resize(small, out, image.size(), 0, 0, cv::INTER_LINEAR);
+  return out;
+}
+
 struct Grid {
   int half_i = 0, half_j = 0;
   double step = 0.0;
@@ -98,9 +118,8 @@ TextureMaps MakeTextureMaps(const cv::Mat3b& color_bgr, double blur_px, double h
   cv::cvtColor(color_bgr, grey, cv::COLOR_BGR2GRAY);
   cv::Mat1f level;
   grey.convertTo(level, CV_32F, 1.0 / 255.0);
-  cv::GaussianBlur(level, m.intensity, cv::Size(), blur_px, blur_px, cv::BORDER_REPLICATE);
-  cv::GaussianBlur(level, level, cv::Size(), highpass_px, highpass_px, cv::BORDER_REPLICATE);
-  m.intensity -= level;
+  m.intensity = Smooth(level, blur_px);
+  m.intensity -= Smooth(level, highpass_px);
   cv::Sobel(m.intensity, m.du, CV_32F, 1, 0, 1, 0.5, 0.0, cv::BORDER_REPLICATE);
   cv::Sobel(m.intensity, m.dv, CV_32F, 0, 1, 1, 0.5, 0.0, cv::BORDER_REPLICATE);
   return m;

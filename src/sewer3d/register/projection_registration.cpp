@@ -236,7 +236,7 @@ void Iterate(const Problem& p, const ProjectionRegistrationOptions& o, Solve& s)
 }
 
 // The directions the geometry leaves unconstrained (frozen), weakest first, as updates δ per
-// mm of the (mm, L·rad) metric; at most `max`.
+// mm of the (mm, L·rad) metric; at most photometric.max_search_directions.
 std::vector<Vector6d> WeakDirections(const Normal& n, double length_mm,
                                      const ProjectionRegistrationOptions& o) {
   const ObservableSpace space = Observable(n, length_mm, o);

@@ -107,8 +107,10 @@ struct ProjectionRegistrationResult {
   ProjectionRegistrationReport report;
 };
 
-/// Registers b's depth map onto a's from `initial_a_from_b`, with the photometric term where
-/// both colour images are given (not empty) and options.photometric.enabled. Expected failures
+/// Registers b's depth map onto a's from `initial_a_from_b`; then, where both colour images are
+/// given (not empty), options.photometric.enabled and the geometry converged, the photometric
+/// term joins (when its search finds a clear peak) and the pose is solved again with both; if
+/// that does not converge the geometry's result stands (report.texture_diverged). Expected failures
 /// (too few correspondences, no convergence) give converged = false; throws
 /// std::invalid_argument for bad options or maps whose sizes differ from their cameras.
 ProjectionRegistrationResult RegisterProjection(const RgbdImage& a, const CameraModel& camera_a,
