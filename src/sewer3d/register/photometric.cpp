@@ -112,14 +112,24 @@ void PhotometricOptions::Check() const {
   SEWER3D_VALIDATE(min_samples >= 10, "min_samples", "must be >= 10, got " << min_samples);
 }
 
-TextureMaps MakeTextureMaps(const cv::Mat3b& color_bgr, double blur_px, double highpass_px) {
-  TextureMaps m;
+GreyTexture MakeGreyTexture(const cv::Mat3b& color_bgr, double highpass_px) {
+  GreyTexture t;
   cv::Mat1b grey;
   cv::cvtColor(color_bgr, grey, cv::COLOR_BGR2GRAY);
-  cv::Mat1f level;
-  grey.convertTo(level, CV_32F, 1.0 / 255.0);
-  m.intensity = Smooth(level, blur_px);
-  m.intensity -= Smooth(level, highpass_px);
+  grey.convertTo(t.level, CV_32F, 1.0 / 255.0);
+  t.mean = Smooth(t.level, highpass_px);
+  return t;
+}
+
+cv::Mat1f TextureIntensity(const GreyTexture& grey, double blur_px) {
+  cv::Mat1f out = Smooth(grey.level, blur_px);
+  out -= grey.mean;
+  return out;
+}
+
+TextureMaps MakeTextureMaps(const GreyTexture& grey, double blur_px) {
+  TextureMaps m;
+  m.intensity = TextureIntensity(grey, blur_px);
   cv::Sobel(m.intensity, m.du, CV_32F, 1, 0, 1, 0.5, 0.0, cv::BORDER_REPLICATE);
   cv::Sobel(m.intensity, m.dv, CV_32F, 0, 1, 1, 0.5, 0.0, cv::BORDER_REPLICATE);
   return m;

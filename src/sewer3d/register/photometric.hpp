@@ -54,12 +54,19 @@ struct ResidualRow {
   double r = 0.0;
 };
 
-/// A texture as the term reads it: grey intensity (0–1) blurred by blur_px less its mean over
-/// highpass_px (both Gaussian σ), and its derivatives along columns and rows (per pixel).
+/// A texture's grey level (0–1) and its Gaussian mean over highpass_px, made once per image.
+struct GreyTexture {
+  cv::Mat1f level, mean;
+};
+GreyTexture MakeGreyTexture(const cv::Mat3b& color_bgr, double highpass_px);
+/// The texture as the term reads it: the grey level blurred by blur_px (Gaussian σ) less the
+/// mean.
+cv::Mat1f TextureIntensity(const GreyTexture& grey, double blur_px);
+/// That intensity with its derivatives along columns and rows (per pixel).
 struct TextureMaps {
   cv::Mat1f intensity, du, dv;
 };
-TextureMaps MakeTextureMaps(const cv::Mat3b& color_bgr, double blur_px, double highpass_px);
+TextureMaps MakeTextureMaps(const GreyTexture& grey, double blur_px);
 
 /// A point of b (camera frame, mm) with b's intensity where it was seen.
 struct TextureSample {

@@ -259,13 +259,14 @@ void JoinTexture(const RgbdImage& a, const CameraModel& camera_a, const RgbdImag
   const double mm_per_px = p.length_mm / std::sqrt(in.fx * in.fy);
   const double coarse_px = std::max(po.blur_px, 0.5 * po.search_step_mm / mm_per_px);
   const double highpass_px = po.highpass_mm / mm_per_px;
-  TextureTerm fine{MakeTextureMaps(a.color_bgr, po.blur_px, highpass_px), {}, std::nullopt};
-  fine.b =
-      SampleTexture(p.b, camera_b, MakeTextureMaps(b.color_bgr, po.blur_px, highpass_px).intensity);
-  const cv::Mat1f coarse_a = MakeTextureMaps(a.color_bgr, coarse_px, highpass_px).intensity;
+  const GreyTexture grey_a = MakeGreyTexture(a.color_bgr, highpass_px);
+  const GreyTexture grey_b = MakeGreyTexture(b.color_bgr, highpass_px);
+  TextureTerm fine{MakeTextureMaps(grey_a, po.blur_px), {}, std::nullopt};
+  fine.b = SampleTexture(p.b, camera_b, TextureIntensity(grey_b, po.blur_px));
+  const cv::Mat1f coarse_a = TextureIntensity(grey_a, coarse_px);
   const std::vector<TextureSample> coarse_b =
       SampleTexture(SampleDepthPoints(b.depth, camera_b, po.search_sample_step_px), camera_b,
-                    MakeTextureMaps(b.color_bgr, coarse_px, highpass_px).intensity);
+                    TextureIntensity(grey_b, coarse_px));
   const std::vector<Vector6d> weak = WeakDirections(s.last, p.length_mm, o);
   const TextureSearchResult found =
       SearchTexture({coarse_a, coarse_b, fine.a.intensity, fine.b}, camera_a, s.pose, weak, po);
