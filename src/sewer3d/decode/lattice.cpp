@@ -122,6 +122,39 @@ LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
   return steps;
 }
 
+// How many neighbours out to `rings` steps `steps` place on the lattice (within max_residual
+// of a node), of how many.
+struct Support {
+  int on = 0, within = 0;
+};
+Support LatticeSupport(const std::vector<Spot>& spots, int spot,
+                       std::pair<const int*, const int*> neighbours, const LatticeSteps& steps,
+                       const LatticeOptions& options) {
+  Eigen::Matrix2d basis;
+  basis << steps.row_step, steps.column_step;
+  Support support;
+  if (std::abs(basis.determinant()) < 1e-9) return support;
+  const Eigen::Matrix2d inverse = basis.inverse();
+  for (const int* it = neighbours.first; it != neighbours.second; ++it) {
+    const Eigen::Vector2d q = inverse * (spots[*it].centre_px - spots[spot].centre_px);
+    if (q.cwiseAbs().maxCoeff() > options.refine_ring_steps + 0.5) continue;
+    ++support.within;
+    support.on += (q - Nearest(q)).norm() <= options.max_residual ? 1 : 0;
+  }
+  return support;
+}
+
+// A group's spots start their refinement from a labelled neighbour's steps, so the seed's
+// steps carry over the whole group. The pattern lights about one element in six, so a lattice
+// whose row step is sheared by half a column (b ± a/2) still fits every other row: a seed
+// with few neighbours (the image border, a dark patch) can settle there, and its group
+// inherits it (a dark clay frame lost half its decoded spots). A seed is taken only where its
+// steps place nearly all of at least `kSeedMinOn` neighbours on the lattice (the three rings
+// hold about eight spots); a spot where they do not waits until no such seed is left.
+constexpr int kSeedMinOn = 6;
+constexpr double kSeedMinShare = 0.9;
+bool GoodSeed(const Support& s) { return s.on >= kSeedMinOn && s.on >= kSeedMinShare * s.within; }
+
 }  // namespace
 
 void LatticeOptions::Check() const {
@@ -200,11 +233,9 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
     });
     edge_end[i] = static_cast<int>(good_edges.size());
   };
-  for (int seed = 0; seed < n; ++seed) {
-    if (labels.group[seed] >= 0) continue;
+  auto grow = [&](int seed) {
     const int group = labels.groups++;
     labels.group[seed] = group;
-    refine(seed, predicted[seed]);
     label_edges(seed);
     while (!frontier.empty()) {
       const Edge e = frontier.top();
@@ -215,6 +246,24 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
       refine(e.to, labels.steps[e.from]);
       label_edges(e.to);
     }
+  };
+  // Well-supported seeds first (GoodSeed), in index order; then the rest, best supported first.
+  std::vector<std::pair<int, int>> waiting;  // (−neighbours on the lattice, spot)
+  for (int seed = 0; seed < n; ++seed) {
+    if (labels.group[seed] >= 0) continue;
+    refine(seed, predicted[seed]);
+    const Support support =
+        LatticeSupport(spots, seed, neighbours.Of(seed), labels.steps[seed], options);
+    if (GoodSeed(support))
+      grow(seed);
+    else
+      waiting.emplace_back(-support.on, seed);
+  }
+  std::sort(waiting.begin(), waiting.end());
+  for (const auto& [minus_on, seed] : waiting) {
+    if (labels.group[seed] >= 0) continue;
+    refine(seed, predicted[seed]);
+    grow(seed);
   }
   // A spot whose label most of its good edges contradict sits on a seam: unlabel it rather
   // than let it corrupt the windows around it.
