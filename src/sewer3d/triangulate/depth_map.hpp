@@ -10,12 +10,29 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "sewer3d/triangulate/element_mesh.hpp"
+
 namespace sewer3d {
 
 /// `pixels[i]` is the camera position of a point with depth `depths_mm[i]` (> 0). Pixels
 /// outside the image are ignored; pixel centres at integers.
 cv::Mat1f InterpolateDepth(cv::Size image_size, const std::vector<Eigen::Vector2d>& pixels,
                            const std::vector<double>& depths_mm, double max_edge_px);
+
+/// Depth over a module's element mesh: point i shows element `elements[i]` (row, column) at
+/// camera pixel `pixels[i]` with depth `depths_mm[i]`. A mesh triangle is filled where its
+/// three elements have points, none of its camera edges is longer than max_edge_px, and its
+/// camera image keeps the orientation most of the frame's triangles have: one folded over (a
+/// depth step whose far side the camera sees shifted past the near side's spots) stays empty.
+/// Spots lost anywhere leave holes here where InterpolateDepth bridges them. A point that is
+/// the corner of no filled triangle (on a surface too narrow for a triangle of its own: an
+/// intruding pipe's rim) gets a disc of `spot_radius_px` at its depth, on pixels nothing else
+/// filled; where no triangle is filled at all, nothing is.
+cv::Mat1f InterpolateDepthOnMesh(cv::Size image_size, const ElementMesh& mesh,
+                                 const std::vector<Eigen::Vector2i>& elements,
+                                 const std::vector<Eigen::Vector2d>& pixels,
+                                 const std::vector<double>& depths_mm, double max_edge_px,
+                                 double spot_radius_px);
 
 /// The pixels of a depth map that hold a depth (not NaN).
 int CountDepthPixels(const cv::Mat1f& depth_mm);

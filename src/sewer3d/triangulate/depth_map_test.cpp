@@ -10,6 +10,9 @@
 #include <cmath>
 #include <random>
 
+#include "sewer3d/pattern/default_pattern.hpp"
+#include "sewer3d/testing/small_module.hpp"
+
 namespace sewer3d {
 namespace {
 
@@ -120,6 +123,126 @@ TEST(DepthMap, TrianglesWithALongEdgeStayEmpty) {
   const cv::Mat1f none =
       InterpolateDepth({64, 64}, {{10, 10}, {26, 10}, {10, 26}}, {100.0, 100.0, 100.0}, 20.0);
   EXPECT_EQ(cv::countNonZero(none == none), 0);  // NaN != NaN
+}
+
+// The module's lit elements, meshed: every lit element on the projector image is a vertex,
+// and no triangle holds another lit element (inside or on an edge).
+TEST(ElementMesh, JoinsNeighbouringLitElementsOnly) {
+  const ModuleDescription module = testing::SmallDefaultModule(648);
+  const BinaryArray pattern = DefaultPatternArray();
+  const ElementMesh mesh = MeshLitElements(module, pattern);
+  ASSERT_GT(mesh.rows, 0);
+  std::vector<int> degree(static_cast<size_t>(mesh.rows) * mesh.cols, 0);
+  const auto at = [&](int k) { return Eigen::Vector2d(k % mesh.cols, k / mesh.cols); };
+  for (const auto& t : mesh.triangles) {
+    for (int k : t) ++degree[k];
+    const Eigen::Vector2d a = at(t[0]), b = at(t[1]), c = at(t[2]);
+    const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    ASSERT_GT(area, 0.0);  // counter-clockwise in (column, row)
+    const Eigen::Vector2d lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+    for (int r = int(lo.y()); r <= int(hi.y()); ++r) {
+      for (int col = int(lo.x()); col <= int(hi.x()); ++col) {
+        const Eigen::Vector2d p(col, r);
+        if (p == a || p == b || p == c) continue;
+        if (!pattern.tiled(r + mesh.row0, col + mesh.col0)) continue;
+        const auto side = [&](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+          return (v - u).x() * (p - u).y() - (v - u).y() * (p - u).x();
+        };
+        ASSERT_FALSE(side(a, b) >= 0 && side(b, c) >= 0 && side(c, a) >= 0)
+            << "lit element " << r << ", " << col << " in a triangle";
+      }
+    }
+  }
+  for (int r = 0; r < mesh.rows; ++r)
+    for (int c = 0; c < mesh.cols; ++c)
+      EXPECT_EQ(degree[r * mesh.cols + c] > 0, pattern.tiled(r + mesh.row0, c + mesh.col0) != 0);
+}
+
+// Points of a tilted plane at the lit elements, the camera pixel an affine image of the element
+// position: the mesh's map is as exact as the Delaunay one; a lost spot leaves a hole that
+// the Delaunay map bridges.
+TEST(DepthMap, OnTheElementMeshLostSpotsLeaveHoles) {
+  const ModuleDescription module = testing::SmallDefaultModule(648);
+  const BinaryArray pattern = DefaultPatternArray();
+  const ElementMesh mesh = MeshLitElements(module, pattern);
+  const TiltedPlane plane;
+  const cv::Size size(640, 480);
+  // The default module's projector is turned against the camera: rows along u, columns along v.
+  const auto pixel_of = [](int r, int c) {
+    return Eigen::Vector2d(20.0 + 8.0 * r, 20.0 + 8.0 * c);
+  };
+  std::vector<Eigen::Vector2i> elements;
+  std::vector<Eigen::Vector2d> pixels;
+  std::vector<double> depths;
+  ASSERT_GE(mesh.rows, 76);
+  ASSERT_GE(mesh.cols, 56);
+  for (int r = 0; r < 76; ++r) {
+    for (int c = 0; c < 56; ++c) {
+      if (!pattern.tiled(r + mesh.row0, c + mesh.col0)) continue;
+      elements.emplace_back(r + mesh.row0, c + mesh.col0);
+      pixels.push_back(pixel_of(r, c));
+      depths.push_back(plane.Depth(pixels.back()));
+    }
+  }
+  const double max_edge = 5.5 * 8.0;
+  const cv::Mat1f full =
+      InterpolateDepthOnMesh(size, mesh, elements, pixels, depths, max_edge, 0.0);
+  int filled = 0;
+  // Inside the lit elements' hull (the pattern lights one element in six: 6 elements in).
+  for (int v = 60; v < 420; ++v) {
+    for (int u = 60; u < 580; ++u) {
+      ASSERT_FALSE(std::isnan(full(v, u))) << u << ", " << v;
+      ASSERT_LE(std::abs(full(v, u) - plane.Depth({u, v})), FloatTolerance(plane.Depth({u, v})));
+      ++filled;
+    }
+  }
+  // One spot lost in the middle: the pixels around it empty here, bridged by Delaunay.
+  std::size_t lost = 0;
+  while ((pixels[lost] - Eigen::Vector2d(320, 240)).norm() > 12.0) ++lost;
+  const Eigen::Vector2d hole = pixels[lost];
+  auto without = [&](auto v) {
+    v.erase(v.begin() + static_cast<std::ptrdiff_t>(lost));
+    return v;
+  };
+  const cv::Mat1f holed = InterpolateDepthOnMesh(size, mesh, without(elements), without(pixels),
+                                                 without(depths), max_edge, 0.0);
+  const cv::Mat1f bridged = InterpolateDepth(size, without(pixels), without(depths), max_edge);
+  const int u = static_cast<int>(hole.x()), v = static_cast<int>(hole.y());
+  EXPECT_TRUE(std::isnan(holed(v, u)));
+  EXPECT_FALSE(std::isnan(bridged(v, u)));
+  EXPECT_FALSE(std::isnan(holed(v, u + 40)));
+  // A point of no triangle (its neighbours within 30 px taken out) gets a disc of the spot
+  // radius at its depth; with no triangle filled at all (the point alone), nothing does.
+  const std::size_t k = lost + 7;
+  std::vector<Eigen::Vector2i> isolated_elements;
+  std::vector<Eigen::Vector2d> isolated_pixels;
+  std::vector<double> isolated_depths;
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    if (i != k && (pixels[i] - pixels[k]).norm() < 30.0) continue;
+    isolated_elements.push_back(elements[i]);
+    isolated_pixels.push_back(pixels[i]);
+    isolated_depths.push_back(depths[i]);
+  }
+  const cv::Mat1f isolated = InterpolateDepthOnMesh(size, mesh, isolated_elements, isolated_pixels,
+                                                    isolated_depths, max_edge, 3.0);
+  const cv::Rect around(static_cast<int>(pixels[k].x()) - 5, static_cast<int>(pixels[k].y()) - 5,
+                        11, 11);
+  const cv::Mat1f near_k = isolated(around);
+  EXPECT_EQ(cv::countNonZero(near_k == near_k), 29);  // pixels within 3 px of an integer point
+  EXPECT_FLOAT_EQ(isolated(around.y + 5, around.x + 7), static_cast<float>(depths[k]));
+  const cv::Mat1f alone =
+      InterpolateDepthOnMesh(size, mesh, {elements[k]}, {pixels[k]}, {depths[k]}, max_edge, 3.0);
+  EXPECT_EQ(cv::countNonZero(alone == alone), 0);
+  // A mirror image (a module whose camera sees the projector's elements mirrored): the
+  // triangles keep the majority's orientation, and the map is as full.
+  std::vector<Eigen::Vector2d> mirrored = pixels;
+  for (Eigen::Vector2d& p : mirrored) p.x() = 639.0 - p.x();
+  const cv::Mat1f flipped =
+      InterpolateDepthOnMesh(size, mesh, elements, mirrored, depths, max_edge, 0.0);
+  int flipped_filled = 0;
+  for (int v = 60; v < 420; ++v)
+    for (int u = 60; u < 580; ++u) flipped_filled += std::isnan(flipped(v, 639 - u)) ? 0 : 1;
+  EXPECT_EQ(flipped_filled, filled);
 }
 
 }  // namespace

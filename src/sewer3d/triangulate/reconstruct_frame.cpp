@@ -84,7 +84,8 @@ FrameReconstructor::FrameReconstructor(const ModuleDescription& module, const Bi
     : module_(module),
       options_(Checked(options)),
       decoder_(module, pattern, constraints, options.decoder),
-      triangulator_(module, pattern.rows, pattern.cols, options.triangulation) {}
+      triangulator_(module, pattern.rows, pattern.cols, options.triangulation),
+      mesh_(MeshLitElements(module, pattern)) {}
 
 FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image,
                                                     const cv::Mat3b* texture_bgr) {
@@ -117,6 +118,7 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
   frame.points.reserve(points.size());
   pixels_.clear();
   depths_.clear();
+  elements_.clear();
   for (const TriangulatedPoint& p : points) {
     FramePoint& out = frame.points.emplace_back();
     out.point_mm = p.point_mm;
@@ -130,9 +132,14 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
     }
     pixels_.push_back(out.camera_px);
     depths_.push_back(out.point_mm.z());
+    elements_.emplace_back(out.row, out.col);
   }
-  frame.depth_mm = InterpolateDepth(pattern_image.size(), pixels_, depths_,
-                                    options_.max_edge_steps * module_.pattern.pitch_px);
+  const double max_edge_px = options_.max_edge_steps * module_.pattern.pitch_px;
+  frame.depth_mm =
+      options_.bridge_lost_spots
+          ? InterpolateDepth(pattern_image.size(), pixels_, depths_, max_edge_px)
+          : InterpolateDepthOnMesh(pattern_image.size(), mesh_, elements_, pixels_, depths_,
+                                   max_edge_px, 0.25 * module_.pattern.pitch_px);
   report.seconds.depth_map = Since(t);
   report.depth_pixels = CountDepthPixels(frame.depth_mm);
 

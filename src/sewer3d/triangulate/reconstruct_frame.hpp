@@ -16,6 +16,7 @@
 #include "sewer3d/pattern/binary_array.hpp"
 #include "sewer3d/pattern/constraints.hpp"
 #include "sewer3d/triangulate/correspondences.hpp"
+#include "sewer3d/triangulate/element_mesh.hpp"
 
 namespace sewer3d {
 
@@ -27,6 +28,11 @@ struct FrameReconstructionOptions {
   /// Depth map: longest triangle edge, in pattern pitches (module.pattern.pitch_px each, taken
   /// as camera pixels). Longer edges span holes, depth steps or the border of the lit area.
   double max_edge_steps = 5.5;
+  /// The depth map's triangles: false (default), the module's lit elements meshed
+  /// (InterpolateDepthOnMesh), so a spot that gave no point leaves a hole: a joint's gap, a
+  /// depth step's shadow band stay open instead of being bridged by a ramp. true: the Delaunay
+  /// triangles of the frame's points (InterpolateDepth), which bridge lost spots.
+  bool bridge_lost_spots = false;
   /// A frame is not of this module's pattern as the module sees it (a mirrored or flipped
   /// image, another pattern) when, of at least `mismatch_min_decoded` decoded spots, more than
   /// `mismatch_off_epipolar_fraction` fit no tile on their epipolar line and under
@@ -133,8 +139,10 @@ class FrameReconstructor {
   FrameReconstructionOptions options_;
   Decoder decoder_;
   Triangulator triangulator_;
+  ElementMesh mesh_;
   std::vector<Eigen::Vector2d> pixels_;  // depth-map buffers, reused between frames
   std::vector<double> depths_;
+  std::vector<Eigen::Vector2i> elements_;
 };
 
 /// One-off: FrameReconstructor(module, pattern, constraints, options).Reconstruct(...).

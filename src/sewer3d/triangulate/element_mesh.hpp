@@ -1,0 +1,34 @@
+#pragma once
+/// \file
+/// The lit elements of a module's projected pattern, meshed once per module: a Delaunay
+/// triangulation of their centres in projector element coordinates. Its triangles join
+/// neighbouring lit elements and hold no other lit element, so a depth map filled only over
+/// the triangles whose three elements became points never bridges a lit element that did not:
+/// a spot lost in a joint's gap, in the shadow band of a depth step, in a dark patch.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "sewer3d/camera/module.hpp"
+#include "sewer3d/pattern/binary_array.hpp"
+
+namespace sewer3d {
+
+struct ElementMesh {
+  /// Element grid covered: rows row0 .. row0 + rows − 1, columns col0 .. col0 + cols − 1
+  /// (absolute element indices of the pattern's tiling, PatternLayout::ElementCentre).
+  int row0 = 0, col0 = 0, rows = 0, cols = 0;
+  /// Grid indices (Index) of each triangle's lit elements, counter-clockwise in (column, row).
+  std::vector<std::array<int, 3>> triangles;
+  /// (r − row0) · cols + (c − col0); −1 outside the grid.
+  int Index(int r, int c) const {
+    if (r < row0 || c < col0 || r >= row0 + rows || c >= col0 + cols) return -1;
+    return (r - row0) * cols + (c - col0);
+  }
+};
+
+/// The lit elements (BinaryArray::tiled) whose centres fall on the projector image, meshed.
+ElementMesh MeshLitElements(const ModuleDescription& module, const BinaryArray& pattern);
+
+}  // namespace sewer3d
