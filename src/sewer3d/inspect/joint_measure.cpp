@@ -162,7 +162,7 @@ JointMeasure MeasureJoint(const CoarseMap& map, const Centreline& centreline, do
     m.station_mm = station_mm += g.centre_mm;
     for (double& xr : x) xr -= g.centre_mm;
   }
-  const double cleared = m.gap_mm > 0.0 ? m.gap_mm : o.unseen_gap_mm;
+  const double cleared = std::max(m.gap_mm, o.unseen_gap_mm);
   const Sides sides = FitSides(map, station_mm, cleared, o, x);
   std::vector<double> theta, step, bend;
   for (std::size_t i = 0; i < sides.cols.size(); ++i) {

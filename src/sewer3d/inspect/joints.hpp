@@ -19,10 +19,11 @@ struct JointOptions {
   double min_offset_mm = 0.7;     ///< without a gap, an axis-offset step at least this large
   double side_length_mm = 40.0;   ///< wall used on each side of the joint
   double side_margin_mm = 2.0;    ///< left out between the gap and each side
-  /// A joint whose gap is not in the data (found by its step): the width left out around it,
-  /// for the gap the depth maps bridged and the blur of its edges (their triangles span up to
-  /// 5.5 spot steps, ~15 mm of wall at 648 px: a side line that starts in the blur takes part
-  /// of the step as slope, a deflection toward the offset's clock).
+  /// The width left out around a joint at least (its measured gap where wider): a gap not in
+  /// the data (found by its step) or only partly, and the blur of its edges, where depth-map
+  /// triangles still join the two pipes' walls (up to 5.5 spot steps, ~15 mm of wall at
+  /// 648 px): a side line that starts in the blur takes part of the step as slope, a
+  /// deflection toward the offset's clock.
   double unseen_gap_mm = 18.0;
   /// Columns whose wall on either side departs from a straight line by more than this many
   /// times the median side's RMS are left out of the offset and deflection (a connection,
