@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/testing/small_module.hpp"
 
@@ -156,6 +157,10 @@ TEST(ElementMesh, JoinsNeighbouringLitElementsOnly) {
   for (int r = 0; r < mesh.rows; ++r)
     for (int c = 0; c < mesh.cols; ++c)
       EXPECT_EQ(degree[r * mesh.cols + c] > 0, pattern.tiled(r + mesh.row0, c + mesh.col0) != 0);
+  // A module built in code with an absurd offset (module.json refuses it) is refused here too.
+  ModuleDescription far = module;
+  far.pattern.offset_px.x() = 1e12;
+  EXPECT_THROW(MeshLitElements(far, pattern), InvalidValue);
 }
 
 // Points of a tilted plane at the lit elements, the camera pixel an affine image of the element

@@ -2,24 +2,42 @@
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <utility>
+
+#include "sewer3d/core/check.hpp"
 
 namespace sewer3d {
+namespace {
+
+// The most elements a projector can hold at a pitch of 1 px (the least module.json accepts)
+// on the largest image read (kMaxCameraPixels, 2^26); the default module has 78 k.
+constexpr double kMaxMeshElements = 67108864.0;
+
+}  // namespace
 
 ElementMesh MeshLitElements(const ModuleDescription& module, const BinaryArray& pattern) {
   const PatternLayout& layout = module.pattern;
   // Inverse of ElementCentre: the elements whose centres lie on the projector image.
-  const auto first = [&](double offset) {
-    return static_cast<int>(std::ceil((-0.5 - offset + 0.5) / layout.pitch_px - 0.5));
-  };
-  const auto last = [&](double offset, int size) {
-    return static_cast<int>(std::floor((size - 0.5 - offset + 0.5) / layout.pitch_px - 0.5));
-  };
+  const double pitch = layout.pitch_px;
+  const double c_first = std::ceil(-layout.offset_px.x() / pitch - 0.5);
+  const double r_first = std::ceil(-layout.offset_px.y() / pitch - 0.5);
+  const double cols =
+      std::floor((module.projector.width - layout.offset_px.x()) / pitch - 0.5) - c_first + 1.0;
+  const double rows =
+      std::floor((module.projector.height - layout.offset_px.y()) / pitch - 0.5) - r_first + 1.0;
   ElementMesh mesh;
-  mesh.col0 = first(layout.offset_px.x());
-  mesh.row0 = first(layout.offset_px.y());
-  mesh.cols = last(layout.offset_px.x(), module.projector.width) - mesh.col0 + 1;
-  mesh.rows = last(layout.offset_px.y(), module.projector.height) - mesh.row0 + 1;
-  if (mesh.rows <= 0 || mesh.cols <= 0) return mesh;
+  if (!(rows > 0.0 && cols > 0.0)) return mesh;  // no element centre on the projector
+  SEWER3D_VALIDATE(
+      rows * cols <= kMaxMeshElements && std::abs(c_first) < 1e9 && std::abs(r_first) < 1e9,
+      "pattern.pitch_px",
+      pitch << " px with offset_px (" << layout.offset_px.transpose() << ") lays a grid of "
+            << rows * cols << " elements from column " << c_first << ", row " << r_first
+            << " over the " << module.projector.width << " x " << module.projector.height
+            << " px projector (at most " << kMaxMeshElements << ", within ±1e9)");
+  mesh.col0 = static_cast<int>(c_first);
+  mesh.row0 = static_cast<int>(r_first);
+  mesh.cols = static_cast<int>(cols);
+  mesh.rows = static_cast<int>(rows);
   // Element coordinates are integers: Subdiv2D gives its vertices back exactly.
   cv::Subdiv2D subdiv(cv::Rect(mesh.col0 - 1, mesh.row0 - 1, mesh.cols + 2, mesh.rows + 2));
   int lit = 0;

@@ -29,6 +29,8 @@ struct ElementMesh {
 };
 
 /// The lit elements (BinaryArray::tiled) whose centres fall on the projector image, meshed.
+/// Throws InvalidValue ("pattern.pitch_px") where pitch and offset lay more than 2^26
+/// elements over the projector or start the grid beyond ±1e9 elements.
 ElementMesh MeshLitElements(const ModuleDescription& module, const BinaryArray& pattern);
 
 }  // namespace sewer3d
