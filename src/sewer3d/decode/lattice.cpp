@@ -259,12 +259,10 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
     else
       waiting.emplace_back(-support.on, seed);
   }
+  // A waiting spot still unlabelled keeps the steps refined from the prediction above.
   std::sort(waiting.begin(), waiting.end());
-  for (const auto& [minus_on, seed] : waiting) {
-    if (labels.group[seed] >= 0) continue;
-    refine(seed, predicted[seed]);
-    grow(seed);
-  }
+  for (const auto& [minus_on, seed] : waiting)
+    if (labels.group[seed] < 0) grow(seed);
   // A spot whose label most of its good edges contradict sits on a seam: unlabel it rather
   // than let it corrupt the windows around it.
   std::vector<int> contradicted;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "sewer3d/core/check.hpp"
 
@@ -105,27 +106,30 @@ cv::Mat1f InterpolateDepthOnMesh(cv::Size image_size, const ElementMesh& mesh,
     const int k = mesh.Index(elements[i].x(), elements[i].y());
     if (k >= 0) point_of[k] = point_of[k] == -1 ? static_cast<int>(i) : -2;
   }
-  // Triangles with three points, and the orientation most of them keep in the camera image.
-  std::vector<std::array<int, 3>> whole;
+  // Triangles with three points (and whether they turn positive in the camera image), and
+  // the orientation most of them keep.
+  std::vector<std::pair<std::array<int, 3>, bool>> whole;
   int kept_orientation = 0;
   for (const std::array<int, 3>& t : mesh.triangles) {
     const std::array<int, 3> ids{point_of[t[0]], point_of[t[1]], point_of[t[2]]};
     if (ids[0] < 0 || ids[1] < 0 || ids[2] < 0) continue;
-    whole.push_back(ids);
-    kept_orientation += SignedArea(pixels[ids[0]], pixels[ids[1]], pixels[ids[2]]) > 0 ? 1 : -1;
+    const bool positive = SignedArea(pixels[ids[0]], pixels[ids[1]], pixels[ids[2]]) > 0;
+    whole.emplace_back(ids, positive);
+    kept_orientation += positive ? 1 : -1;
   }
   std::vector<char> in_triangle(pixels.size(), 0);
-  for (const std::array<int, 3>& ids : whole) {
-    const double area = SignedArea(pixels[ids[0]], pixels[ids[1]], pixels[ids[2]]);
-    if ((area > 0) != (kept_orientation > 0)) continue;
+  bool any_triangle = false;
+  for (const auto& [ids, positive] : whole) {
+    if (positive != (kept_orientation > 0)) continue;
     if (!FillTriangle(pixels[ids[0]], pixels[ids[1]], pixels[ids[2]], depths_mm[ids[0]],
                       depths_mm[ids[1]], depths_mm[ids[2]], max_edge_px, depth))
       continue;
     for (const int i : ids) in_triangle[i] = 1;
+    any_triangle = true;
   }
   // Discs complete a mesh; without a single triangle (an edge limit below the spot spacing)
   // the map stays empty, as the Delaunay map does.
-  if (std::find(in_triangle.begin(), in_triangle.end(), 1) == in_triangle.end()) return depth;
+  if (!any_triangle) return depth;
   for (size_t i = 0; i < pixels.size(); ++i)
     if (!in_triangle[i]) FillDisc(pixels[i], spot_radius_px, depths_mm[i], depth);
   return depth;
