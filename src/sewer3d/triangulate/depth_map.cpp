@@ -1,11 +1,14 @@
 #include "sewer3d/triangulate/depth_map.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <opencv2/imgproc.hpp>
+#include <unordered_map>
 #include <utility>
 
 #include "sewer3d/core/check.hpp"
@@ -18,9 +21,12 @@ double SignedArea(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eige
 }
 
 // Inverse depth interpolated linearly over the pixels inside triangle abc (depths za, zb, zc);
-// nothing where an edge is longer than max_edge_px or the triangle has no area (false).
+// nothing where an edge is longer than max_edge_px or the triangle has no area (false). With
+// max_wc < 1 only the part nearer ab (c's barycentric weight at most max_wc), and with
+// only_empty only pixels still empty.
 bool FillTriangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-                  double za, double zb, double zc, double max_edge_px, cv::Mat1f& depth) {
+                  double za, double zb, double zc, double max_edge_px, cv::Mat1f& depth,
+                  double max_wc = 1.0, bool only_empty = false) {
   if ((a - b).norm() > max_edge_px || (b - c).norm() > max_edge_px || (c - a).norm() > max_edge_px)
     return false;
   const double area = SignedArea(a, b, c);
@@ -37,7 +43,8 @@ bool FillTriangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eige
       const double wa = SignedArea(p, b, c) / area;
       const double wb = SignedArea(p, c, a) / area;
       const double wc = 1.0 - wa - wb;
-      if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+      if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9 || wc > max_wc) continue;
+      if (only_empty && !std::isnan(depth(v, u))) continue;
       // Interpolate inverse depth: linear in the image for a plane.
       depth(v, u) = static_cast<float>(1.0 / (wa / za + wb / zb + wc / zc));
     }
@@ -56,6 +63,64 @@ void FillDisc(const Eigen::Vector2d& centre, double radius, double z, cv::Mat1f&
       if ((Eigen::Vector2d(u, v) - centre).squaredNorm() > radius * radius) continue;
       if (std::isnan(depth(v, u))) depth(v, u) = static_cast<float>(z);
     }
+  }
+}
+
+// The grid element (row, column) of mesh grid index k.
+Eigen::Vector2d ElementOf(const ElementMesh& mesh, int k) {
+  return {static_cast<double>(k / mesh.cols), static_cast<double>(k % mesh.cols)};
+}
+
+std::uint64_t EdgeKey(int a, int b) {
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (hi << 32U) | lo;
+}
+
+// Each triangle of `mesh` that lost one spot (grid ids a, b with points, c without) and shares
+// its edge ab with a filled triangle abd is drawn over the half nearer ab: c's camera pixel is
+// where the affine map of abd's elements onto their pixels puts c's element, its inverse depth
+// on abd's plane of inverse depth over the image.
+void FillHoleMargins(const ElementMesh& mesh, const std::vector<int>& point_of,
+                     const std::vector<std::array<int, 3>>& filled,
+                     const std::vector<Eigen::Vector2d>& pixels,
+                     const std::vector<double>& depths_mm, double max_edge_px, cv::Mat1f& depth) {
+  std::unordered_map<std::uint64_t, int> opposite;  // edge -> the filled triangle's third id
+  opposite.reserve(3 * filled.size());
+  for (const std::array<int, 3>& t : filled)
+    for (int k = 0; k < 3; ++k) opposite[EdgeKey(t[k], t[(k + 1) % 3])] = t[(k + 2) % 3];
+  for (const std::array<int, 3>& t : mesh.triangles) {
+    int lost = -1, seen = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (point_of[t[k]] >= 0)
+        ++seen;
+      else
+        lost = k;
+    }
+    if (seen != 2 || point_of[t[lost]] == -2) continue;
+    const int a = t[(lost + 1) % 3], b = t[(lost + 2) % 3], c = t[lost];
+    const auto it = opposite.find(EdgeKey(a, b));
+    if (it == opposite.end()) continue;
+    const int d = it->second;
+    const int pa = point_of[a], pb = point_of[b], pd = point_of[d];
+    Eigen::Matrix2d elements, image;
+    elements << ElementOf(mesh, b) - ElementOf(mesh, a), ElementOf(mesh, d) - ElementOf(mesh, a);
+    image << pixels[pb] - pixels[pa], pixels[pd] - pixels[pa];
+    if (std::abs(elements.determinant()) < 1e-12) continue;
+    const Eigen::Vector2d pc =
+        pixels[pa] + image * elements.inverse() * (ElementOf(mesh, c) - ElementOf(mesh, a));
+    // c's barycentric weights in abd, extrapolated, give abd's inverse depth at pc.
+    const double area = SignedArea(pixels[pa], pixels[pb], pixels[pd]);
+    if (std::abs(area) < 1e-9) continue;
+    const double wa = SignedArea(pc, pixels[pb], pixels[pd]) / area;
+    const double wb = SignedArea(pc, pixels[pd], pixels[pa]) / area;
+    // Not from a triangle too small to reach c (more than three of its heights beyond).
+    const double wd = 1.0 - wa - wb;
+    if (wd < -3.0) continue;
+    const double inverse = wa / depths_mm[pa] + wb / depths_mm[pb] + wd / depths_mm[pd];
+    if (!(inverse > 0.0)) continue;
+    FillTriangle(pixels[pa], pixels[pb], pc, depths_mm[pa], depths_mm[pb], 1.0 / inverse,
+                 max_edge_px, depth, 0.5, true);
   }
 }
 
@@ -95,8 +160,8 @@ cv::Mat1f InterpolateDepth(cv::Size image_size, const std::vector<Eigen::Vector2
 cv::Mat1f InterpolateDepthOnMesh(cv::Size image_size, const ElementMesh& mesh,
                                  const std::vector<Eigen::Vector2i>& elements,
                                  const std::vector<Eigen::Vector2d>& pixels,
-                                 const std::vector<double>& depths_mm, double max_edge_px,
-                                 double spot_radius_px) {
+                                 const std::vector<double>& depths_mm,
+                                 const MeshDepthOptions& options) {
   SEWER3D_CHECK(pixels.size() == depths_mm.size() && pixels.size() == elements.size(),
                 "elements, pixels and depths differ in number");
   cv::Mat1f depth(image_size, std::numeric_limits<float>::quiet_NaN());
@@ -114,24 +179,27 @@ cv::Mat1f InterpolateDepthOnMesh(cv::Size image_size, const ElementMesh& mesh,
     const std::array<int, 3> ids{point_of[t[0]], point_of[t[1]], point_of[t[2]]};
     if (ids[0] < 0 || ids[1] < 0 || ids[2] < 0) continue;
     const bool positive = SignedArea(pixels[ids[0]], pixels[ids[1]], pixels[ids[2]]) > 0;
-    whole.emplace_back(ids, positive);
+    whole.emplace_back(t, positive);
     kept_orientation += positive ? 1 : -1;
   }
   std::vector<char> in_triangle(pixels.size(), 0);
-  bool any_triangle = false;
-  for (const auto& [ids, positive] : whole) {
+  std::vector<std::array<int, 3>> filled;
+  for (const auto& [t, positive] : whole) {
     if (positive != (kept_orientation > 0)) continue;
-    if (!FillTriangle(pixels[ids[0]], pixels[ids[1]], pixels[ids[2]], depths_mm[ids[0]],
-                      depths_mm[ids[1]], depths_mm[ids[2]], max_edge_px, depth))
+    const int a = point_of[t[0]], b = point_of[t[1]], c = point_of[t[2]];
+    if (!FillTriangle(pixels[a], pixels[b], pixels[c], depths_mm[a], depths_mm[b], depths_mm[c],
+                      options.max_edge_px, depth))
       continue;
-    for (const int i : ids) in_triangle[i] = 1;
-    any_triangle = true;
+    for (const int i : {a, b, c}) in_triangle[i] = 1;
+    filled.push_back(t);
   }
   // Discs complete a mesh; without a single triangle (an edge limit below the spot spacing)
   // the map stays empty, as the Delaunay map does.
-  if (!any_triangle) return depth;
+  if (filled.empty()) return depth;
+  if (options.holes_to_midpoints)
+    FillHoleMargins(mesh, point_of, filled, pixels, depths_mm, options.max_edge_px, depth);
   for (size_t i = 0; i < pixels.size(); ++i)
-    if (!in_triangle[i]) FillDisc(pixels[i], spot_radius_px, depths_mm[i], depth);
+    if (!in_triangle[i]) FillDisc(pixels[i], options.spot_radius_px, depths_mm[i], depth);
   return depth;
 }
 

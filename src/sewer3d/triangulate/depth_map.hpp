@@ -19,20 +19,36 @@ namespace sewer3d {
 cv::Mat1f InterpolateDepth(cv::Size image_size, const std::vector<Eigen::Vector2d>& pixels,
                            const std::vector<double>& depths_mm, double max_edge_px);
 
+/// How InterpolateDepthOnMesh draws a frame's map.
+struct MeshDepthOptions {
+  /// A triangle with a camera edge longer than this stays empty (holes, depth steps).
+  double max_edge_px = 0.0;
+  /// Radius of the disc drawn for a point that is the corner of no filled triangle.
+  double spot_radius_px = 0.0;
+  /// Where a lost spot's triangle meets a filled one, the surface is drawn on to halfway
+  /// toward the lost spot (its camera position and depth extrapolated from the filled
+  /// triangle): a surface ends somewhere between the last spot seen and the first one lost,
+  /// so one frame's hole drawn from the last spot seen is too wide by about half a triangle
+  /// on each side. Off by default: a model that keeps every cell any frame measured (the
+  /// union) then shrinks a hole below its true size (docs/rgbd.md).
+  bool holes_to_midpoints = false;
+};
+
 /// Depth over a module's element mesh: point i shows element `elements[i]` (row, column) at
 /// camera pixel `pixels[i]` with depth `depths_mm[i]`. A mesh triangle is filled where its
 /// three elements have points, none of its camera edges is longer than max_edge_px, and its
 /// camera image keeps the orientation most of the frame's triangles have: one folded over (a
 /// depth step whose far side the camera sees shifted past the near side's spots) stays empty.
-/// Spots lost anywhere leave holes here where InterpolateDepth bridges them. A point that is
-/// the corner of no filled triangle (on a surface too narrow for a triangle of its own: an
-/// intruding pipe's rim) gets a disc of `spot_radius_px` at its depth, on pixels nothing else
-/// filled; where no triangle is filled at all, nothing is.
+/// Spots lost anywhere leave holes here where InterpolateDepth bridges them (drawn to the
+/// midpoints, MeshDepthOptions::holes_to_midpoints). A point that is the corner of no filled
+/// triangle (on a surface too narrow for a triangle of its own: an intruding pipe's rim) gets
+/// a disc of `spot_radius_px` at its depth, on pixels nothing else filled; where no triangle
+/// is filled at all, nothing is.
 cv::Mat1f InterpolateDepthOnMesh(cv::Size image_size, const ElementMesh& mesh,
                                  const std::vector<Eigen::Vector2i>& elements,
                                  const std::vector<Eigen::Vector2d>& pixels,
-                                 const std::vector<double>& depths_mm, double max_edge_px,
-                                 double spot_radius_px);
+                                 const std::vector<double>& depths_mm,
+                                 const MeshDepthOptions& options);
 
 /// The pixels of a depth map that hold a depth (not NaN).
 int CountDepthPixels(const cv::Mat1f& depth_mm);

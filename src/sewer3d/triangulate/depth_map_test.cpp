@@ -9,6 +9,7 @@
 #include <cfloat>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
@@ -191,7 +192,7 @@ TEST(DepthMap, OnTheElementMeshLostSpotsLeaveHoles) {
   }
   const double max_edge = 5.5 * 8.0;
   const cv::Mat1f full =
-      InterpolateDepthOnMesh(size, mesh, elements, pixels, depths, max_edge, 0.0);
+      InterpolateDepthOnMesh(size, mesh, elements, pixels, depths, {.max_edge_px = max_edge});
   int filled = 0;
   // Inside the lit elements' hull (the pattern lights one element in six: 6 elements in).
   for (int v = 60; v < 420; ++v) {
@@ -210,7 +211,7 @@ TEST(DepthMap, OnTheElementMeshLostSpotsLeaveHoles) {
     return v;
   };
   const cv::Mat1f holed = InterpolateDepthOnMesh(size, mesh, without(elements), without(pixels),
-                                                 without(depths), max_edge, 0.0);
+                                                 without(depths), {.max_edge_px = max_edge});
   const cv::Mat1f bridged = InterpolateDepth(size, without(pixels), without(depths), max_edge);
   const int u = static_cast<int>(hole.x()), v = static_cast<int>(hole.y());
   EXPECT_TRUE(std::isnan(holed(v, u)));
@@ -228,26 +229,79 @@ TEST(DepthMap, OnTheElementMeshLostSpotsLeaveHoles) {
     isolated_pixels.push_back(pixels[i]);
     isolated_depths.push_back(depths[i]);
   }
-  const cv::Mat1f isolated = InterpolateDepthOnMesh(size, mesh, isolated_elements, isolated_pixels,
-                                                    isolated_depths, max_edge, 3.0);
+  const cv::Mat1f isolated =
+      InterpolateDepthOnMesh(size, mesh, isolated_elements, isolated_pixels, isolated_depths,
+                             {.max_edge_px = max_edge, .spot_radius_px = 3.0});
   const cv::Rect around(static_cast<int>(pixels[k].x()) - 5, static_cast<int>(pixels[k].y()) - 5,
                         11, 11);
   const cv::Mat1f near_k = isolated(around);
   EXPECT_EQ(cv::countNonZero(near_k == near_k), 29);  // pixels within 3 px of an integer point
   EXPECT_FLOAT_EQ(isolated(around.y + 5, around.x + 7), static_cast<float>(depths[k]));
   const cv::Mat1f alone =
-      InterpolateDepthOnMesh(size, mesh, {elements[k]}, {pixels[k]}, {depths[k]}, max_edge, 3.0);
+      InterpolateDepthOnMesh(size, mesh, {elements[k]}, {pixels[k]}, {depths[k]},
+                             {.max_edge_px = max_edge, .spot_radius_px = 3.0});
   EXPECT_EQ(cv::countNonZero(alone == alone), 0);
   // A mirror image (a module whose camera sees the projector's elements mirrored): the
   // triangles keep the majority's orientation, and the map is as full.
   std::vector<Eigen::Vector2d> mirrored = pixels;
   for (Eigen::Vector2d& p : mirrored) p.x() = 639.0 - p.x();
   const cv::Mat1f flipped =
-      InterpolateDepthOnMesh(size, mesh, elements, mirrored, depths, max_edge, 0.0);
+      InterpolateDepthOnMesh(size, mesh, elements, mirrored, depths, {.max_edge_px = max_edge});
   int flipped_filled = 0;
   for (int v = 60; v < 420; ++v)
     for (int u = 60; u < 580; ++u) flipped_filled += std::isnan(flipped(v, 639 - u)) ? 0 : 1;
   EXPECT_EQ(flipped_filled, filled);
+}
+
+// A band of lost spots (a joint's gap 40 px wide across the image): holes drawn from the last
+// spots seen are too wide by about a triangle on each side; drawn to the midpoints toward the
+// lost spots, their mean width over the rows is the band's. The pattern lights one element in
+// about six, so the lit spots are ~20 px apart here: a row's width is off by up to ~20 px,
+// the mean over 360 rows by a few.
+TEST(DepthMap, HolesDrawnToTheMidpointsKeepTheirWidth) {
+  const ModuleDescription module = testing::SmallDefaultModule(648);
+  const BinaryArray pattern = DefaultPatternArray();
+  const ElementMesh mesh = MeshLitElements(module, pattern);
+  const TiltedPlane plane;
+  const cv::Size size(640, 480);
+  const double band_lo = 304.0, band_hi = 344.0;  // halfway between element rows
+  std::vector<Eigen::Vector2i> elements;
+  std::vector<Eigen::Vector2d> pixels;
+  std::vector<double> depths;
+  for (int r = 0; r < 76; ++r) {
+    for (int c = 0; c < 56; ++c) {
+      if (!pattern.tiled(r + mesh.row0, c + mesh.col0)) continue;
+      const Eigen::Vector2d px(20.0 + 8.0 * r, 20.0 + 8.0 * c);
+      if (px.x() > band_lo && px.x() < band_hi) continue;
+      elements.emplace_back(r + mesh.row0, c + mesh.col0);
+      pixels.push_back(px);
+      depths.push_back(plane.Depth(px));
+    }
+  }
+  const auto mean_width = [&](bool midpoints) {
+    const cv::Mat1f map =
+        InterpolateDepthOnMesh(size, mesh, elements, pixels, depths,
+                               {.max_edge_px = 44.0, .holes_to_midpoints = midpoints});
+    double sum = 0.0;
+    for (int v = 60; v < 420; ++v) {
+      int empty = 0;
+      for (int u = 240; u < 400; ++u) {
+        const float z = map(v, u);
+        empty += std::isnan(z) ? 1 : 0;
+        // What is drawn lies on the plane, the margins too (extrapolated within it).
+        if (!std::isnan(z)) {
+          EXPECT_NEAR(z, plane.Depth({u, v}), 1e-3 * plane.Depth({u, v}));
+        }
+      }
+      sum += empty;
+    }
+    return sum / 360.0;
+  };
+  const double from_last_seen = mean_width(false), to_midpoints = mean_width(true);
+  EXPECT_GT(from_last_seen, band_hi - band_lo + 10.0);
+  EXPECT_NEAR(to_midpoints, band_hi - band_lo, 4.0);
+  RecordProperty("hole_width_from_last_seen_px", std::to_string(from_last_seen));
+  RecordProperty("hole_width_to_midpoints_px", std::to_string(to_midpoints));
 }
 
 }  // namespace

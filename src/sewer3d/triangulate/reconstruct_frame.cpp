@@ -139,7 +139,9 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
       options_.bridge_lost_spots
           ? InterpolateDepth(pattern_image.size(), pixels_, depths_, max_edge_px)
           : InterpolateDepthOnMesh(pattern_image.size(), mesh_, elements_, pixels_, depths_,
-                                   max_edge_px, 0.25 * module_.pattern.pitch_px);
+                                   {.max_edge_px = max_edge_px,
+                                    .spot_radius_px = 0.25 * module_.pattern.pitch_px,
+                                    .holes_to_midpoints = options_.holes_to_midpoints});
   report.seconds.depth_map = Since(t);
   report.depth_pixels = CountDepthPixels(frame.depth_mm);
 
