@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
@@ -64,9 +66,30 @@ std::vector<RowRange> Sections(const std::vector<JointMeasure>& joints, const Co
   return out;
 }
 
-/// BAA for a section whose median smooth wall has a diameter reduced by ≥ the threshold.
+/// The stations a section's pipe runs over: from the joint before it to the joint after it
+/// (the section's rows leave out the joints' bands), or to the section's own end where no
+/// joint bounds it.
+std::pair<double, double> PipeExtent(const std::vector<JointMeasure>& joints, const CoarseMap& map,
+                                     const RowRange& s) {
+  const double s0 = map.fine.station0_mm;
+  double from = s0 + s.begin * map.RowMm(), to = s0 + s.end * map.RowMm();
+  const double begin = from, end = to;
+  double before = -std::numeric_limits<double>::infinity();
+  double after = std::numeric_limits<double>::infinity();
+  for (const JointMeasure& j : joints) {
+    if (j.station_mm <= begin) before = std::max(before, j.station_mm);
+    if (j.station_mm >= end) after = std::min(after, j.station_mm);
+  }
+  if (s.begin > 0 && std::isfinite(before)) from = before;
+  if (s.end < map.displacement_mm.rows && std::isfinite(after)) to = after;
+  return {from, to};
+}
+
+/// BAA for a section whose median smooth wall has a diameter reduced by ≥ the threshold,
+/// reported over the pipe's extent (PipeExtent): a pipe deforms as a whole.
 bool Deformation(const CoarseMap& map, const std::vector<RingFit>& fits, const RowRange& s,
-                 double radius, double dn, double min_pct, Observation& o) {
+                 std::pair<double, double> extent, double radius, double dn, double min_pct,
+                 Observation& o) {
   std::vector<double> k[5];
   for (int r = s.begin; r < s.end; ++r) {
     if (!fits[r].valid) continue;
@@ -86,8 +109,8 @@ bool Deformation(const CoarseMap& map, const std::vector<RingFit>& fits, const R
   o.code = "BAA";
   const double vertical = std::abs(std::cos(theta_min));
   o.characterisation = vertical >= std::sqrt(0.5) ? "A" : "B";
-  o.station_mm = map.fine.station0_mm + s.begin * map.RowMm();
-  o.length_mm = (s.end - s.begin) * map.RowMm();
+  o.station_mm = extent.first;
+  o.length_mm = extent.second - extent.first;
   o.clock_h = ClockRadToHours(theta_min);
   o.clock_from_h = o.clock_to_h = o.clock_h;
   o.quantities = {
@@ -181,7 +204,8 @@ Inspection Inspect(const CoarseMap& map, const Centreline& centreline,
   }
   for (const RowRange& s : sections) {
     Observation o;
-    if (Deformation(map, fits, s, radius, dn, options.min_deformation_pct, o))
+    if (Deformation(map, fits, s, PipeExtent(joints, map, s), radius, dn,
+                    options.min_deformation_pct, o))
       out.observations.push_back(o);
   }
   std::stable_sort(
