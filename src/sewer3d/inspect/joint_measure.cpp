@@ -96,9 +96,10 @@ Sides FitSides(const CoarseMap& map, double station_mm, double gap_mm, const Joi
 }
 
 struct GapMeasure {
-  double gap_mm = 0.0;     ///< median over columns of the open length between the side lines
-  double depth_mm = 0.0;   ///< of its bottom where seen (0 where not)
-  double centre_mm = 0.0;  ///< median over columns of the open length's centroid (x)
+  double gap_mm = 0.0;      ///< median over columns of the open length between the side lines
+  double depth_mm = 0.0;    ///< of its bottom where seen (0 where not)
+  double centre_mm = 0.0;   ///< median over columns of the open length's centroid (x)
+  double open_share = 0.0;  ///< share of the columns with any open length
 };
 
 GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_mm,
@@ -138,7 +139,15 @@ GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_m
     widths.push_back(open * row_mm);
     if (open > 0.0) centres.push_back(moment / open);
   }
-  return {Median(widths), seen ? bottom : 0.0, centres.empty() ? 0.0 : Median(centres)};
+  std::vector<double> open_widths;
+  for (const double w : widths)
+    if (w > 0.0) open_widths.push_back(w);
+  const bool most_open = static_cast<double>(open_widths.size()) >=
+                             o.min_open_share * static_cast<double>(widths.size()) &&
+                         !open_widths.empty();
+  return {Median(most_open ? open_widths : widths), seen ? bottom : 0.0,
+          centres.empty() ? 0.0 : Median(centres),
+          static_cast<double>(open_widths.size()) / static_cast<double>(widths.size())};
 }
 
 }  // namespace
@@ -151,12 +160,13 @@ JointMeasure MeasureJoint(const CoarseMap& map, const Centreline& centreline, do
   for (int r = 0; r < d.rows; ++r) x[r] = s0 + (r + 0.5) * row_mm - station_mm;
   JointMeasure m;
   m.station_mm = station_mm;
-  if (gap_guess_mm > 0.0) {
-    // The gap measured between sides left clear of the guess; then the joint moved to its
-    // centre, and the sides fitted again clear of the measured gap.
-    const Sides first = FitSides(map, station_mm, gap_guess_mm + 2.0 * row_mm, o, x);
-    const GapMeasure g =
-        MeasureGap(map, first, station_mm, 0.5 * gap_guess_mm + 2.0 * row_mm, o, x);
+  // The gap measured between sides left clear of the guess (a joint found by its step:
+  // of the band a gap may hide in, and only where enough columns show it open); then the
+  // joint moved to its centre, and the sides fitted again clear of the measured gap.
+  const double guess = gap_guess_mm > 0.0 ? gap_guess_mm : o.unseen_gap_mm;
+  const Sides first = FitSides(map, station_mm, guess + 2.0 * row_mm, o, x);
+  const GapMeasure g = MeasureGap(map, first, station_mm, 0.5 * guess + 2.0 * row_mm, o, x);
+  if (gap_guess_mm > 0.0 || (g.open_share >= o.min_open_share && g.gap_mm > 0.0)) {
     m.gap_mm = g.gap_mm;
     m.gap_depth_mm = g.depth_mm;
     m.station_mm = station_mm += g.centre_mm;

@@ -129,6 +129,8 @@ void JointOptions::Check() const {
   ValidatePositive("max_side_rms_factor", max_side_rms_factor);
   SEWER3D_VALIDATE(min_gap_share > 0.0 && min_gap_share <= 1.0, "min_gap_share",
                    "must be in (0, 1], got " << min_gap_share);
+  SEWER3D_VALIDATE(min_open_share >= 0.0 && min_open_share <= 1.0, "min_open_share",
+                   "must be in [0, 1], got " << min_open_share);
 }
 
 std::vector<JointMeasure> FindJoints(const CoarseMap& map, const std::vector<RingFit>& fits,

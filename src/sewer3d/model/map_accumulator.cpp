@@ -14,6 +14,7 @@ namespace sewer3d {
 void MapAccumulatorOptions::Check() const {
   ValidateNotNegative("splat_radius_mm", splat_radius_mm);
   ValidateNotNegative("max_hole_mm", max_hole_mm);
+  ValidateNotNegative("hole_edge_band_mm", hole_edge_band_mm);
 }
 
 double DepthWeight(double depth_mm, double sigma_ref_mm, double depth_ref_mm) {
@@ -40,8 +41,10 @@ MapAccumulator::MapAccumulator(const Centreline& centreline, const MapGrid& tile
   SEWER3D_CHECK(centreline.points.size() >= 2);
   // The margin holds every cell a hole that reaches into the tile can span, its neighbours
   // the fill reads, and the cells a splat of a point beyond the tile reaches.
-  halo_ = static_cast<int>(
-              std::ceil((options.max_hole_mm + options.splat_radius_mm) / tile.resolution_mm)) +
+  // The edge trimming reads frames and holes within twice its band.
+  halo_ = static_cast<int>(std::ceil(
+              (options.max_hole_mm + options.splat_radius_mm + 2.0 * options.hole_edge_band_mm) /
+              tile.resolution_mm)) +
           2;
   ext_ = tile;
   ext_.station0_mm = tile.station0_mm - halo_ * tile.resolution_mm;
@@ -50,6 +53,10 @@ MapAccumulator::MapAccumulator(const Centreline& centreline, const MapGrid& tile
   sum_wd_ = cv::Mat1f::zeros(ext_.rows, ext_.cols);
   sum_wc_ = cv::Mat3f::zeros(ext_.rows, ext_.cols);
   count_ = cv::Mat1w::zeros(ext_.rows, ext_.cols);
+  if (options.hole_edge_band_mm > 0.0) {
+    last_frame_ = cv::Mat1i::zeros(ext_.rows, ext_.cols);
+    frames_ = cv::Mat1b::zeros(ext_.rows, ext_.cols);
+  }
   station_guess_mm_ = tile.station0_mm;
 }
 
@@ -62,6 +69,10 @@ void MapAccumulator::AddToCell(int row, int col, double weight, double displacem
   sum_w_(row, col) += static_cast<float>(weight);
   sum_wd_(row, col) += static_cast<float>(weight * displacement_mm);
   sum_wc_(row, col) += static_cast<float>(weight) * bgr;
+  if (!frames_.empty() && last_frame_(row, col) != frame_) {
+    last_frame_(row, col) = frame_;
+    frames_(row, col) = cv::saturate_cast<unsigned char>(frames_(row, col) + 1);
+  }
 }
 
 bool MapAccumulator::Add(const Eigen::Vector3d& p_model, const cv::Vec3f& bgr, double weight) {
@@ -124,9 +135,14 @@ PipeMaps MapAccumulator::Finish() const {
       coverage(r, c) = static_cast<unsigned char>(Coverage::kMeasured);
     }
   }
+  const double col_mm = 2.0 * std::numbers::pi * centreline_.radius_mm / ext_.cols;
+  if (!frames_.empty()) {
+    const double cell_mm = std::max(ext_.resolution_mm, col_mm);
+    TrimHoleEdges(static_cast<int>(std::lround(options_.hole_edge_band_mm / cell_mm)), frames_,
+                  displacement, colour, coverage);
+  }
   const int max_rows =
       static_cast<int>(std::floor(options_.max_hole_mm / ext_.resolution_mm + 1e-9));
-  const double col_mm = 2.0 * std::numbers::pi * centreline_.radius_mm / ext_.cols;
   const int max_cols = static_cast<int>(std::floor(options_.max_hole_mm / col_mm + 1e-9));
   if (max_rows > 0 && max_cols > 0)
     FillSmallHoles(max_rows, max_cols, displacement, colour, coverage);

@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <opencv2/core/mat.hpp>
 
 #include "sewer3d/model/pipe_map.hpp"
@@ -25,6 +26,11 @@ namespace sewer3d {
 struct MapAccumulatorOptions {
   double splat_radius_mm = 0.0;  ///< 0: each point to its nearest cell; else kernel radius
   double max_hole_mm = 2.0;      ///< holes at most this long and wide are filled
+  /// Hole edges at the frames' median (TrimHoleEdges, before the small holes are filled):
+  /// covered cells this close to a hole that fewer than half of the local frames measured are
+  /// dropped. 0: off (a hole's edge is the farthest any frame reached). Frames are counted
+  /// per cell between BeginFrame calls.
+  double hole_edge_band_mm = 0.0;
   void Check() const;
 };
 
@@ -49,11 +55,15 @@ class MapAccumulator {
   /// beyond the tile and its margin. Consecutive neighbouring points unroll fastest.
   bool Add(const Eigen::Vector3d& p_model, const cv::Vec3f& bgr, double weight);
 
+  /// Starts the next frame's points (for hole_edge_band_mm, which counts the frames per cell).
+  void BeginFrame() { ++frame_; }
+
   /// The tile's maps: means per cell, holes ≤ max_hole_mm filled and flagged.
   [[nodiscard]] PipeMaps Finish() const;
 
   /// Memory of the sums per cell (bytes); the tile plus its margin rows are held.
-  static constexpr std::size_t kBytesPerCell = 5 * sizeof(float) + sizeof(std::uint16_t);
+  static constexpr std::size_t kBytesPerCell =
+      5 * sizeof(float) + sizeof(std::uint16_t) + sizeof(std::int32_t) + sizeof(std::uint8_t);
   [[nodiscard]] std::size_t MemoryBytes() const;
 
  private:
@@ -68,6 +78,9 @@ class MapAccumulator {
   cv::Mat1f sum_w_, sum_wd_;
   cv::Mat3f sum_wc_;
   cv::Mat1w count_;
+  cv::Mat1i last_frame_;  // the frame that last added to the cell
+  cv::Mat1b frames_;      // frames that added to the cell (to 255)
+  int frame_ = 1;
 };
 
 }  // namespace sewer3d

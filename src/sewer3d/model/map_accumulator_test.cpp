@@ -208,5 +208,36 @@ TEST(MapAccumulator, WeightsAndOptions) {
   EXPECT_THROW(bad.Check(), std::invalid_argument);
 }
 
+// Frames see a gap 8 mm wide (stations 16–24) each with its own edges, off by −1.6 … +1.6 mm
+// on either side as the midpoint-drawn holes of frames whose spots fall differently are: the
+// union of their surfaces leaves a hole 3.2 mm too narrow, the frames' median edge
+// (hole_edge_band_mm) the true width — with five frames, and with four, where cells between
+// the middle two edges are ties split halfway.
+TEST(MapAccumulator, PutsHoleEdgesAtTheFramesMedian) {
+  const Centreline line = TestCentreline();
+  const MapGrid grid = MakeMapGrid(0.0, 40.0, kRadius, 0.2);
+  const auto hole_mm = [&](double band_mm, int frames) {
+    MapAccumulator acc(line, grid, {.hole_edge_band_mm = band_mm});
+    const double before[5] = {-1.6, 0.8, 1.6, -0.8, 0.0}, after[5] = {0.8, -1.6, 1.6, -0.8, 0.0};
+    for (int f = 0; f < frames; ++f) {
+      acc.BeginFrame();
+      for (double s = 0.05; s < 40.0; s += 0.15) {
+        if (s > 16.0 + before[f] && s < 24.0 + after[f]) continue;
+        for (double clock = 0.0; clock < 2 * kPi; clock += 0.15 / kRadius)
+          acc.Add(PointAt(line, {s, clock, kRadius}), cv::Vec3f(100.f, 100.f, 100.f), 1.0);
+      }
+    }
+    const PipeMaps maps = acc.Finish();
+    double rows = 0.0;  // mean over the columns of the empty rows
+    for (int c = 0; c < maps.coverage.cols; ++c)
+      for (int r = 0; r < maps.coverage.rows; ++r) rows += maps.coverage(r, c) == 0 ? 1 : 0;
+    return rows / maps.coverage.cols * grid.resolution_mm;
+  };
+  EXPECT_NEAR(hole_mm(0.0, 5), 8.0 - 3.2, 0.25);  // the farthest frame on each side
+  EXPECT_NEAR(hole_mm(5.0, 5), 8.0, 0.25);        // the median on each side
+  EXPECT_NEAR(hole_mm(0.0, 4), 8.0 - 3.2, 0.25);
+  EXPECT_NEAR(hole_mm(5.0, 4), 8.0, 0.25);  // halfway between the middle two
+}
+
 }  // namespace
 }  // namespace sewer3d

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <opencv2/imgproc.hpp>
 #include <utility>
 #include <vector>
 
@@ -86,6 +88,52 @@ void FillSmallHoles(int max_rows, int max_cols, cv::Mat1f& displacement_mm, cv::
   for (const Hole& hole : small) {
     for (const auto& [r, c] : hole.cells)
       coverage(r, c) = static_cast<unsigned char>(Coverage::kFilled);
+  }
+}
+
+void TrimHoleEdges(int band, const cv::Mat1b& frames, cv::Mat1f& displacement_mm, cv::Mat3f& colour,
+                   cv::Mat1b& coverage) {
+  if (band <= 0 || coverage.empty()) return;
+  const int rows = coverage.rows, cols = coverage.cols, pad = std::min(band, cols);
+  // Columns wrapped by `pad` on both sides; rows padded with covered cells of no frame.
+  const auto padded = [&](const cv::Mat1b& m, double rows_value) {
+    cv::Mat1b out;
+    cv::copyMakeBorder(m, out, 0, 0, pad, pad, cv::BORDER_WRAP);
+    cv::copyMakeBorder(out, out, band, band, 0, 0, cv::BORDER_CONSTANT, cv::Scalar(rows_value));
+    return out;
+  };
+  const cv::Mat1b covered = padded(coverage != 0, 255), framed = padded(frames, 0);
+  cv::Mat1f to_hole;
+  cv::distanceTransform(covered, to_hole, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::Mat1b most;
+  cv::dilate(framed, most, cv::getStructuringElement(cv::MORPH_RECT, {2 * band + 1, 2 * band + 1}));
+  // Near a hole: kept by a majority of the local frames, dropped by a minority; a tie (half
+  // of them: between two frames' edges) goes to whichever of the two it lies nearer, so that
+  // the edge falls halfway.
+  enum : unsigned char { kKeep = 0, kDrop = 1, kTie = 2 };
+  cv::Mat1b verdict(covered.size(), kKeep);
+  for (int r = 0; r < covered.rows; ++r) {
+    for (int c = 0; c < covered.cols; ++c) {
+      if (covered(r, c) == 0) {
+        verdict(r, c) = kDrop;
+      } else if (to_hole(r, c) <= band) {
+        const int twice = 2 * framed(r, c), local = most(r, c);
+        verdict(r, c) = twice > local ? kKeep : twice < local ? kDrop : kTie;
+      }
+    }
+  }
+  cv::Mat1f to_kept, to_dropped;
+  cv::distanceTransform(verdict != kKeep, to_kept, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::distanceTransform(verdict != kDrop, to_dropped, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      const int pr = r + band, pc = c + pad;
+      if (coverage(r, c) == 0 || verdict(pr, pc) == kKeep) continue;
+      if (verdict(pr, pc) == kTie && to_kept(pr, pc) <= to_dropped(pr, pc)) continue;
+      coverage(r, c) = 0;
+      displacement_mm(r, c) = std::numeric_limits<float>::quiet_NaN();
+      colour(r, c) = cv::Vec3f(0.0f, 0.0f, 0.0f);
+    }
   }
 }
 

@@ -19,6 +19,7 @@ std::vector<Eigen::Vector3d> FitSamples(const cv::Mat1f& depth_mm, const CameraM
 long long AddAcquisitionPixels(MapAccumulator& maps, const cv::Mat1f& depth_mm,
                                const cv::Mat3b& color_bgr, const cv::Mat2f& normalised,
                                const Rigid3d& world_from_camera, const PixelWeighting& weighting) {
+  maps.BeginFrame();
   long long added = 0;
   const int step = std::max(1, weighting.pixel_step);
   for (int v = 0; v < depth_mm.rows; v += step) {

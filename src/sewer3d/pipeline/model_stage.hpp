@@ -40,8 +40,10 @@ struct ModelStageOptions {
   CentrelineFitOptions centreline;  ///< its nominal diameter and start station set by the stage
   /// Its splat_radius_mm 0 = automatic: where a pixel's footprint on the wall (depth_ref_mm /
   /// f · pixel_step) exceeds 0.7 cells, each pixel is splatted over that radius so the map has
-  /// no holes between pixels (reduced-size cameras); otherwise nearest cell.
-  MapAccumulatorOptions maps;
+  /// no holes between pixels (reduced-size cameras); otherwise nearest cell. Its
+  /// hole_edge_band_mm 5: hole edges at the frames' median, as the rgbd stage draws each
+  /// frame's holes to the midpoints toward its lost spots (docs/rgbd.md).
+  MapAccumulatorOptions maps{.hole_edge_band_mm = 5.0};
   ModelFileOptions files;
   BaseCylinderOptions base;
   DisplacedMeshOptions displaced;

@@ -77,6 +77,10 @@ std::uint64_t EdgeKey(int a, int b) {
   return (hi << 32U) | lo;
 }
 
+// The steepest triangle a hole's margin is drawn from: the spread of its corners' depths as
+// a fraction of the nearest (a wall seen at 60° from its normal, spots 2 mm apart: ~2 %).
+constexpr double kMaxMarginDepthSpan = 0.05;
+
 // Each triangle of `mesh` that lost one spot (grid ids a, b with points, c without) and shares
 // its edge ab with a filled triangle abd is drawn over the half nearer ab: c's camera pixel is
 // where the affine map of abd's elements onto their pixels puts c's element, its inverse depth
@@ -103,6 +107,11 @@ void FillHoleMargins(const ElementMesh& mesh, const std::vector<int>& point_of,
     if (it == opposite.end()) continue;
     const int d = it->second;
     const int pa = point_of[a], pb = point_of[b], pd = point_of[d];
+    // Not from a steep triangle (a step's flank, a lateral's bore seen end-on): its plane
+    // says little about where the surface goes on.
+    const double lo = std::min({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
+    const double hi = std::max({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
+    if (hi - lo > kMaxMarginDepthSpan * lo) continue;
     Eigen::Matrix2d elements, image;
     elements << ElementOf(mesh, b) - ElementOf(mesh, a), ElementOf(mesh, d) - ElementOf(mesh, a);
     image << pixels[pb] - pixels[pa], pixels[pd] - pixels[pa];

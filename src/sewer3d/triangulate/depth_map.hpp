@@ -29,9 +29,10 @@ struct MeshDepthOptions {
   /// toward the lost spot (its camera position and depth extrapolated from the filled
   /// triangle): a surface ends somewhere between the last spot seen and the first one lost,
   /// so one frame's hole drawn from the last spot seen is too wide by about half a triangle
-  /// on each side. Off by default: a model that keeps every cell any frame measured (the
-  /// union) then shrinks a hole below its true size (docs/rgbd.md).
-  bool holes_to_midpoints = false;
+  /// on each side. A model that kept every cell any frame measured (the union of the
+  /// frames' surfaces) would then make holes too narrow; the model stage puts a hole's edge
+  /// at the frames' median instead (MapAccumulatorOptions::hole_edge_band_mm, docs/rgbd.md).
+  bool holes_to_midpoints = true;
 };
 
 /// Depth over a module's element mesh: point i shows element `elements[i]` (row, column) at

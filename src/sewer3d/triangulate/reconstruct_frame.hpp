@@ -34,8 +34,8 @@ struct FrameReconstructionOptions {
   /// triangles of the frame's points (InterpolateDepth), which bridge lost spots.
   bool bridge_lost_spots = false;
   /// On the element mesh, a hole's surface drawn on to halfway toward the first lost spot
-  /// (MeshDepthOptions::holes_to_midpoints); false (default): holes end at the last spots seen.
-  bool holes_to_midpoints = false;
+  /// (MeshDepthOptions::holes_to_midpoints, default); false: holes end at the last spots seen.
+  bool holes_to_midpoints = true;
   /// A frame is not of this module's pattern as the module sees it (a mirrored or flipped
   /// image, another pattern) when, of at least `mismatch_min_decoded` decoded spots, more than
   /// `mismatch_off_epipolar_fraction` fit no tile on their epipolar line and under

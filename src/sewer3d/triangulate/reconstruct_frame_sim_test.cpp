@@ -30,7 +30,8 @@ struct Outcome {
 // Reconstructs a realistic render with its texture; errors against the true surface. A point
 // farther than `wrong_mm` from it is wrong (a wrong tile or element), not noise.
 Outcome ReconstructRender(const ModuleDescription& module, const Scene& scene, std::uint64_t seed,
-                          const SpotErrors& errors = {}, double wrong_mm = 1.0) {
+                          const SpotErrors& errors = {}, double wrong_mm = 1.0,
+                          const FrameReconstructionOptions& options = {}) {
   const BinaryArray pattern = DefaultPatternArray();
   RenderOptions render;
   render.seed = seed;
@@ -39,8 +40,8 @@ Outcome ReconstructRender(const ModuleDescription& module, const Scene& scene, s
   cv::Mat3b texture_bgr;
   rendered.texture.convertTo(texture_bgr, CV_8U);  // 8-bit sensor: digital numbers 0..255
   cv::cvtColor(texture_bgr, texture_bgr, cv::COLOR_RGB2BGR);
-  const FrameReconstruction frame =
-      ReconstructFrame(module, pattern, PatternConstraints{}, rendered.pattern, &texture_bgr);
+  const FrameReconstruction frame = ReconstructFrame(module, pattern, PatternConstraints{},
+                                                     rendered.pattern, &texture_bgr, options);
   Outcome out;
   out.spots = frame.report.spots_found;
   out.decoded = frame.report.spots_decoded;
@@ -95,7 +96,10 @@ void Record(const Outcome& o) {
 
 // Each depth-map pixel interpolates 1/z of its triangle's three points with weights >= 0: on
 // a plane facing the camera (1/z constant) its error lies between the points' depth errors;
-// on a curved wall the triangle's chord adds up to its sagitta (below).
+// on a curved wall the triangle's chord adds up to its sagitta (below). The margins drawn
+// toward lost spots (holes_to_midpoints) extrapolate: a lost spot's depth from a neighbouring
+// triangle with weights summing to 1 in absolute value at most 7 (it lies within three of the
+// triangle's heights), drawn over the half nearer the spots seen: at most 4 times the points'.
 constexpr double kFloatMm = 1e-4;  // truth and map are float: an ulp at 150 mm is 1.5e-5 mm
 
 // A DN300 wall with its axis 8 mm and 10 mm off the camera: the module's usual view.
@@ -110,7 +114,13 @@ Scene DecentredDn300() {
 TEST(ReconstructFrame, PlaneAt90mm) {
   Scene plane;
   plane.distance_mm = 90.0;
-  const Outcome o = ReconstructRender(testing::SmallDefaultModule(648), plane, 1);
+  const Outcome drawn = ReconstructRender(testing::SmallDefaultModule(648), plane, 1);
+  EXPECT_LE(drawn.depth_max_mm, 4.0 * drawn.max_point_depth_error_mm + kFloatMm);
+  EXPECT_LE(drawn.depth_rms_mm, drawn.rms_to_truth_mm);
+  FrameReconstructionOptions interpolated;
+  interpolated.holes_to_midpoints = false;
+  const Outcome o =
+      ReconstructRender(testing::SmallDefaultModule(648), plane, 1, {}, 1.0, interpolated);
   Record(o);
   EXPECT_GT(o.decoded, 0.95 * o.spots);
   EXPECT_GT(o.points, 0.95 * o.spots);
