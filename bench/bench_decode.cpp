@@ -72,12 +72,14 @@ BENCHMARK(BM_ConnectedComponentsOpenCV)->Unit(benchmark::kMillisecond);
 
 // The whole single-frame chain as `sewer3d reconstruct` and the pipeline run it: decode,
 // triangulate, drop depth outliers, depth map (no texture).
-// Argument 1: the depth map over the Delaunay triangles of the points (bridge_lost_spots), as
-// before session 43; 0: over the module's element mesh (the default).
+// Argument 0: over the module's element mesh with holes drawn to the midpoints (the default);
+// 1: the Delaunay triangles of the points (bridge_lost_spots), as before session 43; 2: the
+// element mesh, holes from the last spots seen (session 43).
 void BM_ReconstructFrame(benchmark::State& state) {
   const cv::Mat1b& image = PatternImage();
   FrameReconstructionOptions options;
-  options.bridge_lost_spots = state.range(0) != 0;
+  options.bridge_lost_spots = state.range(0) == 1;
+  options.holes_to_midpoints = state.range(0) == 0;
   FrameReconstructor reconstructor(MakeDefaultModule({}), DefaultPatternArray(),
                                    PatternConstraints{}, options);
   FrameReport last;
@@ -91,7 +93,7 @@ void BM_ReconstructFrame(benchmark::State& state) {
   state.counters["triangulate_ms"] = last.seconds.triangulate * 1e3;  // with outlier rejection
   state.counters["depth_map_ms"] = last.seconds.depth_map * 1e3;
 }
-BENCHMARK(BM_ReconstructFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReconstructFrame)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace sewer3d
