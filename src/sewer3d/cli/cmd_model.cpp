@@ -42,6 +42,11 @@ void AddModelStageOptions(CLI::App& sub, ModelStageOptions& o) {
   sub.add_option("--pixel-step", o.pixel_step, "Every n-th depth-map pixel into the maps")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
+  sub.add_option("--hole-edge-band-mm", o.maps.hole_edge_band_mm,
+                 "Hole edges at the frames' median within this band; 0: a cell any frame "
+                 "measured is kept (the union)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0));
   sub.add_option("--mesh-step-mm", o.displaced.step_mm, "Vertex spacing of mesh.glb")
       ->capture_default_str()
       ->check(CLI::Range(0.1, 1000.0));

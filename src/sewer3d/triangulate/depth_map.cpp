@@ -68,7 +68,8 @@ void FillDisc(const Eigen::Vector2d& centre, double radius, double z, cv::Mat1f&
 
 // The grid element (row, column) of mesh grid index k.
 Eigen::Vector2d ElementOf(const ElementMesh& mesh, int k) {
-  return {static_cast<double>(k / mesh.cols), static_cast<double>(k % mesh.cols)};
+  const int row = k / mesh.cols, col = k % mesh.cols;
+  return {static_cast<double>(row), static_cast<double>(col)};
 }
 
 std::uint64_t EdgeKey(int a, int b) {
