@@ -249,10 +249,21 @@ ReferenceLightResult ReferenceLightEstimator::Estimate() const {
     const auto estimated = static_cast<int>(std::count(known.begin(), known.end(), true));
     if (estimated == 0) return result;
     result.report.cells_filled += static_cast<int>(cells) - estimated;
+    // The smooth model fills and smooths at once, unless it leaves the range the histograms
+    // measure by more than a stop (a few cells of censored samples, e.g. a blown-out frame,
+    // extrapolated to infinity): then the cells' own values, filled and smoothed.
+    const reference_grid::Grid measured = grid;
+    const double lo = options_.log2_min - 1.0;
+    const double hi = options_.log2_min + bins / options_.bins_per_stop + 1.0;
+    const auto in_range = [&] {
+      return std::all_of(grid.begin(), grid.end(),
+                         [&](double v) { return std::isfinite(v) && v >= lo && v <= hi; });
+    };
     if (options_.model_degree > 0 &&
-        FitSmoothLight(grid, known, cols, rows, options_.model_degree) >= 0.0) {
-      // The smooth model fills and smooths at once.
+        FitSmoothLight(grid, known, cols, rows, options_.model_degree) >= 0.0 && in_range()) {
+      // The smooth model.
     } else {
+      grid = measured;
       reference_grid::FillHoles(grid, known, cols, rows);
       if (options_.smoothing_cells > 0)
         reference_grid::SmoothQuadratic(grid, cols, rows, options_.smoothing_cells);
