@@ -254,7 +254,7 @@ ReferenceLightResult ReferenceLightEstimator::Estimate() const {
     // extrapolated to infinity): then the cells' own values, filled and smoothed.
     const reference_grid::Grid measured = grid;
     const double lo = options_.log2_min - 1.0;
-    const double hi = options_.log2_min + bins / options_.bins_per_stop + 1.0;
+    const double hi = options_.log2_min + static_cast<double>(bins) / options_.bins_per_stop + 1.0;
     const auto in_range = [&] {
       return std::all_of(grid.begin(), grid.end(),
                          [&](double v) { return std::isfinite(v) && v >= lo && v <= hi; });
