@@ -164,6 +164,33 @@ TEST(ElementMesh, JoinsNeighbouringLitElementsOnly) {
   EXPECT_THROW(MeshLitElements(far, pattern), InvalidValue);
 }
 
+// The lit elements of the first 76 × 56 of the mesh's grid as points of `plane`, each at the
+// camera pixel (20 + 8 r, 20 + 8 c): the default module's projector is turned against the
+// camera, rows along u, columns along v. Points whose pixel u lies in (lost_lo, lost_hi) are
+// left out (lost spots).
+struct MeshPoints {
+  std::vector<Eigen::Vector2i> elements;
+  std::vector<Eigen::Vector2d> pixels;
+  std::vector<double> depths;
+};
+MeshPoints PlaneOnMesh(const ElementMesh& mesh, const BinaryArray& pattern,
+                       const TiltedPlane& plane, double lost_lo = 0.0, double lost_hi = 0.0) {
+  EXPECT_GE(mesh.rows, 76);
+  EXPECT_GE(mesh.cols, 56);
+  MeshPoints out;
+  for (int r = 0; r < 76; ++r) {
+    for (int c = 0; c < 56; ++c) {
+      if (!pattern.tiled(r + mesh.row0, c + mesh.col0)) continue;
+      const Eigen::Vector2d px(20.0 + 8.0 * r, 20.0 + 8.0 * c);
+      if (px.x() > lost_lo && px.x() < lost_hi) continue;
+      out.elements.emplace_back(r + mesh.row0, c + mesh.col0);
+      out.pixels.push_back(px);
+      out.depths.push_back(plane.Depth(px));
+    }
+  }
+  return out;
+}
+
 // Points of a tilted plane at the lit elements, the camera pixel an affine image of the element
 // position: the mesh's map is as exact as the Delaunay one; a lost spot leaves a hole that
 // the Delaunay map bridges.
@@ -173,23 +200,10 @@ TEST(DepthMap, OnTheElementMeshLostSpotsLeaveHoles) {
   const ElementMesh mesh = MeshLitElements(module, pattern);
   const TiltedPlane plane;
   const cv::Size size(640, 480);
-  // The default module's projector is turned against the camera: rows along u, columns along v.
-  const auto pixel_of = [](int r, int c) {
-    return Eigen::Vector2d(20.0 + 8.0 * r, 20.0 + 8.0 * c);
-  };
-  std::vector<Eigen::Vector2i> elements;
-  std::vector<Eigen::Vector2d> pixels;
-  std::vector<double> depths;
-  ASSERT_GE(mesh.rows, 76);
-  ASSERT_GE(mesh.cols, 56);
-  for (int r = 0; r < 76; ++r) {
-    for (int c = 0; c < 56; ++c) {
-      if (!pattern.tiled(r + mesh.row0, c + mesh.col0)) continue;
-      elements.emplace_back(r + mesh.row0, c + mesh.col0);
-      pixels.push_back(pixel_of(r, c));
-      depths.push_back(plane.Depth(pixels.back()));
-    }
-  }
+  const MeshPoints points = PlaneOnMesh(mesh, pattern, plane);
+  const std::vector<Eigen::Vector2i>& elements = points.elements;
+  const std::vector<Eigen::Vector2d>& pixels = points.pixels;
+  const std::vector<double>& depths = points.depths;
   const double max_edge = 5.5 * 8.0;
   const cv::Mat1f full =
       InterpolateDepthOnMesh(size, mesh, elements, pixels, depths, {.max_edge_px = max_edge});
@@ -265,22 +279,10 @@ TEST(DepthMap, HolesDrawnToTheMidpointsKeepTheirWidth) {
   const TiltedPlane plane;
   const cv::Size size(640, 480);
   const double band_lo = 304.0, band_hi = 344.0;  // halfway between element rows
-  std::vector<Eigen::Vector2i> elements;
-  std::vector<Eigen::Vector2d> pixels;
-  std::vector<double> depths;
-  for (int r = 0; r < 76; ++r) {
-    for (int c = 0; c < 56; ++c) {
-      if (!pattern.tiled(r + mesh.row0, c + mesh.col0)) continue;
-      const Eigen::Vector2d px(20.0 + 8.0 * r, 20.0 + 8.0 * c);
-      if (px.x() > band_lo && px.x() < band_hi) continue;
-      elements.emplace_back(r + mesh.row0, c + mesh.col0);
-      pixels.push_back(px);
-      depths.push_back(plane.Depth(px));
-    }
-  }
+  const MeshPoints points = PlaneOnMesh(mesh, pattern, plane, band_lo, band_hi);
   const auto mean_width = [&](bool midpoints) {
     const cv::Mat1f map =
-        InterpolateDepthOnMesh(size, mesh, elements, pixels, depths,
+        InterpolateDepthOnMesh(size, mesh, points.elements, points.pixels, points.depths,
                                {.max_edge_px = 44.0, .holes_to_midpoints = midpoints});
     double sum = 0.0;
     for (int v = 60; v < 420; ++v) {
