@@ -272,6 +272,10 @@ expect_error "model.json" "$bin" inspect "$tmp/rg/run" --out "$tmp/rg/ws" --quie
 [ "$rc" -eq 3 ] || fail "inspect without a model exited $rc, not 3"
 expect_error "--intrusion-mm" "$bin" inspect "$tmp/rg/run" --out "$tmp/rg/ws" --intrusion-mm 0
 [ "$rc" -eq 2 ] || fail "inspect --intrusion-mm 0 exited $rc, not 2"
+expect_error "--crack-min-length-mm" "$bin" inspect "$tmp/rg/run" --out "$tmp/rg/ws" --crack-min-length-mm 0
+[ "$rc" -eq 2 ] || fail "inspect --crack-min-length-mm 0 exited $rc, not 2"
+expect_ok "$bin" inspect --help
+grep -q -- "--no-texture-cracks" "$tmp/out" || fail "inspect --help shows no --no-texture-cracks"
 expect_error "observations.json" "$bin" evaluate inspection --run "$tmp/rg/run" --workspace "$tmp/rg/ws"
 [ "$rc" -eq 3 ] || fail "evaluate inspection without an inspection exited $rc, not 3"
 

@@ -36,6 +36,12 @@ void AddInspectStageOptions(CLI::App& sub, InspectStageOptions& o) {
                  "Regions this deep into the wall (spalling, cracks) are observations")
       ->capture_default_str()
       ->check(CLI::Range(0.05, 1000.0));
+  sub.add_option("--crack-min-length-mm", i.cracks.min_length_mm,
+                 "A dark line in the texture this long is a crack (BAB)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100000.0));
+  sub.add_flag("!--no-texture-cracks", i.cracks.enabled,
+               "Do not search the texture for cracks (only the displacement map)");
   sub.add_option("--min-deformation-pct", i.min_deformation_pct,
                  "A section whose diameter is reduced by this much is deformed (BAA)")
       ->capture_default_str()

@@ -8,21 +8,27 @@ namespace sewer3d {
 
 std::vector<MapComponent> HysteresisComponents(const cv::Mat1f& values, double sign, double low,
                                                double high) {
-  const int rows = values.rows, cols = values.cols;
-  cv::Mat1b state = cv::Mat1b::zeros(rows, cols);  // 0 below low, 1 candidate, 2 taken
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < cols; ++c) {
+  cv::Mat1b levels = cv::Mat1b::zeros(values.rows, values.cols);
+  for (int r = 0; r < values.rows; ++r) {
+    for (int c = 0; c < values.cols; ++c) {
       const double v = sign * values(r, c);
-      if (std::isfinite(v) && v >= low) state(r, c) = 1;
+      if (std::isfinite(v) && v >= low) levels(r, c) = v >= high ? 2 : 1;
     }
   }
+  return HysteresisComponents(levels);
+}
+
+std::vector<MapComponent> HysteresisComponents(const cv::Mat1b& levels) {
+  // 0 none, 1 candidate, 2 seed not yet taken, 3 taken.
+  cv::Mat1b state = levels.clone();
+  const int rows = levels.rows, cols = levels.cols;
   std::vector<MapComponent> out;
   std::deque<cv::Point> queue;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
-      if (state(r, c) != 1 || sign * values(r, c) < high) continue;
+      if (state(r, c) != 2) continue;
       MapComponent comp;
-      state(r, c) = 2;
+      state(r, c) = 3;
       queue.emplace_back(c, r);
       while (!queue.empty()) {
         const cv::Point p = queue.front();
@@ -33,8 +39,8 @@ std::vector<MapComponent> HysteresisComponents(const cv::Mat1f& values, double s
             const int nr = p.y + dr;
             if (nr < 0 || nr >= rows) continue;
             const int nc = ((p.x + dc) % cols + cols) % cols;
-            if (state(nr, nc) != 1) continue;
-            state(nr, nc) = 2;
+            if (state(nr, nc) != 1 && state(nr, nc) != 2) continue;
+            state(nr, nc) = 3;
             queue.emplace_back(p.x + dc, nr);
           }
         }

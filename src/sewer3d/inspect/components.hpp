@@ -23,4 +23,8 @@ struct MapComponent {
 std::vector<MapComponent> HysteresisComponents(const cv::Mat1f& values, double sign, double low,
                                                double high);
 
+/// Hysteresis regions of a map of levels (0: none, 1: may join, 2: seed): 8-connected cells of
+/// level ≥ 1 that contain at least one seed.
+std::vector<MapComponent> HysteresisComponents(const cv::Mat1b& levels);
+
 }  // namespace sewer3d

@@ -140,6 +140,26 @@ void InspectedRange(const CoarseMap& map, const std::vector<RingCoefficients>& r
   rep.inspected_share = rings.empty() ? 0.0 : static_cast<double>(count) / rings.size();
 }
 
+/// Cracks in the texture (texture_cracks.hpp) outside the observations found so far and the
+/// joints' bands, whose edges are dark lines too.
+void AddTextureCracks(const CoarseMap& map, const std::vector<JointMeasure>& joints, double radius,
+                      const InspectOptions& options, std::vector<Observation>& observations) {
+  std::vector<MapCrop> excluded;
+  for (const Observation& o : observations) excluded.push_back(o.crop);
+  for (const JointMeasure& j : joints) {
+    const double half = 0.5 * j.gap_mm + options.joint_band_mm;
+    const int first =
+        std::max(0, static_cast<int>(std::floor((j.station_mm - half - map.fine.station0_mm) /
+                                                map.fine.resolution_mm)));
+    const int last = std::min(
+        map.fine.rows, static_cast<int>(std::ceil((j.station_mm + half - map.fine.station0_mm) /
+                                                  map.fine.resolution_mm)));
+    if (last > first) excluded.push_back({first, last - first, 0, map.fine.cols});
+  }
+  for (Observation& o : FindTextureCracks(map, radius, excluded, options.cracks))
+    observations.push_back(std::move(o));
+}
+
 }  // namespace
 
 void InspectOptions::Check() const {
@@ -156,6 +176,7 @@ void InspectOptions::Check() const {
   ValidateNotNegative("joint_band_mm", joint_band_mm);
   CheckWithin("joints.", [&] { joints.Check(); });
   CheckWithin("defects.", [&] { defects.Check(); });
+  CheckWithin("cracks.", [&] { cracks.Check(); });
 }
 
 void CheckNominalDiameter(const InspectOptions& options, double radius_mm) {
@@ -191,6 +212,7 @@ Inspection Inspect(const CoarseMap& map, const Centreline& centreline,
   const cv::Mat1f residual = RingResidual(map, rings);
   rep.residual_sigma_mm = RobustSigma(residual);
   out.observations = FindDefects(map, residual, radius, dn, rep.residual_sigma_mm, options.defects);
+  AddTextureCracks(map, joints, radius, options, out.observations);
   for (Observation& o : out.observations) {
     const double begin = o.station_mm - (IsContinuous(o) ? 0.0 : 0.5 * o.length_mm);
     for (const JointMeasure& j : joints) {

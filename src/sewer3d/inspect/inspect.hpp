@@ -3,7 +3,8 @@
 /// `sewer3d inspect`'s algorithm: EN 13508-2 observations from the pipe model's displacement
 /// map (docs/inspection.md). On the coarse map: ring fits, joints (BAJ), sections between them,
 /// the smooth wall per section and its deformation (BAA), then local defects on the residual
-/// (BAG, BBC, BBE, BAF, BAB). Options in, observations + report out; no I/O.
+/// (BAG, BBC, BBE, BAF, BAB), and cracks in the texture outside all of these and the joints'
+/// bands (BAB). Options in, observations + report out; no I/O.
 
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "sewer3d/inspect/defects.hpp"
 #include "sewer3d/inspect/joints.hpp"
 #include "sewer3d/inspect/observation.hpp"
+#include "sewer3d/inspect/texture_cracks.hpp"
 #include "sewer3d/model/pipe_map.hpp"
 
 namespace sewer3d {
@@ -31,6 +33,7 @@ struct InspectOptions {
   double joint_band_mm = 10.0;
   JointOptions joints;
   DefectOptions defects;
+  TextureCrackOptions cracks;  ///< cracks in the texture (needs the map's grey level)
   void Check() const;
 };
 

@@ -70,6 +70,8 @@ std::string InspectOptionsJson(const InspectStageOptions& o) {
               {"min_offset_mm", i.joints.min_offset_mm},
               {"intrusion_mm", i.defects.intrusion_mm},
               {"surface_mm", i.defects.surface_mm},
+              {"texture_cracks", i.cracks.enabled},
+              {"crack_min_length_mm", i.cracks.min_length_mm},
               {"profile_step_mm", o.profile.step_mm}}
       .dump();
 }
@@ -130,7 +132,9 @@ InspectStageReport RunInspectStage(const CaptureRun& run, Workspace& workspace,
   workspace.BeginStage(kStage, InspectOptionsJson(options), options.force);
   const InspectionFiles files = InspectionFilesIn(workspace.folder());
 
-  CoarseMapBuilder coarse(info.grid, options.inspect.cell_mm);
+  const TextureCrackOptions& cracks = options.inspect.cracks;
+  CoarseMapBuilder coarse(info.grid, options.inspect.cell_mm,
+                          cracks.enabled ? cracks.cell_mm : 0.0);
   Profile profile;
   std::optional<PipeMaps> whole;
   if (info.whole_maps) whole = ReadMapFiles(WholeMapFiles(model_dir), info.grid);

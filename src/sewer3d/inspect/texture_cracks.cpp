@@ -1,0 +1,401 @@
+#include "sewer3d/inspect/texture_cracks.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "sewer3d/core/check.hpp"
+#include "sewer3d/core/units.hpp"
+#include "sewer3d/inspect/components.hpp"
+#include "sewer3d/inspect/robust_stats.hpp"
+
+namespace sewer3d {
+namespace {
+
+/// A narrow hole reads as dark as a crack's core, in units of the texture's local contrast.
+constexpr float kHoleLevel = -3.0F;
+
+/// The grey map's cells: rows along the pipe, columns around it (wrapping).
+struct Geometry {
+  double row_mm = 0.0;
+  double col_mm = 0.0;
+  int rows = 0;
+  int cols = 0;
+  [[nodiscard]] double CellMm() const { return std::min(row_mm, col_mm); }
+  [[nodiscard]] double CircumferenceMm() const { return cols * col_mm; }
+};
+
+cv::Mat1f Blur(const cv::Mat1f& in, double sigma_mm, const Geometry& g) {
+  cv::Mat1f out;
+  cv::GaussianBlur(in, out, cv::Size(0, 0), sigma_mm / g.col_mm, sigma_mm / g.row_mm,
+                   cv::BORDER_REPLICATE);
+  return out;
+}
+
+/// The texture less its local mean over its local contrast (grey levels, at least 1); holes
+/// read kHoleLevel. `deep`: the cells near holes too wide for a crack (see hole_mm).
+cv::Mat1f Normalised(const cv::Mat1b& grey, const Geometry& g, const TextureCrackOptions& o,
+                     cv::Mat1b& deep) {
+  const cv::Mat1b hole = grey == 0;
+  cv::Mat1f level, valid;
+  grey.convertTo(level, CV_32F);
+  cv::Mat1b(grey > 0).convertTo(valid, CV_32F, 1.0 / 255.0);
+  const cv::Mat1f mean =
+      Blur(level, o.background_mm, g) / cv::max(Blur(valid, o.background_mm, g), 1e-3);
+  const cv::Mat1f high = (level - mean).mul(valid);
+  cv::Mat1f sd;
+  cv::sqrt(Blur(high.mul(high), o.contrast_mm, g) / cv::max(Blur(valid, o.contrast_mm, g), 1e-3),
+           sd);
+  cv::Mat1f z = high / cv::max(sd, 1.0);
+  z.setTo(kHoleLevel, hole);
+  cv::Mat1f dist;
+  cv::distanceTransform(hole, dist, cv::DIST_L2, 3);
+  const cv::Mat1b far = dist * g.CellMm() > o.hole_mm;
+  const int reach = static_cast<int>(std::ceil((o.hole_mm + o.side_mm) / g.CellMm()));
+  cv::dilate(far, deep,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)));
+  return z;
+}
+
+/// Per cell: how much darker the cell is than both its sides across the local line direction
+/// (the Hessian's), averaged ± half_length_mm along that direction; 0 in `deep`.
+cv::Mat1f LineResponse(const cv::Mat1f& z, const cv::Mat1b& deep, const Geometry& g,
+                       const TextureCrackOptions& o) {
+  const cv::Mat1f smooth = Blur(z, o.line_sigma_mm, g), dz = Blur(z, o.direction_sigma_mm, g);
+  cv::Mat1f dxx, dyy, dxy;
+  cv::Sobel(dz, dxx, CV_32F, 2, 0, 3);
+  cv::Sobel(dz, dyy, CV_32F, 0, 2, 3);
+  cv::Sobel(dz, dxy, CV_32F, 1, 1, 3);
+  const float side = static_cast<float>(o.side_mm / g.CellMm());
+  cv::Mat1f x0(z.size()), y0(z.size()), tx(z.size()), ty(z.size());
+  cv::Mat1f ax(z.size()), ay(z.size()), bx(z.size()), by(z.size());
+  for (int r = 0; r < z.rows; ++r) {
+    for (int c = 0; c < z.cols; ++c) {
+      // The direction of the largest curvature: across a line.
+      const float a = 0.5F * std::atan2(2.0F * dxy(r, c), dxx(r, c) - dyy(r, c));
+      const float nx = std::cos(a), ny = std::sin(a);
+      x0(r, c) = static_cast<float>(c);
+      y0(r, c) = static_cast<float>(r);
+      tx(r, c) = -ny;
+      ty(r, c) = nx;
+      ax(r, c) = c + side * nx;
+      ay(r, c) = r + side * ny;
+      bx(r, c) = c - side * nx;
+      by(r, c) = r - side * ny;
+    }
+  }
+  cv::Mat1f at_a, at_b;
+  cv::remap(smooth, at_a, ax, ay, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  cv::remap(smooth, at_b, bx, by, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  cv::Mat1f darker = cv::min(at_a, at_b) - smooth;
+  darker.setTo(0.0F, deep);
+  const int reach = static_cast<int>(std::lround(o.half_length_mm / g.CellMm()));
+  cv::Mat1f sum = cv::Mat1f::zeros(z.size()), mx, my, moved;
+  for (int k = -reach; k <= reach; ++k) {
+    cv::scaleAdd(tx, k, x0, mx);
+    cv::scaleAdd(ty, k, y0, my);
+    cv::remap(darker, moved, mx, my, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    sum += moved;
+  }
+  cv::Mat1f out = sum / (2 * reach + 1);
+  out.setTo(0.0F, deep);
+  return out;
+}
+
+/// 2 where the response clears the seed level, 1 the grow level, else 0; levels relative to
+/// the median and robust sigma of the response over the cells not in `deep`.
+cv::Mat1b Levels(const cv::Mat1f& response, const cv::Mat1b& deep, const TextureCrackOptions& o) {
+  std::vector<double> sample;
+  for (int r = 0; r < response.rows; r += 2) {
+    for (int c = r % 4; c < response.cols; c += 3) {
+      if (deep(r, c) == 0) sample.push_back(response(r, c));
+    }
+  }
+  cv::Mat1b levels = cv::Mat1b::zeros(response.size());
+  if (sample.size() < 100) return levels;
+  const double median = Median(sample);
+  for (double& v : sample) v = std::abs(v - median);
+  const double sigma = std::max(1e-6, 1.4826 * Median(sample));
+  for (int r = 0; r < response.rows; ++r) {
+    for (int c = 0; c < response.cols; ++c) {
+      const double s = (response(r, c) - median) / sigma;
+      levels(r, c) = deep(r, c) != 0 ? 0 : (s >= o.seed_sigmas ? 2 : (s >= o.grow_sigmas ? 1 : 0));
+    }
+  }
+  return levels;
+}
+
+/// LineResponse's levels over the whole grey map, filtered strip by strip (each with margins
+/// beyond which the map's ends read as wide holes, and its columns wrapped around).
+cv::Mat1b LineLevels(const cv::Mat1b& grey, const Geometry& g, const TextureCrackOptions& o) {
+  const double reach_mm = 3.0 * o.contrast_mm + o.side_mm + o.half_length_mm;
+  const int margin = static_cast<int>(std::ceil(reach_mm / g.row_mm));
+  const int pad = std::min(g.cols, static_cast<int>(std::ceil(reach_mm / g.col_mm)));
+  const int strip = std::max(1, static_cast<int>(o.strip_mm / g.row_mm));
+  cv::Mat1b levels = cv::Mat1b::zeros(g.rows, g.cols);
+  for (int r0 = 0; r0 < g.rows; r0 += strip) {
+    const int r1 = std::min(g.rows, r0 + strip);
+    const int a = std::max(0, r0 - margin), b = std::min(g.rows, r1 + margin);
+    cv::Mat1b wrapped;
+    cv::copyMakeBorder(grey.rowRange(a, b), wrapped, 0, 0, pad, pad, cv::BORDER_WRAP);
+    cv::Mat1b ext = cv::Mat1b::zeros(r1 - r0 + 2 * margin, g.cols + 2 * pad);
+    wrapped.copyTo(ext.rowRange(a - (r0 - margin), b - (r0 - margin)));
+    cv::Mat1b deep;
+    const cv::Mat1f z = Normalised(ext, g, o, deep);
+    const cv::Mat1f response = LineResponse(z, deep, g, o);
+    const cv::Rect core(pad, margin, g.cols, r1 - r0);
+    Levels(response(core), deep(core), o).copyTo(levels.rowRange(r0, r1));
+  }
+  return levels;
+}
+
+/// The principal axis of cells (x = unwrapped column, y = row) in mm: centre (along, around),
+/// direction, extent along it from the centre, and the spread across it.
+struct LineFit {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  Eigen::Vector2d dir = Eigen::Vector2d::UnitX();
+  double lo = 0.0;
+  double hi = 0.0;
+  double width_mm = 0.0;  ///< sqrt(12 × variance across): a uniform band's width
+  [[nodiscard]] double LengthMm(const Geometry& g) const { return hi - lo + g.CellMm(); }
+};
+
+Eigen::Vector2d Mm(const cv::Point& p, const Geometry& g) {
+  return {p.y * g.row_mm, p.x * g.col_mm};
+}
+
+LineFit FitLine(const std::vector<cv::Point>& cells, const Geometry& g) {
+  LineFit f;
+  for (const cv::Point& p : cells) f.centre += Mm(p, g);
+  f.centre /= static_cast<double>(cells.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const cv::Point& p : cells) {
+    const Eigen::Vector2d d = Mm(p, g) - f.centre;
+    cov += d * d.transpose();
+  }
+  cov /= static_cast<double>(cells.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  f.dir = eig.eigenvectors().col(1);
+  if (f.dir.x() < 0.0) f.dir = -f.dir;
+  f.width_mm = std::sqrt(12.0 * std::max(0.0, eig.eigenvalues()(0)));
+  for (const cv::Point& p : cells) {
+    const double t = (Mm(p, g) - f.centre).dot(f.dir);
+    f.lo = std::min(f.lo, t);
+    f.hi = std::max(f.hi, t);
+  }
+  return f;
+}
+
+struct Piece {
+  std::vector<cv::Point> cells;
+  LineFit line;
+};
+
+/// Whether two pieces are of one crack (TextureCrackOptions' merge_*); `shift_cols`: the whole
+/// turns of columns that bring b next to a.
+bool SameCrack(const Piece& a, const Piece& b, const Geometry& g, const TextureCrackOptions& o,
+               int& shift_cols) {
+  const double turn = g.CircumferenceMm();
+  const double turns = std::round((a.line.centre.y() - b.line.centre.y()) / turn);
+  shift_cols = static_cast<int>(turns) * g.cols;
+  const Eigen::Vector2d cb = b.line.centre + Eigen::Vector2d(0.0, turns * turn);
+  const Eigen::Vector2d d = cb - a.line.centre;
+  const auto across = [](const Eigen::Vector2d& dir, const Eigen::Vector2d& v) {
+    return std::abs(dir.x() * v.y() - dir.y() * v.x());
+  };
+  if (std::abs(a.line.dir.dot(b.line.dir)) < std::cos(DegToRad(o.merge_angle_deg))) return false;
+  if (across(a.line.dir, d) > o.merge_offset_mm || across(b.line.dir, d) > o.merge_offset_mm)
+    return false;
+  const double tb = d.dot(a.line.dir), s = a.line.dir.dot(b.line.dir) >= 0.0 ? 1.0 : -1.0;
+  const double b_lo = tb + std::min(s * b.line.lo, s * b.line.hi);
+  const double b_hi = tb + std::max(s * b.line.lo, s * b.line.hi);
+  return std::max(b_lo - a.line.hi, a.line.lo - b_hi) <= o.merge_gap_mm;
+}
+
+int Root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+/// The pieces' cells grouped by crack (SameCrack, transitively), each group's columns
+/// unwrapped next to its first piece.
+std::vector<std::vector<cv::Point>> Cracks(const std::vector<Piece>& pieces, const Geometry& g,
+                                           const TextureCrackOptions& o) {
+  const int n = static_cast<int>(pieces.size());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      int shift = 0;
+      if (SameCrack(pieces[i], pieces[j], g, o, shift)) parent[Root(parent, j)] = Root(parent, i);
+    }
+  }
+  std::vector<std::vector<cv::Point>> groups(n);
+  std::vector<int> first(n, -1);
+  for (int i = 0; i < n; ++i) {
+    const int root = Root(parent, i);
+    if (first[root] < 0) first[root] = i;
+    int shift = 0;
+    SameCrack(pieces[first[root]], pieces[i], g, o, shift);
+    for (const cv::Point& p : pieces[i].cells) groups[root].emplace_back(p.x + shift, p.y);
+  }
+  std::erase_if(groups, [](const std::vector<cv::Point>& c) { return c.empty(); });
+  return groups;
+}
+
+/// The grey level at (along, around) mm (bilinear, columns wrapping); 0 where a hole touches.
+double GreyAt(const cv::Mat1b& grey, const Geometry& g, const Eigen::Vector2d& p) {
+  const double r = p.x() / g.row_mm, c = p.y() / g.col_mm;
+  const int r0 = static_cast<int>(std::floor(r)), c0 = static_cast<int>(std::floor(c));
+  if (r0 < 0 || r0 + 1 >= g.rows) return 0.0;
+  const double fr = r - r0, fc = c - c0;
+  double sum = 0.0;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      const int v = grey(r0 + i, ((c0 + j) % g.cols + g.cols) % g.cols);
+      if (v == 0) return 0.0;
+      sum += (i ? fr : 1.0 - fr) * (j ? fc : 1.0 - fc) * v;
+    }
+  }
+  return sum;
+}
+
+/// The dark line's full width at half its depth below the texture beside it, median over
+/// profiles across it every millimetre (a hole counts as black); NaN where none is dark enough.
+double ApparentWidthMm(const cv::Mat1b& grey, const Geometry& g, const LineFit& line) {
+  constexpr double kStep = 0.1, kReach = 3.0, kCore = 1.5, kBeside = 2.0, kMinDepth = 10.0;
+  const int half = static_cast<int>(kReach / kStep);
+  const Eigen::Vector2d across(-line.dir.y(), line.dir.x());
+  std::vector<double> widths, profile(2 * half + 1), beside;
+  for (double t = line.lo; t <= line.hi; t += 1.0) {
+    beside.clear();
+    int darkest = half;
+    for (int k = -half; k <= half; ++k) {
+      const double v = GreyAt(grey, g, line.centre + t * line.dir + k * kStep * across);
+      profile[k + half] = v;
+      if (std::abs(k * kStep) >= kBeside && v > 0.0) beside.push_back(v);
+      if (std::abs(k * kStep) <= kCore && v < profile[darkest]) darkest = k + half;
+    }
+    if (beside.size() < static_cast<std::size_t>(half / 2)) continue;
+    const double level = Median(beside), depth = level - profile[darkest];
+    if (depth < kMinDepth) continue;
+    int i = darkest, j = darkest;
+    while (i > 0 && profile[i - 1] <= level - 0.5 * depth) --i;
+    while (j < 2 * half && profile[j + 1] <= level - 0.5 * depth) ++j;
+    widths.push_back((j - i + 1) * kStep);
+  }
+  return Median(widths);
+}
+
+/// The observation of a crack's cells (grey map, columns unwrapped).
+Observation CrackObservation(const CoarseMap& map, const Geometry& g,
+                             const std::vector<cv::Point>& cells, const LineFit& line,
+                             const TextureCrackOptions& o) {
+  Observation ob;
+  ob.code = "BAB";
+  int row_min = cells.front().y, row_max = row_min, col_min = cells.front().x, col_max = col_min;
+  for (const cv::Point& p : cells) {
+    row_min = std::min(row_min, p.y);
+    row_max = std::max(row_max, p.y);
+    col_min = std::min(col_min, p.x);
+    col_max = std::max(col_max, p.x);
+  }
+  const double length = line.LengthMm(g);
+  ob.station_mm = map.GreyRowStationMm(line.centre.x() / g.row_mm);
+  ob.length_mm = (row_max - row_min + 1) * g.row_mm;
+  ob.clock_h = ClockRadToHours(map.GreyColClockRad(line.centre.y() / g.col_mm));
+  ob.clock_from_h = ClockRadToHours(map.GreyColClockRad(col_min - 0.5));
+  ob.clock_to_h = ClockRadToHours(map.GreyColClockRad(col_max + 0.5));
+  // Continuity: the share of the crack's millimetres along its line that hold a cell.
+  std::vector<char> seen(static_cast<std::size_t>(std::ceil(length)) + 1, 0);
+  for (const cv::Point& p : cells) {
+    seen[static_cast<std::size_t>((Mm(p, g) - line.centre).dot(line.dir) - line.lo)] = 1;
+  }
+  const double continuity = static_cast<double>(std::count(seen.begin(), seen.end(), 1)) /
+                            static_cast<double>(seen.size());
+  ob.confidence = continuity * (1.0 - std::exp(-length / o.min_length_mm));
+  double angle = RadToDeg(std::atan2(line.dir.y(), line.dir.x()));
+  if (angle > 90.0) angle -= 180.0;
+  const double width = ApparentWidthMm(map.grey, g, line);
+  if (std::isfinite(width)) ob.quantities.push_back({"width_mm", width, "mm"});
+  ob.quantities.push_back({"length_mm", length, "mm"});
+  ob.quantities.push_back({"angle_deg", angle, "deg"});
+  ob.remark = fmt::format("crack {:.0f} mm long at {:.0f}° to the axis, seen in the texture",
+                          length, angle);
+  const int f = map.grey_factor, margin = static_cast<int>(std::ceil(5.0 / g.row_mm));
+  ob.crop.row0 = std::max(0, (row_min - margin) * f);
+  ob.crop.rows = std::min(map.fine.rows, (row_max + 1 + margin) * f) - ob.crop.row0;
+  ob.crop.col0 = (((col_min - margin) * f) % map.fine.cols + map.fine.cols) % map.fine.cols;
+  ob.crop.cols = std::min(map.fine.cols, (col_max - col_min + 1 + 2 * margin) * f);
+  return ob;
+}
+
+/// Clears the cells of `levels` (grey map) inside the crops (fine map cells).
+void Exclude(cv::Mat1b& levels, const CoarseMap& map, const std::vector<MapCrop>& crops) {
+  const int f = map.grey_factor;
+  for (const MapCrop& c : crops) {
+    const int r0 = std::max(0, c.row0 / f);
+    const int r1 = std::min(levels.rows, (c.row0 + c.rows + f - 1) / f);
+    for (int r = r0; r < r1; ++r) {
+      for (int x = c.col0 / f; x < (c.col0 + c.cols + f - 1) / f; ++x)
+        levels(r, x % levels.cols) = 0;
+    }
+  }
+}
+
+}  // namespace
+
+void TextureCrackOptions::Check() const {
+  ValidatePositive("cell_mm", cell_mm);
+  ValidatePositive("background_mm", background_mm);
+  ValidatePositive("contrast_mm", contrast_mm);
+  ValidatePositive("line_sigma_mm", line_sigma_mm);
+  ValidatePositive("direction_sigma_mm", direction_sigma_mm);
+  ValidatePositive("side_mm", side_mm);
+  ValidatePositive("half_length_mm", half_length_mm);
+  ValidatePositive("grow_sigmas", grow_sigmas);
+  SEWER3D_VALIDATE(seed_sigmas >= grow_sigmas, "seed_sigmas",
+                   "must be ≥ grow_sigmas (" << grow_sigmas << "), got " << seed_sigmas);
+  ValidatePositive("min_length_mm", min_length_mm);
+  ValidatePositive("max_width_mm", max_width_mm);
+  SEWER3D_VALIDATE(merge_angle_deg >= 0.0 && merge_angle_deg < 90.0, "merge_angle_deg",
+                   "must be in [0, 90), got " << merge_angle_deg);
+  ValidateNotNegative("merge_offset_mm", merge_offset_mm);
+  ValidateNotNegative("merge_gap_mm", merge_gap_mm);
+  ValidatePositive("hole_mm", hole_mm);
+  ValidatePositive("strip_mm", strip_mm);
+}
+
+std::vector<Observation> FindTextureCracks(const CoarseMap& map, double radius_mm,
+                                           const std::vector<MapCrop>& excluded,
+                                           const TextureCrackOptions& options) {
+  options.Check();
+  std::vector<Observation> out;
+  if (!options.enabled || map.grey.empty()) return out;
+  const Geometry g{map.GreyRowMm(), map.GreyColMm(radius_mm), map.grey.rows, map.grey.cols};
+  cv::Mat1b levels = LineLevels(map.grey, g, options);
+  Exclude(levels, map, excluded);
+  std::vector<Piece> pieces;
+  for (MapComponent& c : HysteresisComponents(levels)) {
+    Piece p{std::move(c.cells), {}};
+    p.line = FitLine(p.cells, g);
+    // Shorter than the response's own averaging: a blob (grain, pore), not a line.
+    if (p.line.LengthMm(g) >= 2.0 * options.half_length_mm &&
+        p.line.width_mm <= options.max_width_mm)
+      pieces.push_back(std::move(p));
+  }
+  for (const std::vector<cv::Point>& cells : Cracks(pieces, g, options)) {
+    const LineFit line = FitLine(cells, g);
+    if (line.LengthMm(g) >= options.min_length_mm)
+      out.push_back(CrackObservation(map, g, cells, line, options));
+  }
+  return out;
+}
+
+}  // namespace sewer3d
