@@ -27,4 +27,16 @@ std::vector<MapComponent> HysteresisComponents(const cv::Mat1f& values, double s
 /// level ≥ 1 that contain at least one seed.
 std::vector<MapComponent> HysteresisComponents(const cv::Mat1b& levels);
 
+/// The root of `i` in a union-find forest (`parent[i] == i` at a root), halving the path.
+int FindRoot(std::vector<int>& parent, int i);
+
+/// `regions` (cells of `values`' grid) joined where unmeasured cells split them: the holes of
+/// `values` (8-connected NaN cells, not touching its first or last row, at most `max_rows` ×
+/// `max_cols` across) that touch a region belong to it, and regions touching one hole become
+/// one. A joined region lists its regions' cells first (in their order), then its holes'
+/// (columns unwrapped next to the first region's). Regions touching no hole come back as they
+/// were; the order is that of each result's first region.
+std::vector<MapComponent> JoinThroughHoles(const std::vector<MapComponent>& regions,
+                                           const cv::Mat1f& values, int max_rows, int max_cols);
+
 }  // namespace sewer3d

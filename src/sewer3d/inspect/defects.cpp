@@ -215,6 +215,8 @@ Observation Surface(const Wall& wall, const cv::Mat1f& res, const MapComponent& 
   for (double d : depth) sum += d;
   const double max_depth = Percentile(depth, 0.98);
   Observation o = Describe(wall, res, comp, 1.0, max_depth, threshold);
+  // A patch's or a crack's place is its middle: its deepest cell lies anywhere on its floor.
+  o.clock_h = ClockRadToHours(wall.Clock(0.5 * (comp.col_min + comp.col_max)));
   const Shape shape = ShapeOf(wall, comp);
   if (shape.length_mm >= opt.crack_elongation * shape.width_mm &&
       shape.width_mm <= opt.crack_max_width_mm) {
@@ -238,12 +240,16 @@ Observation Surface(const Wall& wall, const cv::Mat1f& res, const MapComponent& 
   const std::vector<double> inner_depth = SignedValues(res, wall, inner, 1.0);
   double inner_sum = 0.0;
   for (double d : inner_depth) inner_sum += d;
-  const double area = static_cast<double>(core.size()) * wall.CellMm2();
+  const double unmeasured = static_cast<double>(comp.cells.size() - depth.size()) * wall.CellMm2();
+  const double area = static_cast<double>(core.size()) * wall.CellMm2() + unmeasured;
   o.quantities = {{"depth_max_mm", max_depth, "mm"},
                   {"area_mm2", area, "mm2"},
                   {"depth_mean_mm", inner_sum / static_cast<double>(inner_depth.size()), "mm"},
-                  {"width_mm", (comp.col_max - comp.col_min + 1) * wall.ColMm(), "mm"}};
+                  {"width_mm", (comp.col_max - comp.col_min + 1) * wall.ColMm(), "mm"},
+                  {"unmeasured_mm2", unmeasured, "mm2"}};
   o.remark = fmt::format("spalling {:.0f} cm² up to {:.1f} mm deep", area / 100.0, max_depth);
+  if (unmeasured > 0.0)
+    o.remark += fmt::format(" ({:.0f} cm² of it not measured)", unmeasured / 100.0);
   return o;
 }
 
@@ -349,9 +355,18 @@ std::vector<Observation> FindDefects(const CoarseMap& map, const cv::Mat1f& resi
     o.remark = fmt::format("obstacle standing {:.1f} mm from the wall", height);
     out.push_back(o);
   }
+  // A rough spalled floor loses spots: its measured islands, and the holes between them,
+  // are one region.
+  std::vector<MapComponent> surfaces;
   for (std::size_t i = 0; i < outward.size(); ++i) {
-    if (used_out[i] || static_cast<double>(outward[i].cells.size()) < min_cells) continue;
-    out.push_back(Surface(wall, residual, outward[i], options, out_high));
+    if (!used_out[i]) surfaces.push_back(outward[i]);
+  }
+  surfaces = JoinThroughHoles(surfaces, map.displacement_mm,
+                              static_cast<int>(options.max_hole_mm / wall.RowMm()),
+                              static_cast<int>(options.max_hole_mm / wall.ColMm()));
+  for (const MapComponent& c : surfaces) {
+    if (static_cast<double>(c.cells.size()) >= min_cells)
+      out.push_back(Surface(wall, residual, c, options, out_high));
   }
   return out;
 }
@@ -368,6 +383,7 @@ void DefectOptions::Check() const {
   SEWER3D_VALIDATE(invert_half_h > 0.0 && invert_half_h <= 6.0, "invert_half_h",
                    "must be in (0, 6] h, got " << invert_half_h);
   ValidateNotNegative("spall_rim_mm", spall_rim_mm);
+  ValidateNotNegative("max_hole_mm", max_hole_mm);
 }
 
 }  // namespace sewer3d

@@ -30,6 +30,9 @@ struct DefectOptions {
   /// rim's slope, widened by the depth maps' interpolation between spots, would make it read
   /// shallow by an amount that depends on the cameras' resolution.
   double spall_rim_mm = 2.0;
+  /// Unmeasured cells that a surface region touches (a rough spalled floor loses spots) are
+  /// part of it, and join the regions they touch, when the hole is at most this long and wide.
+  double max_hole_mm = 200.0;
   void Check() const;
 };
 

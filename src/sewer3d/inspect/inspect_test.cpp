@@ -81,6 +81,16 @@ float PartlyBridgedGapWall(double s, double th) {
   return static_cast<float>(-3.0 * t * t * (3.0 - 2.0 * t) * std::cos(th));
 }
 
+// A DN300 pipe with a spalled patch 60 × 40 mm, 5 mm deep, at s = 300, 4 h, whose rough floor
+// lost most of its spots: measured only in islands ~5 mm across (a third of the floor), the
+// rest unmeasured.
+float HoledSpallWall(double s, double th) {
+  const double arc = kRadius * ClockDiff(th, ClockHoursToRad(4.0));
+  if (std::abs(s - 300.0) > 30.0 || std::abs(arc) > 20.0) return 0.0F;
+  const bool island = std::sin(2.0 * kPi * s / 10.0) * std::sin(2.0 * kPi * arc / 10.0) > 0.5;
+  return island ? 5.0F : kNaN;
+}
+
 CoarseMap SyntheticMap(double resolution_mm = 0.5, float (*wall)(double, double) = Wall) {
   const MapGrid grid = MakeMapGrid(0.0, 600.0, kRadius, resolution_mm);
   PipeMaps maps;
@@ -188,6 +198,26 @@ TEST(Inspect, MeasuresAGapFromItsOpenColumns) {
   EXPECT_NEAR(joint->station_mm, 300.0, 1.0);
   EXPECT_NEAR(Q(joint, "gap_mm"), 8.0, 0.5);
   EXPECT_NEAR(Q(joint, "offset_mm"), 3.0, 0.2);
+}
+
+// The islands of a spalled floor and the holes between them are one patch (session 44's
+// full-size run reported such a patch as five, four of them "invented").
+TEST(Inspect, MeasuresASpallWhoseFloorLostItsSpotsAsOnePatch) {
+  const Inspection in = Inspect(SyntheticMap(0.5, HoledSpallWall), Straight(), {});
+  ASSERT_EQ(in.observations.size(), 1U);
+  const Observation* spall = Only(in, "BAF");
+  ASSERT_NE(spall, nullptr);
+  EXPECT_NEAR(spall->station_mm, 300.0, 2.0);
+  EXPECT_NEAR(spall->clock_h, 4.0, 0.1);
+  EXPECT_NEAR(Q(spall, "area_mm2"), 60.0 * 40.0, 0.15 * 2400.0);
+  EXPECT_NEAR(Q(spall, "depth_mean_mm"), 5.0, 0.1);
+  EXPECT_GT(Q(spall, "unmeasured_mm2"), 0.4 * 2400.0);
+  DefectOptions islands_only;
+  islands_only.max_hole_mm = 0.0;
+  InspectOptions apart;
+  apart.defects = islands_only;
+  // Alone, every island (≤ 25 mm²) is under min_area_mm2: the patch would be missed.
+  EXPECT_TRUE(Inspect(SyntheticMap(0.5, HoledSpallWall), Straight(), apart).observations.empty());
 }
 
 TEST(InteriorCells, ErodesARegionByAnEllipse) {

@@ -218,11 +218,6 @@ bool SameCrack(const Piece& a, const Piece& b, const Geometry& g, const TextureC
   return std::max(b_lo - a.line.hi, a.line.lo - b_hi) <= o.merge_gap_mm;
 }
 
-int Root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
 /// The pieces' cells grouped by crack (SameCrack, transitively), each group's columns
 /// unwrapped next to its first piece.
 std::vector<std::vector<cv::Point>> Cracks(const std::vector<Piece>& pieces, const Geometry& g,
@@ -233,13 +228,14 @@ std::vector<std::vector<cv::Point>> Cracks(const std::vector<Piece>& pieces, con
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
       int shift = 0;
-      if (SameCrack(pieces[i], pieces[j], g, o, shift)) parent[Root(parent, j)] = Root(parent, i);
+      if (SameCrack(pieces[i], pieces[j], g, o, shift))
+        parent[FindRoot(parent, j)] = FindRoot(parent, i);
     }
   }
   std::vector<std::vector<cv::Point>> groups(n);
   std::vector<int> first(n, -1);
   for (int i = 0; i < n; ++i) {
-    const int root = Root(parent, i);
+    const int root = FindRoot(parent, i);
     if (first[root] < 0) first[root] = i;
     int shift = 0;
     SameCrack(pieces[first[root]], pieces[i], g, o, shift);
