@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -38,6 +39,19 @@ cv::Mat1f Blur(const cv::Mat1f& in, double sigma_mm, const Geometry& g) {
   return out;
 }
 
+/// Blur for a σ of many cells: on the map shrunk by about σ / 3 cells, then enlarged back
+/// (what it gives, a local mean or contrast, varies slowly).
+cv::Mat1f WideBlur(const cv::Mat1f& in, double sigma_mm, const Geometry& g) {
+  const int k = std::max(1, static_cast<int>(sigma_mm / g.CellMm() / 3.0));
+  if (k == 1 || in.rows < 2 * k || in.cols < 2 * k) return Blur(in, sigma_mm, g);
+  cv::Mat1f small, out;
+  cv::resize(in, small, cv::Size(in.cols / k, in.rows / k), 0.0, 0.0, cv::INTER_AREA);
+  const Geometry coarse{g.row_mm * in.rows / small.rows, g.col_mm * in.cols / small.cols,
+                        small.rows, small.cols};
+  cv::resize(Blur(small, sigma_mm, coarse), out, in.size(), 0.0, 0.0, cv::INTER_LINEAR);
+  return out;
+}
+
 /// The texture less its local mean over its local contrast (grey levels, at least 1); holes
 /// read kHoleLevel. `deep`: the cells near holes too wide for a crack (see hole_mm).
 cv::Mat1f Normalised(const cv::Mat1b& grey, const Geometry& g, const TextureCrackOptions& o,
@@ -46,13 +60,13 @@ cv::Mat1f Normalised(const cv::Mat1b& grey, const Geometry& g, const TextureCrac
   cv::Mat1f level, valid;
   grey.convertTo(level, CV_32F);
   cv::Mat1b(grey > 0).convertTo(valid, CV_32F, 1.0 / 255.0);
-  const cv::Mat1f mean =
-      Blur(level, o.background_mm, g) / cv::max(Blur(valid, o.background_mm, g), 1e-3);
-  const cv::Mat1f high = (level - mean).mul(valid);
+  cv::Mat1f z = level - WideBlur(level, o.background_mm, g) /
+                            cv::max(WideBlur(valid, o.background_mm, g), 1e-3);
+  z = z.mul(valid);
   cv::Mat1f sd;
-  cv::sqrt(Blur(high.mul(high), o.contrast_mm, g) / cv::max(Blur(valid, o.contrast_mm, g), 1e-3),
+  cv::sqrt(WideBlur(z.mul(z), o.contrast_mm, g) / cv::max(WideBlur(valid, o.contrast_mm, g), 1e-3),
            sd);
-  cv::Mat1f z = high / cv::max(sd, 1.0);
+  z /= cv::max(sd, 1.0);
   z.setTo(kHoleLevel, hole);
   cv::Mat1f dist;
   cv::distanceTransform(hole, dist, cv::DIST_L2, 3);
@@ -63,48 +77,66 @@ cv::Mat1f Normalised(const cv::Mat1b& grey, const Geometry& g, const TextureCrac
   return z;
 }
 
-/// Per cell: how much darker the cell is than both its sides across the local line direction
-/// (the Hessian's), averaged ± half_length_mm along that direction; 0 in `deep`.
-cv::Mat1f LineResponse(const cv::Mat1f& z, const cv::Mat1b& deep, const Geometry& g,
-                       const TextureCrackOptions& o) {
+/// `m` (at least 2 × 2: a strip with its margins) at (x, y), clamped to its edges.
+float Bilinear(const cv::Mat1f& m, float x, float y) {
+  x = std::clamp(x, 0.0F, static_cast<float>(m.cols) - 1.001F);
+  y = std::clamp(y, 0.0F, static_cast<float>(m.rows) - 1.001F);
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
+  return (1.0F - fy) * ((1.0F - fx) * m(y0, x0) + fx * m(y0, x0 + 1)) +
+         fy * ((1.0F - fx) * m(y0 + 1, x0) + fx * m(y0 + 1, x0 + 1));
+}
+
+/// Per cell: how much darker it is than both its sides, side_mm away across the local line
+/// direction (the Hessian's); 0 in `deep`. `along`: the line's direction per cell (x, y).
+cv::Mat1f Darker(const cv::Mat1f& z, const cv::Mat1b& deep, const Geometry& g,
+                 const TextureCrackOptions& o, cv::Mat2f& along) {
   const cv::Mat1f smooth = Blur(z, o.line_sigma_mm, g), dz = Blur(z, o.direction_sigma_mm, g);
   cv::Mat1f dxx, dyy, dxy;
   cv::Sobel(dz, dxx, CV_32F, 2, 0, 3);
   cv::Sobel(dz, dyy, CV_32F, 0, 2, 3);
   cv::Sobel(dz, dxy, CV_32F, 1, 1, 3);
   const float side = static_cast<float>(o.side_mm / g.CellMm());
-  cv::Mat1f x0(z.size()), y0(z.size()), tx(z.size()), ty(z.size());
-  cv::Mat1f ax(z.size()), ay(z.size()), bx(z.size()), by(z.size());
-  for (int r = 0; r < z.rows; ++r) {
-    for (int c = 0; c < z.cols; ++c) {
-      // The direction of the largest curvature: across a line.
-      const float a = 0.5F * std::atan2(2.0F * dxy(r, c), dxx(r, c) - dyy(r, c));
-      const float nx = std::cos(a), ny = std::sin(a);
-      x0(r, c) = static_cast<float>(c);
-      y0(r, c) = static_cast<float>(r);
-      tx(r, c) = -ny;
-      ty(r, c) = nx;
-      ax(r, c) = c + side * nx;
-      ay(r, c) = r + side * ny;
-      bx(r, c) = c - side * nx;
-      by(r, c) = r - side * ny;
+  cv::Mat1f darker(z.size());
+  along.create(z.size());
+  cv::parallel_for_(cv::Range(0, z.rows), [&](const cv::Range& rows) {
+    for (int r = rows.start; r < rows.end; ++r) {
+      for (int c = 0; c < z.cols; ++c) {
+        // The direction of the largest curvature: across a line.
+        const float a = 0.5F * std::atan2(2.0F * dxy(r, c), dxx(r, c) - dyy(r, c));
+        const float nx = std::cos(a), ny = std::sin(a);
+        along(r, c) = {-ny, nx};
+        const float sides = std::min(Bilinear(smooth, c + side * nx, r + side * ny),
+                                     Bilinear(smooth, c - side * nx, r - side * ny));
+        darker(r, c) = deep(r, c) != 0 ? 0.0F : sides - smooth(r, c);
+      }
     }
-  }
-  cv::Mat1f at_a, at_b;
-  cv::remap(smooth, at_a, ax, ay, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-  cv::remap(smooth, at_b, bx, by, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-  cv::Mat1f darker = cv::min(at_a, at_b) - smooth;
-  darker.setTo(0.0F, deep);
+  });
+  return darker;
+}
+
+/// Darker averaged ± half_length_mm along each cell's line direction: a crack keeps its
+/// response, the material's grains and pores lose theirs; 0 in `deep`.
+cv::Mat1f LineResponse(const cv::Mat1f& z, const cv::Mat1b& deep, const Geometry& g,
+                       const TextureCrackOptions& o) {
+  cv::Mat2f along;
+  const cv::Mat1f darker = Darker(z, deep, g, o, along);
   const int reach = static_cast<int>(std::lround(o.half_length_mm / g.CellMm()));
-  cv::Mat1f sum = cv::Mat1f::zeros(z.size()), mx, my, moved;
-  for (int k = -reach; k <= reach; ++k) {
-    cv::scaleAdd(tx, k, x0, mx);
-    cv::scaleAdd(ty, k, y0, my);
-    cv::remap(darker, moved, mx, my, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-    sum += moved;
-  }
-  cv::Mat1f out = sum / (2 * reach + 1);
-  out.setTo(0.0F, deep);
+  cv::Mat1f out(z.size());
+  cv::parallel_for_(cv::Range(0, z.rows), [&](const cv::Range& rows) {
+    for (int r = rows.start; r < rows.end; ++r) {
+      for (int c = 0; c < z.cols; ++c) {
+        if (deep(r, c) != 0) {
+          out(r, c) = 0.0F;
+          continue;
+        }
+        const cv::Vec2f t = along(r, c);
+        float sum = 0.0F;
+        for (int k = -reach; k <= reach; ++k) sum += Bilinear(darker, c + k * t[0], r + k * t[1]);
+        out(r, c) = sum / static_cast<float>(2 * reach + 1);
+      }
+    }
+  });
   return out;
 }
 

@@ -36,7 +36,7 @@ struct TextureCrackOptions {
   /// Holes reaching this far from their edge are no crack (their edges are no line); a
   /// narrower hole is as dark as a crack's deepest part, where the depth maps lost its spots.
   double hole_mm = 2.0;
-  double strip_mm = 400.0;  ///< the grey map is filtered in strips this long (memory)
+  double strip_mm = 200.0;  ///< the grey map is filtered in strips this long (memory)
   void Check() const;
 };
 
