@@ -104,7 +104,7 @@ int RunDemo(const DemoArgs& a) {
   RunEvaluateRgbd(run.string(), ws.string(), "", RgbdEvaluationOptions{}.colour_smoothing_px);
   RunEvaluateRegistration(run.string(), ws.string(), "");
   RunEvaluateModel(run.string(), ws.string(), "", 0);
-  RunEvaluateInspection(run.string(), ws.string(), "");
+  RunEvaluateInspection(run.string(), ws.string(), 0.0, "");
   const double evaluate_s = SecondsSince(evaluate_start);
   // The report again, now with the accuracy section the evaluations wrote.
   const CaptureRun loaded = LoadRun(run);

@@ -42,6 +42,7 @@ std::string StageNotDone(const std::filesystem::path& workspace, const std::stri
 struct Args {
   std::string surface, cloud, truth, run, workspace, out;
   int smoothing_px = RgbdEvaluationOptions{}.colour_smoothing_px;
+  double local_alignment_mm = 0.0;
   int stride = 0;
   double inner_fraction = 0.5;
 };
@@ -66,7 +67,7 @@ int EvaluateWorkspace(const Args& a) {
   else if (a.surface == "model")
     rc = RunEvaluateModel(a.run, a.workspace, a.out, a.stride);
   else
-    rc = RunEvaluateInspection(a.run, a.workspace, a.out);
+    rc = RunEvaluateInspection(a.run, a.workspace, a.local_alignment_mm, a.out);
   // After the result, so that a failure stays one line.
   if (!warning.empty()) fmt::print(stderr, "sewer3d: warning: {}\n", warning);
   return rc;
@@ -104,6 +105,12 @@ Command AddEvaluateCommand(CLI::App& app) {
       "--out", args->out,
       "rgbd, registration, model, inspection: folder for evaluation.json and pictures (default "
       "WS/evaluation/<what>)");
+  sub->add_option("--local-alignment-mm", args->local_alignment_mm,
+                  "inspection: judge each observation against the truth aligned by the cameras "
+                  "within ± this of it (a long run whose trajectory one alignment cannot hold); 0: "
+                  "one alignment for the run")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
   sub->add_option("--stride", args->stride,
                   "model: every n-th map row and column (0: automatic, about 3 M cells)")
       ->capture_default_str()
@@ -114,25 +121,28 @@ Command AddEvaluateCommand(CLI::App& app) {
       ->check(CLI::Range(0.05, 1.0));
   sub->add_option("--truth", args->truth,
                   "scene.json of the simulated capture: errors against the true surface");
-  return {sub, [args, sub] {
-            const bool of_workspace = args->surface != "plane" && args->surface != "cylinder";
-            // Options of the other kind of evaluation are refused, not ignored.
-            std::vector<std::string> others =
-                of_workspace ? std::vector<std::string>{"--cloud", "--truth", "--inner-fraction"}
-                             : std::vector<std::string>{"--run", "--workspace", "--out", "--stride",
-                                                        "--smoothing-px"};
-            if (of_workspace && args->surface != "rgbd") others.emplace_back("--smoothing-px");
-            if (of_workspace && args->surface != "model") others.emplace_back("--stride");
-            for (const std::string& name : others) {
-              if (sub->get_option(name)->count() > 0) {
-                throw InvalidValue(name, "does not apply to evaluate " + args->surface);
-              }
-            }
-            if (of_workspace) return EvaluateWorkspace(*args);
-            if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
-            return RunEvaluateSurface(args->surface, args->cloud, args->truth,
-                                      args->inner_fraction);
-          }};
+  return {
+      sub, [args, sub] {
+        const bool of_workspace = args->surface != "plane" && args->surface != "cylinder";
+        // Options of the other kind of evaluation are refused, not ignored.
+        std::vector<std::string> others =
+            of_workspace
+                ? std::vector<std::string>{"--cloud", "--truth", "--inner-fraction"}
+                : std::vector<std::string>{"--run",    "--workspace",    "--out",
+                                           "--stride", "--smoothing-px", "--local-alignment-mm"};
+        if (of_workspace && args->surface != "rgbd") others.emplace_back("--smoothing-px");
+        if (of_workspace && args->surface != "model") others.emplace_back("--stride");
+        if (of_workspace && args->surface != "inspection")
+          others.emplace_back("--local-alignment-mm");
+        for (const std::string& name : others) {
+          if (sub->get_option(name)->count() > 0) {
+            throw InvalidValue(name, "does not apply to evaluate " + args->surface);
+          }
+        }
+        if (of_workspace) return EvaluateWorkspace(*args);
+        if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
+        return RunEvaluateSurface(args->surface, args->cloud, args->truth, args->inner_fraction);
+      }};
 }
 
 }  // namespace sewer3d::cli

@@ -37,16 +37,19 @@ void PrintItem(const TrueItemMatch& m) {
 }  // namespace
 
 int RunEvaluateInspection(const std::string& run_folder, const std::string& workspace,
-                          const std::string& out) {
-  const InspectionFilesEvaluation e = EvaluateInspection(run_folder, workspace);
+                          double local_alignment_mm, const std::string& out) {
+  const InspectionFilesEvaluation e = EvaluateInspection(run_folder, workspace, local_alignment_mm);
   const std::filesystem::path folder =
       out.empty() ? std::filesystem::path(workspace) / "evaluation" / "inspection"
                   : std::filesystem::path(out);
   WriteTextFileAtomically(folder / "evaluation.json", InspectionEvaluationToJson(e));
   const InspectionEvaluation& o = e.observations;
   fmt::print(
-      "observations against the true pipe: {} of {} inspected true items found, {} "
+      "observations against the true pipe{}: {} of {} inspected true items found, {} "
       "invented{}\n",
+      local_alignment_mm > 0.0
+          ? fmt::format(" (aligned by the cameras within ±{:g} mm of each)", local_alignment_mm)
+          : "",
       o.found, o.inspected, o.invented.size(), o.invented.empty() ? "" : ":");
   for (const std::string& id : o.invented) fmt::print("  invented: {}\n", id);
   for (const TrueItemMatch& m : o.items) PrintItem(m);

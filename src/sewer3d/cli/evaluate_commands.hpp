@@ -33,10 +33,11 @@ int RunEvaluateRegistration(const std::string& run, const std::string& workspace
 int RunEvaluateModel(const std::string& run, const std::string& workspace, const std::string& out,
                      int stride);
 
-/// `sewer3d evaluate inspection --run RUN --workspace WS [--out DIR]`: prints which true items
+/// `sewer3d evaluate inspection --run RUN --workspace WS [--local-alignment-mm W] [--out DIR]`:
+/// prints which true items
 /// the observations found (with their errors), the invented ones and the profile's errors,
 /// writes DIR/evaluation.json (default WS/evaluation/inspection). Returns the exit code.
 int RunEvaluateInspection(const std::string& run, const std::string& workspace,
-                          const std::string& out);
+                          double local_alignment_mm, const std::string& out);
 
 }  // namespace sewer3d::cli

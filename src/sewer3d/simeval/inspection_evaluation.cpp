@@ -164,7 +164,9 @@ InspectionEvaluation EvaluateObservations(const std::vector<Observation>& observ
   std::vector<bool> used(observations.size(), false);
   const Rigid3d model_from_truth = truth_from_model.Inverse();
   for (const TrueItem& t : TrueItems(truth)) {
-    const CylPoint at = InModel(truth, t, model_from_truth, centreline);
+    CylPoint at = InModel(truth, t, model_from_truth, centreline);
+    if (o.truth_from_model_near)
+      at = InModel(truth, t, o.truth_from_model_near(at.station_mm).Inverse(), centreline);
     TrueItemMatch m;
     m.truth_id = t.id;
     m.code = t.code;

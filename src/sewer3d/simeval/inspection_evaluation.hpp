@@ -9,6 +9,7 @@
 /// item are "invented".
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,6 +52,9 @@ struct InspectionEvaluationOptions {
   double match_clock_h = 1.5;
   double inspected_from_mm = -1e300;  ///< model stations the inspection searched
   double inspected_to_mm = 1e300;
+  /// When set: each true item, placed in the model by truth_from_model, is placed again by the
+  /// transform this gives at that model station (a local alignment, LocalTruthFromModel).
+  std::function<Rigid3d(double model_station_mm)> truth_from_model_near;
 };
 
 /// Matches `observations` with the true items of `truth` (model frame put onto the world by
@@ -69,9 +73,12 @@ struct InspectionFilesEvaluation {
 
 /// Reads the run (rig, truth/), WS/registration/poses.csv, WS/model/model.json and
 /// WS/inspection/ (observations.json, profile.csv, report.json for the stations searched) and
-/// evaluates them; FileError when a file is missing or malformed.
+/// evaluates them; FileError when a file is missing or malformed. `local_alignment_mm` > 0:
+/// every observation is judged against the truth aligned by the cameras within ± that many mm
+/// of it (InspectionEvaluationOptions::truth_from_model_near); 0: one alignment for the run.
 InspectionFilesEvaluation EvaluateInspection(const std::filesystem::path& run_folder,
-                                             const std::filesystem::path& workspace);
+                                             const std::filesystem::path& workspace,
+                                             double local_alignment_mm = 0.0);
 
 /// The matches, the invented observations and the profile's figures as JSON text.
 std::string InspectionEvaluationToJson(const InspectionFilesEvaluation& evaluation);

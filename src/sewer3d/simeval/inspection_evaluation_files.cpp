@@ -15,7 +15,8 @@
 namespace sewer3d {
 
 InspectionFilesEvaluation EvaluateInspection(const std::filesystem::path& run_folder,
-                                             const std::filesystem::path& workspace) {
+                                             const std::filesystem::path& workspace,
+                                             double local_alignment_mm) {
   const InspectionFiles files = InspectionFilesIn(workspace);
   if (!std::filesystem::exists(files.observations_json))
     throw FileError(files.observations_json, "missing: run `sewer3d inspect` first");
@@ -36,6 +37,11 @@ InspectionFilesEvaluation EvaluateInspection(const std::filesystem::path& run_fo
   };
   options.inspected_from_mm = station("inspected_from_mm");
   options.inspected_to_mm = station("inspected_to_mm");
+  if (local_alignment_mm > 0.0) {
+    options.truth_from_model_near = [&](double station_mm) {
+      return LocalTruthFromModel(alignment, info.centreline, station_mm, local_alignment_mm);
+    };
+  }
 
   InspectionFilesEvaluation e;
   e.observations = EvaluateObservations(ReadObservationsJson(files.observations_json), truth,

@@ -5,6 +5,7 @@
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/model/unroll.hpp"
 #include "sewer3d/simio/truth_io.hpp"
 
 namespace sewer3d {
@@ -60,6 +61,22 @@ TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
   }
   if (n >= 3) a.truth_from_model = AlignCameras(model, world);
   return a;
+}
+
+Rigid3d LocalTruthFromModel(const TruthAlignment& alignment, const Centreline& centreline,
+                            double station_mm, double half_window_mm) {
+  std::vector<Rigid3d> model, world;
+  for (std::size_t i = 0; i < alignment.poses.size(); ++i) {
+    const Eigen::Vector3d centre = alignment.model_centres.col(static_cast<Eigen::Index>(i));
+    if (std::abs(Unroll(centreline, centre, centreline.station0_mm).station_mm - station_mm) >
+        half_window_mm)
+      continue;
+    const RegistrationPoseRow& pose = alignment.poses[i];
+    model.push_back(pose.world_from_camera);
+    world.push_back(alignment.truth.at(RegistrationVertexId(pose.module, pose.counter)));
+  }
+  constexpr std::size_t kMinCameras = 6;
+  return model.size() >= kMinCameras ? AlignCameras(model, world) : alignment.truth_from_model;
 }
 
 }  // namespace sewer3d

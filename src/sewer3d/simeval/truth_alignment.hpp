@@ -14,6 +14,7 @@
 
 #include "sewer3d/core/rigid3.hpp"
 #include "sewer3d/io/registration_io.hpp"
+#include "sewer3d/model/pipe_map.hpp"
 #include "sewer3d/run/capture_run.hpp"
 
 namespace sewer3d {
@@ -36,5 +37,13 @@ Rigid3d AlignCameras(const std::vector<Rigid3d>& model, const std::vector<Rigid3
 TruthAlignment AlignRegistrationToTruth(const CaptureRun& run,
                                         const std::filesystem::path& run_folder,
                                         const std::filesystem::path& workspace);
+
+/// truth_from_model of the cameras whose centres lie within ± `half_window_mm` of
+/// `station_mm` along `centreline` (model stations): where one rigid alignment cannot hold a
+/// whole trajectory (a long run whose registration drifts or follows an odometry slip), what
+/// the model says of a place is judged against the truth aligned there. The whole run's
+/// alignment where fewer than 6 cameras lie in the window.
+Rigid3d LocalTruthFromModel(const TruthAlignment& alignment, const Centreline& centreline,
+                            double station_mm, double half_window_mm);
 
 }  // namespace sewer3d

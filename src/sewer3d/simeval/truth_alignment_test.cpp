@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sewer3d/core/units.hpp"
+#include "sewer3d/model/axis_curve.hpp"
 
 namespace sewer3d {
 namespace {
@@ -41,6 +42,36 @@ TEST(AlignCameras, RecoversTheRollAboutACollinearPath) {
   const Rigid3d found = AlignCameras(model, world);
   EXPECT_LT(found.rotation.angularDistance(truth_from_model.rotation), 1e-9);
   EXPECT_LT((found.translation - truth_from_model.translation).norm(), 1e-6);
+}
+
+// A registration that followed an odometry slip: from the sixth station on, the model lies
+// 100 mm short of the truth. One alignment splits the difference; the local one holds on each
+// side of the slip.
+TEST(LocalTruthFromModel, HoldsOnEachSideOfASlip) {
+  const std::vector<Rigid3d> model = CarrierCameras();
+  TruthAlignment a;
+  std::vector<Rigid3d> world;
+  a.model_centres.resize(3, static_cast<Eigen::Index>(model.size()));
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    const int station = static_cast<int>(i / 6), m = static_cast<int>(i % 6);
+    Rigid3d w = model[i];
+    if (station >= 5) w.translation.z() += 100.0;
+    a.poses.push_back({m, station, 0.0, model[i]});
+    a.truth[RegistrationVertexId(m, station)] = w;
+    a.model_centres.col(static_cast<Eigen::Index>(i)) = model[i].translation;
+    world.push_back(w);
+  }
+  a.truth_from_model = AlignCameras(model, world);
+  auto line = ResampleAxis({Eigen::Vector3d(0, 0, -100), Eigen::Vector3d(0, 0, 800)}, 10.0);
+  ASSERT_TRUE(line.has_value());
+  line->radius_mm = 150.0;
+  line->station0_mm = -100.0;
+  EXPECT_NEAR(a.truth_from_model.translation.z(), 50.0, 1.0);
+  EXPECT_NEAR(LocalTruthFromModel(a, *line, 80.0, 120.0).translation.norm(), 0.0, 1e-6);
+  EXPECT_NEAR(LocalTruthFromModel(a, *line, 550.0, 120.0).translation.z(), 100.0, 1e-6);
+  // Too few cameras in the window: the whole run's alignment.
+  EXPECT_NEAR(LocalTruthFromModel(a, *line, 2000.0, 120.0).translation.z(),
+              a.truth_from_model.translation.z(), 1e-12);
 }
 
 }  // namespace
