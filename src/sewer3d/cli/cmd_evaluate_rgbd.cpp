@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -41,10 +42,10 @@ int RunEvaluateRgbd(const std::string& run_folder, const std::string& workspace,
   fmt::print("{:<16} {:>10} {:>10} {:>14} {:>10} {:>10}\n", "material", "dE before", "dE after",
              "(gain/module)", "naive px", "mapped px");
   for (const auto& [name, m] : e.materials) {
-    // Misregistration is measured on acquisitions where the material covers most of the view.
-    const bool measured = m.acquisitions > 0;
-    const auto px = [measured](double v) {
-      return measured ? fmt::format("{:.2f}", v) : std::string("-");
+    // Misregistration is measured on acquisitions where the material covers most of the view
+    // and the wall has enough texture for a phase correlation.
+    const auto px = [](double v) {
+      return std::isfinite(v) ? fmt::format("{:.2f}", v) : std::string("-");
     };
     fmt::print("{:<16} {:>10.2f} {:>10.2f} {:>14.2f} {:>10} {:>10}\n", name, m.delta_e_before,
                m.delta_e_after, m.delta_e_after_module_gains, px(m.misregistration_naive_px),

@@ -110,12 +110,16 @@ cv::Mat1f Grey(const cv::Mat3f& bgr, const cv::Rect& crop) {
   return grey;
 }
 
-// Shift (px) between two images over a crop, by phase correlation.
+// Shift (px) between two images over a crop, by phase correlation; NaN where its peak is too
+// weak to mean anything (a featureless wall: plastic pipe gives 0.02–0.13 against 1.0–1.1 on
+// concrete, and at 0.02–0.04 a shift of 10–24 px that is noise).
 double Misregistration(const cv::Mat3f& a, const cv::Mat3f& b, const cv::Rect& crop) {
+  constexpr double kMinResponse = 0.07;
   cv::Mat window;
   cv::createHanningWindow(window, crop.size(), CV_32F);
-  const cv::Point2d shift = cv::phaseCorrelate(Grey(a, crop), Grey(b, crop), window);
-  return std::hypot(shift.x, shift.y);
+  double response = 0.0;
+  const cv::Point2d shift = cv::phaseCorrelate(Grey(a, crop), Grey(b, crop), window, &response);
+  return response >= kMinResponse ? std::hypot(shift.x, shift.y) : NAN;
 }
 
 double Median(std::vector<double> v) {
@@ -245,8 +249,10 @@ void Sample(const CaptureRun& run, const Truth& truth, const fs::path& rgbd, con
                          return x.second < y.second;
                        })->first;
   const cv::Rect crop = CropAround(im.depth, o.crop_px);
-  out.naive_px[material].push_back(Misregistration(im.captured, truth_pattern, crop));
-  out.mapped_px[material].push_back(Misregistration(im.colour, truth_pattern, crop));
+  if (const double px = Misregistration(im.captured, truth_pattern, crop); std::isfinite(px))
+    out.naive_px[material].push_back(px);
+  if (const double px = Misregistration(im.colour, truth_pattern, crop); std::isfinite(px))
+    out.mapped_px[material].push_back(px);
   if (!out.montage_rows.count(material))
     out.montage_rows[material] = MontageRow(im, truth_pattern, crop);
 }

@@ -41,8 +41,10 @@ struct MaterialColourFigures {
   /// The same with one gain per module instead of one for the run (diagnostic: what is left
   /// when the modules' levels are taken as right).
   double delta_e_after_module_gains = 0.0;
-  double misregistration_naive_px = 0.0;   ///< median over acquisitions
-  double misregistration_mapped_px = 0.0;  ///< median over acquisitions
+  /// Medians over the acquisitions where the phase correlation's peak means something (NaN
+  /// where none: a featureless wall); `acquisitions` counts the mapped ones.
+  double misregistration_naive_px = 0.0;
+  double misregistration_mapped_px = 0.0;
 };
 
 struct SeamFigures {
