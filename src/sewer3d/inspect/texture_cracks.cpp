@@ -53,20 +53,23 @@ cv::Mat1f WideBlur(const cv::Mat1f& in, double sigma_mm, const Geometry& g) {
 }
 
 /// The texture less its local mean over its local contrast (grey levels, at least 1); holes
-/// read kHoleLevel. `deep`: the cells near holes too wide for a crack (see hole_mm).
+/// read kHoleLevel. `deep`: the cells near holes too wide for a crack (see hole_mm);
+/// `contrast`: the local contrast as a share of the local mean (what one unit is in brightness).
 cv::Mat1f Normalised(const cv::Mat1b& grey, const Geometry& g, const TextureCrackOptions& o,
-                     cv::Mat1b& deep) {
+                     cv::Mat1b& deep, cv::Mat1f& contrast) {
   const cv::Mat1b hole = grey == 0;
   cv::Mat1f level, valid;
   grey.convertTo(level, CV_32F);
   cv::Mat1b(grey > 0).convertTo(valid, CV_32F, 1.0 / 255.0);
-  cv::Mat1f z = level - WideBlur(level, o.background_mm, g) /
-                            cv::max(WideBlur(valid, o.background_mm, g), 1e-3);
-  z = z.mul(valid);
+  const cv::Mat1f mean =
+      WideBlur(level, o.background_mm, g) / cv::max(WideBlur(valid, o.background_mm, g), 1e-3);
+  cv::Mat1f z = (level - mean).mul(valid);
   cv::Mat1f sd;
   cv::sqrt(WideBlur(z.mul(z), o.contrast_mm, g) / cv::max(WideBlur(valid, o.contrast_mm, g), 1e-3),
            sd);
-  z /= cv::max(sd, 1.0);
+  sd = cv::max(sd, 1.0);
+  z /= sd;
+  contrast = sd / cv::max(mean, 1.0);
   z.setTo(kHoleLevel, hole);
   cv::Mat1f dist;
   cv::distanceTransform(hole, dist, cv::DIST_L2, 3);
@@ -140,9 +143,11 @@ cv::Mat1f LineResponse(const cv::Mat1f& z, const cv::Mat1b& deep, const Geometry
   return out;
 }
 
-/// 2 where the response clears the seed level, 1 the grow level, else 0; levels relative to
-/// the median and robust sigma of the response over the cells not in `deep`.
-cv::Mat1b Levels(const cv::Mat1f& response, const cv::Mat1b& deep, const TextureCrackOptions& o) {
+/// 2 where the response clears the seed level and, in brightness (times `contrast`),
+/// min_darkness; 1 where it clears the grow level; else 0. Levels relative to the median and
+/// robust sigma of the response over the cells not in `deep`.
+cv::Mat1b Levels(const cv::Mat1f& response, const cv::Mat1f& contrast, const cv::Mat1b& deep,
+                 const TextureCrackOptions& o) {
   std::vector<double> sample;
   for (int r = 0; r < response.rows; r += 2) {
     for (int c = r % 4; c < response.cols; c += 3) {
@@ -157,7 +162,9 @@ cv::Mat1b Levels(const cv::Mat1f& response, const cv::Mat1b& deep, const Texture
   for (int r = 0; r < response.rows; ++r) {
     for (int c = 0; c < response.cols; ++c) {
       const double s = (response(r, c) - median) / sigma;
-      levels(r, c) = deep(r, c) != 0 ? 0 : (s >= o.seed_sigmas ? 2 : (s >= o.grow_sigmas ? 1 : 0));
+      const bool dark = response(r, c) * contrast(r, c) >= o.min_darkness;
+      levels(r, c) =
+          deep(r, c) != 0 ? 0 : (s >= o.seed_sigmas && dark ? 2 : (s >= o.grow_sigmas ? 1 : 0));
     }
   }
   return levels;
@@ -179,10 +186,11 @@ cv::Mat1b LineLevels(const cv::Mat1b& grey, const Geometry& g, const TextureCrac
     cv::Mat1b ext = cv::Mat1b::zeros(r1 - r0 + 2 * margin, g.cols + 2 * pad);
     wrapped.copyTo(ext.rowRange(a - (r0 - margin), b - (r0 - margin)));
     cv::Mat1b deep;
-    const cv::Mat1f z = Normalised(ext, g, o, deep);
+    cv::Mat1f contrast;
+    const cv::Mat1f z = Normalised(ext, g, o, deep, contrast);
     const cv::Mat1f response = LineResponse(z, deep, g, o);
     const cv::Rect core(pad, margin, g.cols, r1 - r0);
-    Levels(response(core), deep(core), o).copyTo(levels.rowRange(r0, r1));
+    Levels(response(core), contrast(core), deep(core), o).copyTo(levels.rowRange(r0, r1));
   }
   return levels;
 }
@@ -388,6 +396,8 @@ void TextureCrackOptions::Check() const {
   ValidatePositive("side_mm", side_mm);
   ValidatePositive("half_length_mm", half_length_mm);
   ValidatePositive("grow_sigmas", grow_sigmas);
+  SEWER3D_VALIDATE(min_darkness >= 0.0 && min_darkness < 1.0, "min_darkness",
+                   "must be in [0, 1), got " << min_darkness);
   SEWER3D_VALIDATE(seed_sigmas >= grow_sigmas, "seed_sigmas",
                    "must be ≥ grow_sigmas (" << grow_sigmas << "), got " << seed_sigmas);
   ValidatePositive("min_length_mm", min_length_mm);

@@ -26,6 +26,10 @@ struct TextureCrackOptions {
   double half_length_mm = 5.0;
   double seed_sigmas = 7.0;  ///< a crack reaches this many robust sigmas over the median
   double grow_sigmas = 3.5;  ///< and is the cells connected to that above this
+  /// and is, there, darker than both its sides by this share of the wall's brightness
+  /// (averaged along it): a crack's shadow is (concrete: 0.2–0.25), a featureless wall's
+  /// faint streaks (plastic's extrusion lines, < 1 %) are not, however they stand out there.
+  double min_darkness = 0.08;
   double min_length_mm = 30.0;
   double max_width_mm = 4.0;  ///< a piece of line this wide across (cells' spread) is a blob
   /// Pieces of one crack (one broken by a hole or a faint stretch): directions within this,

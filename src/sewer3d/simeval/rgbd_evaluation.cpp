@@ -110,15 +110,20 @@ cv::Mat1f Grey(const cv::Mat3f& bgr, const cv::Rect& crop) {
   return grey;
 }
 
-// Shift (px) between two images over a crop, by phase correlation; NaN where its peak is too
-// weak to mean anything (a featureless wall: plastic pipe gives 0.02–0.13 against 1.0–1.1 on
-// concrete, and at 0.02–0.04 a shift of 10–24 px that is noise).
-double Misregistration(const cv::Mat3f& a, const cv::Mat3f& b, const cv::Rect& crop) {
-  constexpr double kMinResponse = 0.07;
+// Shift (px) of `image` against the true albedo `truth` over a crop, by phase correlation; NaN
+// where it cannot mean anything: a true wall of under 2 % contrast in the window (plastic pipe:
+// 0.2–0.4 %, concrete ~30 %; on plastic it read shifts of 10–200 px that were noise) or a
+// peak under 0.07 (concrete 1.0–1.1).
+double Misregistration(const cv::Mat3f& image, const cv::Mat3f& truth, const cv::Rect& crop) {
+  constexpr double kMinContrast = 0.02, kMinResponse = 0.07;
+  const cv::Mat1f true_grey = Grey(truth, crop);
+  cv::Scalar mean, sd;
+  cv::meanStdDev(true_grey, mean, sd);
+  if (!(sd[0] >= kMinContrast * mean[0])) return NAN;
   cv::Mat window;
   cv::createHanningWindow(window, crop.size(), CV_32F);
   double response = 0.0;
-  const cv::Point2d shift = cv::phaseCorrelate(Grey(a, crop), Grey(b, crop), window, &response);
+  const cv::Point2d shift = cv::phaseCorrelate(Grey(image, crop), true_grey, window, &response);
   return response >= kMinResponse ? std::hypot(shift.x, shift.y) : NAN;
 }
 
