@@ -24,7 +24,10 @@ Observation JointObservation(const JointMeasure& j, const CoarseMap& map, const 
       j.offset_mm >= opt.min_offset_mm ? 'B' : (j.deflection_deg >= 1.0 ? 'C' : 'A');
   o.characterisation = std::string(1, letter);
   o.station_mm = j.station_mm;
-  o.clock_h = o.clock_from_h = o.clock_to_h = ClockRadToHours(j.offset_clock_rad);
+  // Where it is most pronounced: the offset's clock, or for a joint that is only deflected
+  // (C) the clock its next pipe turns toward (an offset of a few hundredths has no clock).
+  o.clock_h = o.clock_from_h = o.clock_to_h =
+      ClockRadToHours(letter == 'C' ? j.deflection_clock_rad : j.offset_clock_rad);
   o.at_joint = true;
   o.quantities = {{"offset_mm", j.offset_mm, "mm"},
                   {"gap_mm", j.gap_mm, "mm"},

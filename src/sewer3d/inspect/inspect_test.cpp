@@ -91,6 +91,15 @@ float HoledSpallWall(double s, double th) {
   return island ? 5.0F : kNaN;
 }
 
+// A DN300 pipe whose joint at s = 300 (a 6 mm gap with no data) has no offset: the next pipe
+// is turned 1.5° toward 9 h.
+float DeflectedJointWall(double s, double th) {
+  if (std::abs(s - 300.0) < 3.0) return kNaN;
+  return s < 300.0 ? 0.0F
+                   : static_cast<float>(std::tan(DegToRad(1.5)) * (s - 300.0) *
+                                        std::cos(th - ClockHoursToRad(9.0)));
+}
+
 CoarseMap SyntheticMap(double resolution_mm = 0.5, float (*wall)(double, double) = Wall) {
   const MapGrid grid = MakeMapGrid(0.0, 600.0, kRadius, resolution_mm);
   PipeMaps maps;
@@ -218,6 +227,17 @@ TEST(Inspect, MeasuresASpallWhoseFloorLostItsSpotsAsOnePatch) {
   apart.defects = islands_only;
   // Alone, every island (≤ 25 mm²) is under min_area_mm2: the patch would be missed.
   EXPECT_TRUE(Inspect(SyntheticMap(0.5, HoledSpallWall), Straight(), apart).observations.empty());
+}
+
+// A joint that is only deflected (BAJ C) is placed where its next pipe turns toward.
+TEST(Inspect, PlacesADeflectedJointAtItsDeflectionsClock) {
+  const Inspection in = Inspect(SyntheticMap(0.5, DeflectedJointWall), Straight(), {});
+  const Observation* joint = Only(in, "BAJ");
+  ASSERT_NE(joint, nullptr);
+  EXPECT_EQ(joint->characterisation, "C");
+  EXPECT_NEAR(Q(joint, "deflection_deg"), 1.5, 0.1);
+  EXPECT_NEAR(joint->clock_h, 9.0, 0.25);
+  EXPECT_LT(Q(joint, "offset_mm"), 0.2);
 }
 
 TEST(InteriorCells, ErodesARegionByAnEllipse) {

@@ -74,14 +74,16 @@ std::vector<TrueItem> TrueItems(const PipeGeometry& g) {
   std::vector<TrueItem> items;
   for (std::size_t i = 0; i < w.joints.size(); ++i) {
     const PipeJoint& j = w.joints[i];
-    items.push_back({j.id,
-                     "BAJ",
-                     g.SectionStartMm(static_cast<int>(i) + 1),
-                     j.offset_clock_h,
-                     0.0,
-                     {{"offset_mm", j.offset_mm, 0.0},
-                      {"gap_mm", j.gap_mm, 0.0},
-                      {"deflection_deg", j.deflection_deg, 0.0}}});
+    // A joint only deflected is placed where its next pipe turns toward (as BAJ C is).
+    items.push_back(
+        {j.id,
+         "BAJ",
+         g.SectionStartMm(static_cast<int>(i) + 1),
+         j.offset_mm > 0.0 || j.deflection_deg <= 0.0 ? j.offset_clock_h : j.deflection_clock_h,
+         0.0,
+         {{"offset_mm", j.offset_mm, 0.0},
+          {"gap_mm", j.gap_mm, 0.0},
+          {"deflection_deg", j.deflection_deg, 0.0}}});
   }
   for (std::size_t i = 0; i < w.sections.size(); ++i) {
     const PipeSection& s = w.sections[i];
