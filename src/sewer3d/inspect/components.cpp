@@ -1,8 +1,10 @@
 #include "sewer3d/inspect/components.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <numbers>
 #include <numeric>
 #include <set>
 
@@ -22,6 +24,34 @@ void Bound(MapComponent& c) {
 }
 
 }  // namespace
+
+double CellAxis::AngleDeg() const {
+  const double angle = std::atan2(dir.y(), dir.x()) * 180.0 / std::numbers::pi;
+  return angle <= -90.0 ? angle + 180.0 : angle;
+}
+
+CellAxis PrincipalAxis(const std::vector<cv::Point>& cells, double row_mm, double col_mm) {
+  const auto mm = [&](const cv::Point& p) { return Eigen::Vector2d(p.y * row_mm, p.x * col_mm); };
+  CellAxis a;
+  for (const cv::Point& p : cells) a.centre += mm(p);
+  a.centre /= static_cast<double>(cells.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const cv::Point& p : cells) {
+    const Eigen::Vector2d d = mm(p) - a.centre;
+    cov += d * d.transpose();
+  }
+  cov /= static_cast<double>(cells.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  a.dir = eig.eigenvectors().col(1);
+  if (a.dir.x() < 0.0) a.dir = -a.dir;
+  a.across_variance_mm2 = std::max(0.0, eig.eigenvalues()(0));
+  for (const cv::Point& p : cells) {
+    const double t = (mm(p) - a.centre).dot(a.dir);
+    a.lo = std::min(a.lo, t);
+    a.hi = std::max(a.hi, t);
+  }
+  return a;
+}
 
 int FindRoot(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];

@@ -2,6 +2,7 @@
 /// \file
 /// Connected regions of a map on the cylinder (columns wrap around the clock).
 
+#include <Eigen/Core>
 #include <opencv2/core/mat.hpp>
 #include <opencv2/core/types.hpp>
 #include <vector>
@@ -26,6 +27,21 @@ std::vector<MapComponent> HysteresisComponents(const cv::Mat1f& values, double s
 /// Hysteresis regions of a map of levels (0: none, 1: may join, 2: seed): 8-connected cells of
 /// level ≥ 1 that contain at least one seed.
 std::vector<MapComponent> HysteresisComponents(const cv::Mat1b& levels);
+
+/// The principal axis of `cells` (x = column, unwrapped; y = row; not empty) on a wall of
+/// cells `row_mm` × `col_mm`, in mm as (along the pipe, around it): the centre, the unit
+/// direction (its along part ≥ 0), how far the cells reach along it from the centre (lo ≤ 0 ≤
+/// hi) and their variance across it.
+struct CellAxis {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  Eigen::Vector2d dir = Eigen::Vector2d::UnitX();
+  double lo = 0.0;
+  double hi = 0.0;
+  double across_variance_mm2 = 0.0;
+  /// The direction on the unrolled wall in degrees, 0 along the pipe, in (−90, 90].
+  [[nodiscard]] double AngleDeg() const;
+};
+CellAxis PrincipalAxis(const std::vector<cv::Point>& cells, double row_mm, double col_mm);
 
 /// The root of `i` in a union-find forest (`parent[i] == i` at a root), halving the path.
 int FindRoot(std::vector<int>& parent, int i);

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -183,29 +182,9 @@ struct Shape {
 };
 
 Shape ShapeOf(const Wall& wall, const MapComponent& comp) {
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const cv::Point& p : comp.cells)
-    mean += Eigen::Vector2d(p.y * wall.RowMm(), p.x * wall.ColMm());
-  mean /= static_cast<double>(comp.cells.size());
-  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (const cv::Point& p : comp.cells) {
-    const Eigen::Vector2d d = Eigen::Vector2d(p.y * wall.RowMm(), p.x * wall.ColMm()) - mean;
-    cov += d * d.transpose();
-  }
-  cov /= static_cast<double>(comp.cells.size());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
-  const Eigen::Vector2d axis = eig.eigenvectors().col(1);  // (along, around)
-  double lo = 0.0, hi = 0.0;
-  for (const cv::Point& p : comp.cells) {
-    const double t = (Eigen::Vector2d(p.y * wall.RowMm(), p.x * wall.ColMm()) - mean).dot(axis);
-    lo = std::min(lo, t);
-    hi = std::max(hi, t);
-  }
-  const double cell = std::hypot(axis.x() * wall.RowMm(), axis.y() * wall.ColMm());
-  double angle = RadToDeg(std::atan2(axis.y(), axis.x()));
-  if (angle <= -90.0) angle += 180.0;
-  if (angle > 90.0) angle -= 180.0;
-  return {hi - lo + cell, 4.0 * std::sqrt(std::max(0.0, eig.eigenvalues()(0))), angle};
+  const CellAxis axis = PrincipalAxis(comp.cells, wall.RowMm(), wall.ColMm());
+  const double cell = std::hypot(axis.dir.x() * wall.RowMm(), axis.dir.y() * wall.ColMm());
+  return {axis.hi - axis.lo + cell, 4.0 * std::sqrt(axis.across_variance_mm2), axis.AngleDeg()};
 }
 
 Observation Surface(const Wall& wall, const cv::Mat1f& res, const MapComponent& comp,

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -195,56 +195,36 @@ cv::Mat1b LineLevels(const cv::Mat1b& grey, const Geometry& g, const TextureCrac
   return levels;
 }
 
-/// The principal axis of cells (x = unwrapped column, y = row) in mm: centre (along, around),
-/// direction, extent along it from the centre, and the spread across it.
-struct LineFit {
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  Eigen::Vector2d dir = Eigen::Vector2d::UnitX();
-  double lo = 0.0;
-  double hi = 0.0;
-  double width_mm = 0.0;  ///< sqrt(12 × variance across): a uniform band's width
-  [[nodiscard]] double LengthMm(const Geometry& g) const { return hi - lo + g.CellMm(); }
-};
+/// The principal axis of a crack's (or a piece's) cells in mm.
+CellAxis Axis(const std::vector<cv::Point>& cells, const Geometry& g) {
+  return PrincipalAxis(cells, g.row_mm, g.col_mm);
+}
+
+double LengthMm(const CellAxis& a, const Geometry& g) { return a.hi - a.lo + g.CellMm(); }
+
+/// A uniform band's width from its cells' variance across it.
+double WidthMm(const CellAxis& a) { return std::sqrt(12.0 * a.across_variance_mm2); }
 
 Eigen::Vector2d Mm(const cv::Point& p, const Geometry& g) {
   return {p.y * g.row_mm, p.x * g.col_mm};
 }
 
-LineFit FitLine(const std::vector<cv::Point>& cells, const Geometry& g) {
-  LineFit f;
-  for (const cv::Point& p : cells) f.centre += Mm(p, g);
-  f.centre /= static_cast<double>(cells.size());
-  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (const cv::Point& p : cells) {
-    const Eigen::Vector2d d = Mm(p, g) - f.centre;
-    cov += d * d.transpose();
-  }
-  cov /= static_cast<double>(cells.size());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
-  f.dir = eig.eigenvectors().col(1);
-  if (f.dir.x() < 0.0) f.dir = -f.dir;
-  f.width_mm = std::sqrt(12.0 * std::max(0.0, eig.eigenvalues()(0)));
-  for (const cv::Point& p : cells) {
-    const double t = (Mm(p, g) - f.centre).dot(f.dir);
-    f.lo = std::min(f.lo, t);
-    f.hi = std::max(f.hi, t);
-  }
-  return f;
-}
-
 struct Piece {
   std::vector<cv::Point> cells;
-  LineFit line;
+  CellAxis line;
 };
 
-/// Whether two pieces are of one crack (TextureCrackOptions' merge_*); `shift_cols`: the whole
-/// turns of columns that bring b next to a.
-bool SameCrack(const Piece& a, const Piece& b, const Geometry& g, const TextureCrackOptions& o,
-               int& shift_cols) {
-  const double turn = g.CircumferenceMm();
-  const double turns = std::round((a.line.centre.y() - b.line.centre.y()) / turn);
-  shift_cols = static_cast<int>(turns) * g.cols;
-  const Eigen::Vector2d cb = b.line.centre + Eigen::Vector2d(0.0, turns * turn);
+/// The whole turns of columns that bring b's cells next to a's.
+int TurnShiftCols(const Piece& a, const Piece& b, const Geometry& g) {
+  return static_cast<int>(
+             std::round((a.line.centre.y() - b.line.centre.y()) / g.CircumferenceMm())) *
+         g.cols;
+}
+
+/// Whether two pieces are of one crack (TextureCrackOptions' merge_*), b moved next to a.
+bool SameCrack(const Piece& a, const Piece& b, const Geometry& g, const TextureCrackOptions& o) {
+  const Eigen::Vector2d cb =
+      b.line.centre + Eigen::Vector2d(0.0, TurnShiftCols(a, b, g) * g.col_mm);
   const Eigen::Vector2d d = cb - a.line.centre;
   const auto across = [](const Eigen::Vector2d& dir, const Eigen::Vector2d& v) {
     return std::abs(dir.x() * v.y() - dir.y() * v.x());
@@ -267,9 +247,7 @@ std::vector<std::vector<cv::Point>> Cracks(const std::vector<Piece>& pieces, con
   std::iota(parent.begin(), parent.end(), 0);
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
-      int shift = 0;
-      if (SameCrack(pieces[i], pieces[j], g, o, shift))
-        parent[FindRoot(parent, j)] = FindRoot(parent, i);
+      if (SameCrack(pieces[i], pieces[j], g, o)) parent[FindRoot(parent, j)] = FindRoot(parent, i);
     }
   }
   std::vector<std::vector<cv::Point>> groups(n);
@@ -277,8 +255,7 @@ std::vector<std::vector<cv::Point>> Cracks(const std::vector<Piece>& pieces, con
   for (int i = 0; i < n; ++i) {
     const int root = FindRoot(parent, i);
     if (first[root] < 0) first[root] = i;
-    int shift = 0;
-    SameCrack(pieces[first[root]], pieces[i], g, o, shift);
+    const int shift = TurnShiftCols(pieces[first[root]], pieces[i], g);
     for (const cv::Point& p : pieces[i].cells) groups[root].emplace_back(p.x + shift, p.y);
   }
   std::erase_if(groups, [](const std::vector<cv::Point>& c) { return c.empty(); });
@@ -304,7 +281,7 @@ double GreyAt(const cv::Mat1b& grey, const Geometry& g, const Eigen::Vector2d& p
 
 /// The dark line's full width at half its depth below the texture beside it, median over
 /// profiles across it every millimetre (a hole counts as black); NaN where none is dark enough.
-double ApparentWidthMm(const cv::Mat1b& grey, const Geometry& g, const LineFit& line) {
+double ApparentWidthMm(const cv::Mat1b& grey, const Geometry& g, const CellAxis& line) {
   constexpr double kStep = 0.1, kReach = 3.0, kCore = 1.5, kBeside = 2.0, kMinDepth = 10.0;
   const int half = static_cast<int>(kReach / kStep);
   const Eigen::Vector2d across(-line.dir.y(), line.dir.x());
@@ -331,7 +308,7 @@ double ApparentWidthMm(const cv::Mat1b& grey, const Geometry& g, const LineFit& 
 
 /// The observation of a crack's cells (grey map, columns unwrapped).
 Observation CrackObservation(const CoarseMap& map, const Geometry& g,
-                             const std::vector<cv::Point>& cells, const LineFit& line,
+                             const std::vector<cv::Point>& cells, const CellAxis& line,
                              const TextureCrackOptions& o) {
   Observation ob;
   ob.code = "BAB";
@@ -342,7 +319,7 @@ Observation CrackObservation(const CoarseMap& map, const Geometry& g,
     col_min = std::min(col_min, p.x);
     col_max = std::max(col_max, p.x);
   }
-  const double length = line.LengthMm(g);
+  const double length = LengthMm(line, g);
   ob.station_mm = map.GreyRowStationMm(line.centre.x() / g.row_mm);
   ob.length_mm = (row_max - row_min + 1) * g.row_mm;
   ob.clock_h = ClockRadToHours(map.GreyColClockRad(line.centre.y() / g.col_mm));
@@ -356,8 +333,7 @@ Observation CrackObservation(const CoarseMap& map, const Geometry& g,
   const double continuity = static_cast<double>(std::count(seen.begin(), seen.end(), 1)) /
                             static_cast<double>(seen.size());
   ob.confidence = continuity * (1.0 - std::exp(-length / o.min_length_mm));
-  double angle = RadToDeg(std::atan2(line.dir.y(), line.dir.x()));
-  if (angle > 90.0) angle -= 180.0;
+  const double angle = line.AngleDeg();
   const double width = ApparentWidthMm(map.grey, g, line);
   if (std::isfinite(width)) ob.quantities.push_back({"width_mm", width, "mm"});
   ob.quantities.push_back({"length_mm", length, "mm"});
@@ -422,15 +398,15 @@ std::vector<Observation> FindTextureCracks(const CoarseMap& map, double radius_m
   std::vector<Piece> pieces;
   for (MapComponent& c : HysteresisComponents(levels)) {
     Piece p{std::move(c.cells), {}};
-    p.line = FitLine(p.cells, g);
+    p.line = Axis(p.cells, g);
     // Shorter than the response's own averaging: a blob (grain, pore), not a line.
-    if (p.line.LengthMm(g) >= 2.0 * options.half_length_mm &&
-        p.line.width_mm <= options.max_width_mm)
+    if (LengthMm(p.line, g) >= 2.0 * options.half_length_mm &&
+        WidthMm(p.line) <= options.max_width_mm)
       pieces.push_back(std::move(p));
   }
   for (const std::vector<cv::Point>& cells : Cracks(pieces, g, options)) {
-    const LineFit line = FitLine(cells, g);
-    if (line.LengthMm(g) >= options.min_length_mm)
+    const CellAxis line = Axis(cells, g);
+    if (LengthMm(line, g) >= options.min_length_mm)
       out.push_back(CrackObservation(map, g, cells, line, options));
   }
   return out;
