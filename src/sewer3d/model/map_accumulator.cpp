@@ -56,6 +56,7 @@ MapAccumulator::MapAccumulator(const Centreline& centreline, const MapGrid& tile
   if (options.hole_edge_band_mm > 0.0) {
     last_frame_ = cv::Mat1i::zeros(ext_.rows, ext_.cols);
     frames_ = cv::Mat1b::zeros(ext_.rows, ext_.cols);
+    seen_ = cv::Mat1b::zeros(ext_.rows, ext_.cols);
   }
   station_guess_mm_ = tile.station0_mm;
 }
@@ -64,19 +65,24 @@ std::size_t MapAccumulator::MemoryBytes() const {
   return static_cast<std::size_t>(ext_.rows) * static_cast<std::size_t>(ext_.cols) * kBytesPerCell;
 }
 
+void MapAccumulator::MarkFrame(int row, int col, bool measured) {
+  int& last = last_frame_(row, col);
+  if (last >= 2 * frame_ + (measured ? 1 : 0)) return;  // already counted for this frame
+  if (last < 2 * frame_) seen_(row, col) = cv::saturate_cast<unsigned char>(seen_(row, col) + 1);
+  if (measured) frames_(row, col) = cv::saturate_cast<unsigned char>(frames_(row, col) + 1);
+  last = 2 * frame_ + (measured ? 1 : 0);
+}
+
 void MapAccumulator::AddToCell(int row, int col, double weight, double displacement_mm,
                                const cv::Vec3f& bgr) {
   sum_w_(row, col) += static_cast<float>(weight);
   sum_wd_(row, col) += static_cast<float>(weight * displacement_mm);
   sum_wc_(row, col) += static_cast<float>(weight) * bgr;
-  if (!frames_.empty() && last_frame_(row, col) != frame_) {
-    last_frame_(row, col) = frame_;
-    frames_(row, col) = cv::saturate_cast<unsigned char>(frames_(row, col) + 1);
-  }
+  if (!frames_.empty()) MarkFrame(row, col, true);
 }
 
-bool MapAccumulator::Add(const Eigen::Vector3d& p_model, const cv::Vec3f& bgr, double weight) {
-  SEWER3D_CHECK(weight > 0.0 && std::isfinite(weight), "weight = " << weight);
+template <typename Visit>
+bool MapAccumulator::VisitCells(const Eigen::Vector3d& p_model, Visit&& visit, Landing* landing) {
   // Points far outside the tile are rejected from a first-order station (one frame, no
   // iterations): a caller feeds whole acquisitions to every tile they may reach. Its error is
   // ~ Δs² / bend radius, far below the 10 mm slack for any pipe bend.
@@ -93,14 +99,11 @@ bool MapAccumulator::Add(const Eigen::Vector3d& p_model, const cv::Vec3f& bgr, d
   const double col_f = cyl.clock_rad / (2.0 * std::numbers::pi) * ext_.cols;
   const double reach = options_.splat_radius_mm / res;
   if (row_f + reach < 0.0 || row_f - reach >= ext_.rows) return false;
-  const double displacement = cyl.radius_mm - centreline_.radius_mm;
   const int row = static_cast<int>(std::floor(row_f));
   const int col = std::min(static_cast<int>(col_f), ext_.cols - 1);
-  if (row >= 0 && row < ext_.rows) {
-    count_(row, col) = static_cast<std::uint16_t>(std::min<int>(count_(row, col) + 1, 65535));
-  }
+  *landing = {cyl.radius_mm - centreline_.radius_mm, row, col};
   if (options_.splat_radius_mm <= 0.0) {
-    if (row >= 0 && row < ext_.rows) AddToCell(row, col, weight, displacement, bgr);
+    if (row >= 0 && row < ext_.rows) visit(row, col, 1.0);
     return true;
   }
   // Kernel (1 − d²/r²)² over the cells whose centres lie within r (columns wrap).
@@ -115,11 +118,31 @@ bool MapAccumulator::Add(const Eigen::Vector3d& p_model, const cv::Vec3f& bgr, d
       const double dc = (k + 0.5 - col_f) * col_mm;
       const double d2 = dr * dr + dc * dc;
       if (d2 >= r2) continue;
-      const double kernel = (1.0 - d2 / r2) * (1.0 - d2 / r2);
-      AddToCell(r, ((k % ext_.cols) + ext_.cols) % ext_.cols, weight * kernel, displacement, bgr);
+      visit(r, ((k % ext_.cols) + ext_.cols) % ext_.cols, (1.0 - d2 / r2) * (1.0 - d2 / r2));
     }
   }
   return true;
+}
+
+bool MapAccumulator::Add(const Eigen::Vector3d& p_model, const cv::Vec3f& bgr, double weight) {
+  SEWER3D_CHECK(weight > 0.0 && std::isfinite(weight), "weight = " << weight);
+  Landing at;
+  const auto add = [&](int r, int c, double kernel) {
+    AddToCell(r, c, weight * kernel, at.displacement_mm, bgr);
+  };
+  if (!VisitCells(p_model, add, &at)) return false;
+  if (at.row >= 0 && at.row < ext_.rows) {
+    count_(at.row, at.col) =
+        static_cast<std::uint16_t>(std::min<int>(count_(at.row, at.col) + 1, 65535));
+  }
+  return true;
+}
+
+bool MapAccumulator::AddSeen(const Eigen::Vector3d& p_model) {
+  if (!CountsFrames()) return false;
+  Landing at;
+  return VisitCells(
+      p_model, [&](int r, int c, double /*kernel*/) { MarkFrame(r, c, false); }, &at);
 }
 
 PipeMaps MapAccumulator::Finish() const {
@@ -139,7 +162,7 @@ PipeMaps MapAccumulator::Finish() const {
   if (!frames_.empty()) {
     const double cell_mm = std::max(ext_.resolution_mm, col_mm);
     TrimHoleEdges(static_cast<int>(std::lround(options_.hole_edge_band_mm / cell_mm)), frames_,
-                  displacement, colour, coverage);
+                  seen_, displacement, colour, coverage);
   }
   const int max_rows =
       static_cast<int>(std::floor(options_.max_hole_mm / ext_.resolution_mm + 1e-9));

@@ -27,9 +27,10 @@ struct MapAccumulatorOptions {
   double splat_radius_mm = 0.0;  ///< 0: each point to its nearest cell; else kernel radius
   double max_hole_mm = 2.0;      ///< holes at most this long and wide are filled
   /// Hole edges at the frames' median (TrimHoleEdges, before the small holes are filled):
-  /// covered cells this close to a hole that fewer than half of the local frames measured are
-  /// dropped. 0: off (a hole's edge is the farthest any frame reached). Frames are counted
-  /// per cell between BeginFrame calls.
+  /// covered cells this close to a hole that fewer than half of the frames seeing them
+  /// measured are dropped. 0: off (a hole's edge is the farthest any frame reached). Frames
+  /// are counted per cell between BeginFrame calls; a frame sees the cells it measured and
+  /// those it marked with AddSeen (its own holes).
   double hole_edge_band_mm = 0.0;
   void Check() const;
 };
@@ -55,19 +56,36 @@ class MapAccumulator {
   /// beyond the tile and its margin. Consecutive neighbouring points unroll fastest.
   bool Add(const Eigen::Vector3d& p_model, const cv::Vec3f& bgr, double weight);
 
+  /// Marks the cells a point of the frame's view would reach as seen by the frame, without
+  /// measuring them: where the frame has a hole (hole_edge_band_mm; no effect without it).
+  /// Returns false when the point lands beyond the tile and its margin.
+  bool AddSeen(const Eigen::Vector3d& p_model);
+
   /// Starts the next frame's points (for hole_edge_band_mm, which counts the frames per cell).
   void BeginFrame() { ++frame_; }
+  /// Whether frames are counted (hole_edge_band_mm > 0), i.e. AddSeen has an effect.
+  [[nodiscard]] bool CountsFrames() const { return !seen_.empty(); }
 
   /// The tile's maps: means per cell, holes ≤ max_hole_mm filled and flagged.
   [[nodiscard]] PipeMaps Finish() const;
 
   /// Memory of the sums per cell (bytes); the tile plus its margin rows are held.
   static constexpr std::size_t kBytesPerCell =
-      5 * sizeof(float) + sizeof(std::uint16_t) + sizeof(std::int32_t) + sizeof(std::uint8_t);
+      5 * sizeof(float) + sizeof(std::uint16_t) + sizeof(std::int32_t) + 2 * sizeof(std::uint8_t);
   [[nodiscard]] std::size_t MemoryBytes() const;
 
  private:
+  struct Landing {
+    double displacement_mm = 0.0;
+    int row = 0, col = 0;  ///< the point's own cell of the extended grid (row may lie outside)
+  };
+  /// Calls visit(row, col, kernel weight) for the cells of the extended grid `p_model`
+  /// reaches (its own cell, or the splat's) after the displacement is in `landing`. False
+  /// (nothing visited) when it lands beyond the tile and its margin.
+  template <typename Visit>
+  bool VisitCells(const Eigen::Vector3d& p_model, Visit&& visit, Landing* landing);
   void AddToCell(int row, int col, double weight, double displacement_mm, const cv::Vec3f& bgr);
+  void MarkFrame(int row, int col, bool measured);
 
   const Centreline& centreline_;
   MapGrid tile_;
@@ -78,8 +96,9 @@ class MapAccumulator {
   cv::Mat1f sum_w_, sum_wd_;
   cv::Mat3f sum_wc_;
   cv::Mat1w count_;
-  cv::Mat1i last_frame_;  // the frame that last added to the cell
-  cv::Mat1b frames_;      // frames that added to the cell (to 255)
+  cv::Mat1i last_frame_;  // 2 × the frame that last saw the cell, + 1 where it measured it
+  cv::Mat1b frames_;      // frames that measured the cell (to 255)
+  cv::Mat1b seen_;        // frames that measured the cell or marked it seen (to 255)
   int frame_ = 1;
 };
 

@@ -211,22 +211,30 @@ TEST(MapAccumulator, WeightsAndOptions) {
 // Frames see a gap 8 mm wide (stations 16–24) each with its own edges, off by −1.6 … +1.6 mm
 // on either side as the midpoint-drawn holes of frames whose spots fall differently are: the
 // union of their surfaces leaves a hole 3.2 mm too narrow, the frames' median edge
-// (hole_edge_band_mm) the true width — with five frames, and with four, where cells between
-// the middle two edges are ties split halfway.
+// (hole_edge_band_mm, each frame's hole marked seen) the true width — with five frames, and
+// with four, where cells between the middle two edges are ties split halfway; and with one
+// more frame that measures the wall a little beyond the gap but does not see the gap.
 TEST(MapAccumulator, PutsHoleEdgesAtTheFramesMedian) {
   const Centreline line = TestCentreline();
   const MapGrid grid = MakeMapGrid(0.0, 40.0, kRadius, 0.2);
-  const auto hole_mm = [&](double band_mm, int frames) {
+  const auto hole_mm = [&](double band_mm, int frames, bool beyond = false) {
     MapAccumulator acc(line, grid, {.hole_edge_band_mm = band_mm});
     const double before[5] = {-1.6, 0.8, 1.6, -0.8, 0.0}, after[5] = {0.8, -1.6, 1.6, -0.8, 0.0};
-    for (int f = 0; f < frames; ++f) {
+    const auto frame = [&](double from, double gap_begin, double gap_end) {
       acc.BeginFrame();
-      for (double s = 0.05; s < 40.0; s += 0.15) {
-        if (s > 16.0 + before[f] && s < 24.0 + after[f]) continue;
-        for (double clock = 0.0; clock < 2 * kPi; clock += 0.15 / kRadius)
-          acc.Add(PointAt(line, {s, clock, kRadius}), cv::Vec3f(100.f, 100.f, 100.f), 1.0);
+      for (double s = from + 0.05; s < 40.0; s += 0.15) {
+        for (double clock = 0.0; clock < 2 * kPi; clock += 0.15 / kRadius) {
+          const Eigen::Vector3d p = PointAt(line, {s, clock, kRadius});
+          if (s > gap_begin && s < gap_end) {
+            acc.AddSeen(p);
+          } else {
+            acc.Add(p, cv::Vec3f(100.f, 100.f, 100.f), 1.0);
+          }
+        }
       }
-    }
+    };
+    for (int f = 0; f < frames; ++f) frame(0.0, 16.0 + before[f], 24.0 + after[f]);
+    if (beyond) frame(28.0, 0.0, 0.0);
     const PipeMaps maps = acc.Finish();
     double rows = 0.0;  // mean over the columns of the empty rows
     for (int c = 0; c < maps.coverage.cols; ++c)
@@ -237,6 +245,9 @@ TEST(MapAccumulator, PutsHoleEdgesAtTheFramesMedian) {
   EXPECT_NEAR(hole_mm(5.0, 5), 8.0, 0.25);        // the median on each side
   EXPECT_NEAR(hole_mm(0.0, 4), 8.0 - 3.2, 0.25);
   EXPECT_NEAR(hole_mm(5.0, 4), 8.0, 0.25);  // halfway between the middle two
+  // Were the bar the most frames measuring a cell within the band (as before session 46),
+  // the sixth frame would move the far edge 0.8 mm out, to where four of the five reach.
+  EXPECT_NEAR(hole_mm(5.0, 5, true), 8.0, 0.25);
 }
 
 }  // namespace

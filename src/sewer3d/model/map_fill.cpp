@@ -91,8 +91,8 @@ void FillSmallHoles(int max_rows, int max_cols, cv::Mat1f& displacement_mm, cv::
   }
 }
 
-void TrimHoleEdges(int band, const cv::Mat1b& frames, cv::Mat1f& displacement_mm, cv::Mat3f& colour,
-                   cv::Mat1b& coverage) {
+void TrimHoleEdges(int band, const cv::Mat1b& frames, const cv::Mat1b& seen,
+                   cv::Mat1f& displacement_mm, cv::Mat3f& colour, cv::Mat1b& coverage) {
   if (band <= 0 || coverage.empty()) return;
   const int rows = coverage.rows, cols = coverage.cols, pad = std::min(band, cols);
   // Columns wrapped by `pad` on both sides; rows padded with covered cells of no frame.
@@ -102,14 +102,15 @@ void TrimHoleEdges(int band, const cv::Mat1b& frames, cv::Mat1f& displacement_mm
     cv::copyMakeBorder(out, out, band, band, 0, 0, cv::BORDER_CONSTANT, cv::Scalar(rows_value));
     return out;
   };
-  const cv::Mat1b covered = padded(coverage != 0, 255), framed = padded(frames, 0);
+  const cv::Mat1b covered = padded(coverage != 0, 255), framed = padded(frames, 0),
+                  seeing = padded(seen, 0);
   cv::Mat1f to_hole;
   cv::distanceTransform(covered, to_hole, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   cv::Mat1b most;
   cv::dilate(framed, most, cv::getStructuringElement(cv::MORPH_RECT, {2 * band + 1, 2 * band + 1}));
-  // Near a hole: kept by a majority of the local frames, dropped by a minority; a tie (half
-  // of them: between two frames' edges) goes to whichever of the two it lies nearer, so that
-  // the edge falls halfway.
+  // Near a hole: kept by a majority of the frames that see it and measure around it, dropped
+  // by a minority; a tie (half of them: between two frames' edges) goes to whichever of the
+  // two it lies nearer, so that the edge falls halfway.
   enum : unsigned char { kKeep = 0, kDrop = 1, kTie = 2 };
   cv::Mat1b verdict(covered.size(), kKeep);
   for (int r = 0; r < covered.rows; ++r) {
@@ -117,7 +118,7 @@ void TrimHoleEdges(int band, const cv::Mat1b& frames, cv::Mat1f& displacement_mm
       if (covered(r, c) == 0) {
         verdict(r, c) = kDrop;
       } else if (to_hole(r, c) <= band) {
-        const int twice = 2 * framed(r, c), local = most(r, c);
+        const int twice = 2 * framed(r, c), local = std::min(seeing(r, c), most(r, c));
         verdict(r, c) = twice > local ? kKeep : twice < local ? kDrop : kTie;
       }
     }

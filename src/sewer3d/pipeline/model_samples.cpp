@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sewer3d/register/depth_geometry.hpp"
 
@@ -16,6 +17,43 @@ std::vector<Eigen::Vector3d> FitSamples(const cv::Mat1f& depth_mm, const CameraM
   return out;
 }
 
+namespace {
+
+bool HasDepth(float z) { return std::isfinite(z) && z > 0.0f; }
+
+/// Fills the runs of pixels without depth in one line of `depth_mm` (a row or a column: `at`
+/// maps an index along it to the pixel) that have depth on both ends, by linear interpolation
+/// into `holes` where it has none yet.
+template <typename At>
+void FillEnclosedRuns(int length, At&& at, const cv::Mat1f& depth_mm, cv::Mat1f& holes) {
+  int last = -1;  // the last pixel with depth
+  for (int i = 0; i < length; ++i) {
+    const float z = depth_mm(at(i));
+    if (!HasDepth(z)) continue;
+    if (last >= 0 && i - last > 1) {
+      const float z0 = depth_mm(at(last));
+      for (int k = last + 1; k < i; ++k) {
+        float& h = holes(at(k));
+        if (!std::isfinite(h)) h = z0 + (z - z0) * static_cast<float>(k - last) / (i - last);
+      }
+    }
+    last = i;
+  }
+}
+
+}  // namespace
+
+cv::Mat1f EnclosedHoleDepths(const cv::Mat1f& depth_mm) {
+  cv::Mat1f holes(depth_mm.size(), std::numeric_limits<float>::quiet_NaN());
+  for (int v = 0; v < depth_mm.rows; ++v)
+    FillEnclosedRuns(
+        depth_mm.cols, [v](int u) { return cv::Point(u, v); }, depth_mm, holes);
+  for (int u = 0; u < depth_mm.cols; ++u)
+    FillEnclosedRuns(
+        depth_mm.rows, [u](int v) { return cv::Point(u, v); }, depth_mm, holes);
+  return holes;
+}
+
 long long AddAcquisitionPixels(MapAccumulator& maps, const cv::Mat1f& depth_mm,
                                const cv::Mat3b& color_bgr, const cv::Mat2f& normalised,
                                const Rigid3d& world_from_camera, const PixelWeighting& weighting) {
@@ -26,12 +64,23 @@ long long AddAcquisitionPixels(MapAccumulator& maps, const cv::Mat1f& depth_mm,
     for (int u = 0; u < depth_mm.cols; u += step) {
       const float z = depth_mm(v, u);
       const cv::Vec2f& xy = normalised(v, u);
-      if (!(std::isfinite(z) && z > 0.0f && std::isfinite(xy[0]))) continue;
+      if (!(HasDepth(z) && std::isfinite(xy[0]))) continue;
       const Eigen::Vector3d p = world_from_camera * Eigen::Vector3d(xy[0] * z, xy[1] * z, z);
       const double weight = DepthWeight(z, weighting.depth_sigma_ref_mm, weighting.depth_ref_mm) *
                             BorderFeather(u, v, depth_mm.cols, depth_mm.rows, weighting.feather_px);
       const cv::Vec3b& c = color_bgr(v, u);
       if (maps.Add(p, cv::Vec3f(c[0], c[1], c[2]), weight)) ++added;
+    }
+  }
+  if (!maps.CountsFrames()) return added;
+  // The frame's own holes (lost spots, a gap's floor out of view): seen, not measured.
+  const cv::Mat1f holes = EnclosedHoleDepths(depth_mm);
+  for (int v = 0; v < depth_mm.rows; v += step) {
+    for (int u = 0; u < depth_mm.cols; u += step) {
+      const float z = holes(v, u);
+      const cv::Vec2f& xy = normalised(v, u);
+      if (!(std::isfinite(z) && std::isfinite(xy[0]))) continue;
+      maps.AddSeen(world_from_camera * Eigen::Vector3d(xy[0] * z, xy[1] * z, z));
     }
   }
   return added;

@@ -34,10 +34,18 @@ struct PixelWeighting {
   double depth_ref_mm = 150.0;
 };
 
+/// The depth map's holes enclosed along a row or a column (pixels without depth between two
+/// with depth; not those reaching the image's border, beyond the lit view), each with the
+/// depth interpolated along its row (or, where the row's run reaches the border, its
+/// column); NaN elsewhere.
+cv::Mat1f EnclosedHoleDepths(const cv::Mat1f& depth_mm);
+
 /// Adds every pixel_step-th pixel with depth of the acquisition (colour from `color_bgr`) to
 /// `maps`, weighted by DepthWeight × BorderFeather. `normalised`: the camera's
 /// NormalisedCoordinates (texture/shading.hpp), computed once per module rather than
-/// unprojecting every pixel of every acquisition again. Returns the samples the tile took.
+/// unprojecting every pixel of every acquisition again. The acquisition's enclosed holes
+/// (EnclosedHoleDepths) are marked seen (MapAccumulator::AddSeen: hole edges at the frames'
+/// median). Returns the samples the tile took.
 long long AddAcquisitionPixels(MapAccumulator& maps, const cv::Mat1f& depth_mm,
                                const cv::Mat3b& color_bgr, const cv::Mat2f& normalised,
                                const Rigid3d& world_from_camera, const PixelWeighting& weighting);
