@@ -192,13 +192,24 @@ cv::Mat1f InterpolateDepthOnMesh(cv::Size image_size, const ElementMesh& mesh,
     whole.emplace_back(t, positive);
     kept_orientation += positive ? 1 : -1;
   }
+  // The longest camera edge an edge joining elements i and j may have.
+  const auto edge_limit_px = [&](int i, int j) {
+    const double elements_apart = (elements[i] - elements[j]).cast<double>().norm();
+    return options.long_edge_elements > 0.0
+               ? options.max_edge_px * std::max(1.0, elements_apart / options.long_edge_elements)
+               : options.max_edge_px;
+  };
   std::vector<char> in_triangle(pixels.size(), 0);
   std::vector<std::array<int, 3>> filled;
   for (const auto& [t, positive] : whole) {
     if (positive != (kept_orientation > 0)) continue;
     const int a = point_of[t[0]], b = point_of[t[1]], c = point_of[t[2]];
+    if ((pixels[a] - pixels[b]).norm() > edge_limit_px(a, b) ||
+        (pixels[b] - pixels[c]).norm() > edge_limit_px(b, c) ||
+        (pixels[c] - pixels[a]).norm() > edge_limit_px(c, a))
+      continue;
     if (!FillTriangle(pixels[a], pixels[b], pixels[c], depths_mm[a], depths_mm[b], depths_mm[c],
-                      options.max_edge_px, depth))
+                      std::numeric_limits<double>::infinity(), depth))
       continue;
     for (const int i : {a, b, c}) in_triangle[i] = 1;
     filled.push_back(t);

@@ -23,6 +23,12 @@ cv::Mat1f InterpolateDepth(cv::Size image_size, const std::vector<Eigen::Vector2
 struct MeshDepthOptions {
   /// A triangle with a camera edge longer than this stays empty (holes, depth steps).
   double max_edge_px = 0.0;
+  /// An edge joining elements farther apart than this in the pattern (elements; where the
+  /// pattern is sparse, its Delaunay edges reach 5–6) may be longer in the camera in
+  /// proportion: max_edge_px × distance / this. Without it the sparse places' triangles
+  /// fail the limit wherever the wall is seen stretched, leaving rows of holes at the same
+  /// image positions in every frame. 0: the plain limit for every edge.
+  double long_edge_elements = 4.0;
   /// Radius of the disc drawn for a point that is the corner of no filled triangle.
   double spot_radius_px = 0.0;
   /// Where a lost spot's triangle meets a filled one, the surface is drawn on to halfway

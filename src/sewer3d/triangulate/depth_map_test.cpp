@@ -8,6 +8,7 @@
 
 #include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 
@@ -165,23 +166,24 @@ TEST(ElementMesh, JoinsNeighbouringLitElementsOnly) {
 }
 
 // The lit elements of the first 76 × 56 of the mesh's grid as points of `plane`, each at the
-// camera pixel (20 + 8 r, 20 + 8 c): the default module's projector is turned against the
-// camera, rows along u, columns along v. Points whose pixel u lies in (lost_lo, lost_hi) are
-// left out (lost spots).
+// camera pixel (20 + s r, 20 + s c), s = `scale_px` (8: one pattern pitch): the default
+// module's projector is turned against the camera, rows along u, columns along v. Points whose
+// pixel u lies in (lost_lo, lost_hi) are left out (lost spots).
 struct MeshPoints {
   std::vector<Eigen::Vector2i> elements;
   std::vector<Eigen::Vector2d> pixels;
   std::vector<double> depths;
 };
 MeshPoints PlaneOnMesh(const ElementMesh& mesh, const BinaryArray& pattern,
-                       const TiltedPlane& plane, double lost_lo = 0.0, double lost_hi = 0.0) {
+                       const TiltedPlane& plane, double lost_lo = 0.0, double lost_hi = 0.0,
+                       double scale_px = 8.0) {
   EXPECT_GE(mesh.rows, 76);
   EXPECT_GE(mesh.cols, 56);
   MeshPoints out;
   for (int r = 0; r < 76; ++r) {
     for (int c = 0; c < 56; ++c) {
       if (!pattern.tiled(r + mesh.row0, c + mesh.col0)) continue;
-      const Eigen::Vector2d px(20.0 + 8.0 * r, 20.0 + 8.0 * c);
+      const Eigen::Vector2d px(20.0 + scale_px * r, 20.0 + scale_px * c);
       if (px.x() > lost_lo && px.x() < lost_hi) continue;
       out.elements.emplace_back(r + mesh.row0, c + mesh.col0);
       out.pixels.push_back(px);
@@ -265,6 +267,32 @@ TEST(DepthMap, OnTheElementMeshLostSpotsLeaveHoles) {
   for (int v = 60; v < 420; ++v)
     for (int u = 60; u < 580; ++u) flipped_filled += std::isnan(flipped(v, 639 - u)) ? 0 : 1;
   EXPECT_EQ(flipped_filled, filled);
+}
+
+// The wall seen stretched (1.3 pattern pitches per element, as where it is farther or
+// oblique): the pattern's sparse places, whose Delaunay edges join elements 5–6 apart, still
+// hold their triangles under the 5.5-pitch limit (it grows with the elements' distance past
+// 4); with one limit for every edge they leave holes, the same in every frame.
+TEST(DepthMap, ThePatternsSparsePlacesHoldWhereTheWallIsSeenStretched) {
+  const ModuleDescription module = testing::SmallDefaultModule(648);
+  const BinaryArray pattern = DefaultPatternArray();
+  const ElementMesh mesh = MeshLitElements(module, pattern);
+  const TiltedPlane plane;
+  const cv::Size size(840, 640);
+  const double scale = 1.3 * 8.0;
+  const MeshPoints points = PlaneOnMesh(mesh, pattern, plane, 0.0, 0.0, scale);
+  const auto empty_inside = [&](double long_edge_elements) {
+    const cv::Mat1f map = InterpolateDepthOnMesh(
+        size, mesh, points.elements, points.pixels, points.depths,
+        {.max_edge_px = 5.5 * 8.0, .long_edge_elements = long_edge_elements});
+    int empty = 0;  // inside the lit elements' hull, as in OnTheElementMeshLostSpotsLeaveHoles
+    for (int v = 80; v < 540; ++v)
+      for (int u = 80; u < 740; ++u) empty += std::isnan(map(v, u)) ? 1 : 0;
+    return empty;
+  };
+  EXPECT_EQ(empty_inside(4.0), 0);
+  EXPECT_GT(empty_inside(0.0), 1000);
+  std::printf("stretched 1.3: %d pixels empty with one limit for every edge\n", empty_inside(0.0));
 }
 
 // A band of lost spots (a joint's gap 40 px wide across the image): holes drawn from the last
