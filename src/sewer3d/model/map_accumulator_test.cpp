@@ -246,7 +246,7 @@ TEST(MapAccumulator, PutsHoleEdgesAtTheFramesMedian) {
   EXPECT_NEAR(hole_mm(0.0, 4), 8.0 - 3.2, 0.25);
   EXPECT_NEAR(hole_mm(5.0, 4), 8.0, 0.25);  // halfway between the middle two
   // Were the bar the most frames measuring a cell within the band (as before session 46),
-  // the sixth frame would move the far edge 0.8 mm out, to where four of the five reach.
+  // the sixth frame would move the far edge out, halfway to where four of the five reach: 8.4.
   EXPECT_NEAR(hole_mm(5.0, 5, true), 8.0, 0.25);
 }
 
