@@ -47,8 +47,12 @@ Observation JointObservation(const JointMeasure& j, const CoarseMap& map, const 
       static_cast<int>(std::lround(j.offset_clock_rad / (2.0 * std::numbers::pi) * map.fine.cols));
   o.crop.col0 = ((at - quarter / 2) % map.fine.cols + map.fine.cols) % map.fine.cols;
   o.crop.cols = quarter;
-  o.remark = fmt::format("joint: offset {:.1f} mm at {:.1f} h, gap {:.1f} mm, deflection {:.2f}°",
-                         j.offset_mm, o.clock_h, j.gap_mm, j.deflection_deg);
+  // A joint found by its step whose gap no column shows open: the gap is narrower than the
+  // depth maps resolve (their lit spots bridge it), not closed; gap_mm 0 says "not measured".
+  const std::string gap = j.gap_mm > 0.0 ? fmt::format("gap {:.1f} mm", j.gap_mm)
+                                         : std::string("gap not resolved in the maps");
+  o.remark = fmt::format("joint: offset {:.1f} mm at {:.1f} h, {}, deflection {:.2f}°", j.offset_mm,
+                         o.clock_h, gap, j.deflection_deg);
   return o;
 }
 

@@ -197,6 +197,7 @@ TEST(Inspect, MeasuresAJointWhoseGapWasBridged) {
   EXPECT_NEAR(std::remainder(joint->clock_h, 12.0), 0.0, 0.25);  // 12 h
   EXPECT_LT(Q(joint, "deflection_deg"), 0.1);
   EXPECT_EQ(Q(joint, "gap_mm"), 0.0);  // none in the data: none invented
+  EXPECT_NE(joint->remark.find("gap not resolved in the maps"), std::string::npos) << joint->remark;
 }
 
 // The columns that bridge the gap say nothing of its width; the open ones do.
