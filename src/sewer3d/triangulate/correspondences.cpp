@@ -273,4 +273,13 @@ int RejectSharedElements(std::vector<TriangulatedPoint>& points) {
   return static_cast<int>(before - points.size());
 }
 
+InconsistentPoints RejectInconsistentPoints(std::vector<TriangulatedPoint>& points,
+                                            const std::vector<CodedObservation>& observations,
+                                            const DepthOutlierOptions& options) {
+  InconsistentPoints removed;
+  removed.depth_outliers = RejectDepthOutliers(points, observations, options);
+  removed.shared_elements = RejectSharedElements(points);
+  return removed;
+}
+
 }  // namespace sewer3d

@@ -107,4 +107,16 @@ int RejectDepthOutliers(std::vector<TriangulatedPoint>& points,
 /// centres off. Returns the number removed.
 int RejectSharedElements(std::vector<TriangulatedPoint>& points);
 
+struct InconsistentPoints {
+  int depth_outliers = 0;   ///< RejectDepthOutliers
+  int shared_elements = 0;  ///< RejectSharedElements
+};
+
+/// RejectDepthOutliers, then RejectSharedElements: a wrong claim that is also a depth outlier
+/// goes first, so the spot whose element it claimed keeps its point (the other order drops
+/// both).
+InconsistentPoints RejectInconsistentPoints(std::vector<TriangulatedPoint>& points,
+                                            const std::vector<CodedObservation>& observations,
+                                            const DepthOutlierOptions& options = {});
+
 }  // namespace sewer3d

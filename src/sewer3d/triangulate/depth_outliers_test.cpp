@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -90,6 +91,37 @@ TEST(RejectSharedElements, RemovesEveryClaimOfAnElementClaimedTwice) {
   EXPECT_EQ(points[2].observation, 4);
   EXPECT_EQ(points[3].observation, 5);
   EXPECT_EQ(RejectSharedElements(points), 0);
+}
+
+// A wall of spots, each its own element, and one wrong spot between them 60 mm deeper that
+// claims the element of a wall spot: the depth test removes it first, so the wall spot keeps
+// its point; shared elements judged first would remove both.
+TEST(RejectInconsistentPoints, AWrongClaimThatIsADepthOutlierCostsNoGoodPoint) {
+  std::vector<TriangulatedPoint> points;
+  std::vector<CodedObservation> observations;
+  const auto add = [&](double u, double v, double z, int row, int col) {
+    CodedObservation o;
+    o.camera_px = {u, v};
+    observations.push_back(o);
+    TriangulatedPoint p;
+    p.observation = static_cast<int>(points.size());
+    p.point_mm = {0.0, 0.0, z};
+    p.row = row;
+    p.col = col;
+    points.push_back(p);
+  };
+  for (int r = 0; r < 20; ++r)
+    for (int c = 0; c < 20; ++c) add(20.0 * c, 20.0 * r, 150.0 + 0.05 * c, r, c);
+  add(210.0, 190.0, 210.0, 9, 10);  // between four wall spots; wall spot (9, 10) is at (200, 180)
+  std::vector<TriangulatedPoint> kept = points;
+  const InconsistentPoints removed = RejectInconsistentPoints(kept, observations);
+  EXPECT_EQ(removed.depth_outliers, 1);
+  EXPECT_EQ(removed.shared_elements, 0);
+  ASSERT_EQ(kept.size(), 400u);
+  EXPECT_TRUE(std::all_of(kept.begin(), kept.end(),
+                          [](const TriangulatedPoint& p) { return p.point_mm.z() < 200.0; }));
+  kept = points;
+  EXPECT_EQ(RejectSharedElements(kept), 2);  // the other order: the wall spot goes too
 }
 
 }  // namespace

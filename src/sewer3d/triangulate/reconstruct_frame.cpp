@@ -100,9 +100,10 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
   auto t = Clock::now();
   TriangulationStats stats;
   std::vector<TriangulatedPoint> points = triangulator_.Triangulate(observations, &stats);
-  report.rejected.element_claimed_twice = RejectSharedElements(points);
-  report.rejected.depth_outlier_or_isolated =
-      RejectDepthOutliers(points, observations, options_.outliers);
+  const InconsistentPoints removed =
+      RejectInconsistentPoints(points, observations, options_.outliers);
+  report.rejected.depth_outlier_or_isolated = removed.depth_outliers;
+  report.rejected.element_claimed_twice = removed.shared_elements;
   const auto decoded_spots = static_cast<double>(decoded.codes.size());
   if (decoded_spots >= options_.mismatch_min_decoded &&
       stats.no_element > options_.mismatch_off_epipolar_fraction * decoded_spots &&
