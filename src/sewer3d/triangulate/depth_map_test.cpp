@@ -128,12 +128,19 @@ TEST(DepthMap, TrianglesWithALongEdgeStayEmpty) {
   EXPECT_EQ(cv::countNonZero(none == none), 0);  // NaN != NaN
 }
 
+// The default pattern on the 648 px default module, its lit elements meshed.
+struct MeshedPattern {
+  ModuleDescription module = testing::SmallDefaultModule(648);
+  BinaryArray pattern = DefaultPatternArray();
+  ElementMesh mesh = MeshLitElements(module, pattern);
+};
+
 // The module's lit elements, meshed: every lit element on the projector image is a vertex,
 // and no triangle holds another lit element (inside or on an edge).
 TEST(ElementMesh, JoinsNeighbouringLitElementsOnly) {
-  const ModuleDescription module = testing::SmallDefaultModule(648);
-  const BinaryArray pattern = DefaultPatternArray();
-  const ElementMesh mesh = MeshLitElements(module, pattern);
+  const MeshedPattern meshed;
+  const BinaryArray& pattern = meshed.pattern;
+  const ElementMesh& mesh = meshed.mesh;
   ASSERT_GT(mesh.rows, 0);
   std::vector<int> degree(static_cast<size_t>(mesh.rows) * mesh.cols, 0);
   const auto at = [&](int k) { return Eigen::Vector2d(k % mesh.cols, k / mesh.cols); };
@@ -160,7 +167,7 @@ TEST(ElementMesh, JoinsNeighbouringLitElementsOnly) {
     for (int c = 0; c < mesh.cols; ++c)
       EXPECT_EQ(degree[r * mesh.cols + c] > 0, pattern.tiled(r + mesh.row0, c + mesh.col0) != 0);
   // A module built in code with an absurd offset (module.json refuses it) is refused here too.
-  ModuleDescription far = module;
+  ModuleDescription far = meshed.module;
   far.pattern.offset_px.x() = 1e12;
   EXPECT_THROW(MeshLitElements(far, pattern), InvalidValue);
 }
@@ -197,9 +204,9 @@ MeshPoints PlaneOnMesh(const ElementMesh& mesh, const BinaryArray& pattern,
 // position: the mesh's map is as exact as the Delaunay one; a lost spot leaves a hole that
 // the Delaunay map bridges.
 TEST(DepthMap, OnTheElementMeshLostSpotsLeaveHoles) {
-  const ModuleDescription module = testing::SmallDefaultModule(648);
-  const BinaryArray pattern = DefaultPatternArray();
-  const ElementMesh mesh = MeshLitElements(module, pattern);
+  const MeshedPattern meshed;
+  const BinaryArray& pattern = meshed.pattern;
+  const ElementMesh& mesh = meshed.mesh;
   const TiltedPlane plane;
   const cv::Size size(640, 480);
   const MeshPoints points = PlaneOnMesh(mesh, pattern, plane);
@@ -274,9 +281,9 @@ TEST(DepthMap, OnTheElementMeshLostSpotsLeaveHoles) {
 // hold their triangles under the 5.5-pitch limit (it grows with the elements' distance past
 // 4); with one limit for every edge they leave holes, the same in every frame.
 TEST(DepthMap, ThePatternsSparsePlacesHoldWhereTheWallIsSeenStretched) {
-  const ModuleDescription module = testing::SmallDefaultModule(648);
-  const BinaryArray pattern = DefaultPatternArray();
-  const ElementMesh mesh = MeshLitElements(module, pattern);
+  const MeshedPattern meshed;
+  const BinaryArray& pattern = meshed.pattern;
+  const ElementMesh& mesh = meshed.mesh;
   const TiltedPlane plane;
   const cv::Size size(840, 640);
   const double scale = 1.3 * 8.0;
@@ -301,9 +308,9 @@ TEST(DepthMap, ThePatternsSparsePlacesHoldWhereTheWallIsSeenStretched) {
 // about six, so the lit spots are ~20 px apart here: a row's width is off by up to ~20 px,
 // the mean over 360 rows by a few.
 TEST(DepthMap, HolesDrawnToTheMidpointsKeepTheirWidth) {
-  const ModuleDescription module = testing::SmallDefaultModule(648);
-  const BinaryArray pattern = DefaultPatternArray();
-  const ElementMesh mesh = MeshLitElements(module, pattern);
+  const MeshedPattern meshed;
+  const BinaryArray& pattern = meshed.pattern;
+  const ElementMesh& mesh = meshed.mesh;
   const TiltedPlane plane;
   const cv::Size size(640, 480);
   const double band_lo = 304.0, band_hi = 344.0;  // halfway between element rows

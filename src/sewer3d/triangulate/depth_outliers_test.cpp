@@ -15,14 +15,17 @@ namespace {
 struct Layout {
   std::vector<TriangulatedPoint> points;
   std::vector<CodedObservation> observations;
-  void Add(double u, double v, double z, int label) {
+  // `label` goes into the element's row (the tests' labels: 0 wall, 1 deep patch, 2 wrong
+  // group), `col` into its column.
+  void Add(double u, double v, double z, int label, int col = 0) {
     CodedObservation o;
     o.camera_px = {u, v};
     observations.push_back(o);
     TriangulatedPoint p;
     p.observation = static_cast<int>(points.size());
     p.point_mm = {0.0, 0.0, z};
-    p.row = label;  // the test's label: 0 wall, 1 deep patch, 2 wrong group
+    p.row = label;
+    p.col = col;
     points.push_back(p);
   }
   int Count(const std::vector<TriangulatedPoint>& kept, int label) const {
@@ -97,30 +100,18 @@ TEST(RejectSharedElements, RemovesEveryClaimOfAnElementClaimedTwice) {
 // claims the element of a wall spot: the depth test removes it first, so the wall spot keeps
 // its point; shared elements judged first would remove both.
 TEST(RejectInconsistentPoints, AWrongClaimThatIsADepthOutlierCostsNoGoodPoint) {
-  std::vector<TriangulatedPoint> points;
-  std::vector<CodedObservation> observations;
-  const auto add = [&](double u, double v, double z, int row, int col) {
-    CodedObservation o;
-    o.camera_px = {u, v};
-    observations.push_back(o);
-    TriangulatedPoint p;
-    p.observation = static_cast<int>(points.size());
-    p.point_mm = {0.0, 0.0, z};
-    p.row = row;
-    p.col = col;
-    points.push_back(p);
-  };
+  Layout l;  // each point's element: (r, c)
   for (int r = 0; r < 20; ++r)
-    for (int c = 0; c < 20; ++c) add(20.0 * c, 20.0 * r, 150.0 + 0.05 * c, r, c);
-  add(210.0, 190.0, 210.0, 9, 10);  // between four wall spots; wall spot (9, 10) is at (200, 180)
-  std::vector<TriangulatedPoint> kept = points;
-  const InconsistentPoints removed = RejectInconsistentPoints(kept, observations);
+    for (int c = 0; c < 20; ++c) l.Add(20.0 * c, 20.0 * r, 150.0 + 0.05 * c, r, c);
+  l.Add(210.0, 190.0, 210.0, 9, 10);  // between four wall spots; wall spot (9, 10) is at (200, 180)
+  std::vector<TriangulatedPoint> kept = l.points;
+  const InconsistentPoints removed = RejectInconsistentPoints(kept, l.observations);
   EXPECT_EQ(removed.depth_outliers, 1);
   EXPECT_EQ(removed.shared_elements, 0);
   ASSERT_EQ(kept.size(), 400u);
   EXPECT_TRUE(std::all_of(kept.begin(), kept.end(),
                           [](const TriangulatedPoint& p) { return p.point_mm.z() < 200.0; }));
-  kept = points;
+  kept = l.points;
   EXPECT_EQ(RejectSharedElements(kept), 2);  // the other order: the wall spot goes too
 }
 
