@@ -25,7 +25,6 @@
 #include "sewer3d/pipeline/report_stage.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/simeval/rgbd_evaluation.hpp"
-#include "sewer3d/simio/simulate_run.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -61,13 +60,13 @@ int SimulateUnlessDone(const fs::path& run, const DemoArgs& a, bool& simulated) 
                run.string(), kPreset);
     return 0;
   }
-  // Only a simulated run (this command's, cut short or of another preset) is removed; a real
-  // capture is refused by the simulation.
-  if (IsSimulatedRun(run)) RemoveFolder(run);
+  // A simulation of this preset cut short goes on from the images it finished; another run
+  // the simulator made is replaced, a real capture refused (SimulateRun).
   RunArgs args;
   args.preset = kPreset;
   args.out = run.string();
   args.quiet = a.quiet;
+  args.restart = a.force;
   tbb::task_arena arena(AllowedThreads(a.threads));
   simulated = true;
   return arena.execute([&] { return RunRun(args); });

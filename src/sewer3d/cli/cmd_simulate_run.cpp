@@ -40,6 +40,9 @@ CLI::App* AddRunCommand(CLI::App& sim, RunArgs& a) {
                   "paper (the scenarios' default: docs/simulator.md, \"Error sources\")")
       ->check(CLI::IsMember({"ideal", "paper"}));
   run->add_flag("--quiet", a.quiet, "No progress bar");
+  run->add_flag("--restart", a.restart,
+                "Render every image again; without it, an interrupted simulation of the same run "
+                "in --out keeps the images it finished");
   run->add_flag("--allow-large", a.allow_large,
                 "Run even when the plan exceeds 200 000 images, 20 M odometry rows or the free "
                 "disk space");
@@ -96,7 +99,7 @@ int RunRun(const RunArgs& a) {
   SimulatedRun r;
   RunSizeEstimate size;
   auto estimate = [&] { size = EstimateRunSize(s, module); };
-  auto simulate = [&] { r = SimulateRun(s, module, pattern, a.out, progress); };
+  auto simulate = [&] { r = SimulateRun(s, module, pattern, a.out, progress, a.restart); };
   const auto in_scenario = [&](const auto& step) {
     if (a.scenario.empty())
       step();
@@ -129,6 +132,12 @@ int RunRun(const RunArgs& a) {
       size.bytes / 1e6);
   std::fflush(stdout);
   in_scenario(simulate);
+  if (r.images_kept > 0) {
+    fmt::print(
+        "resumed: {} of {} images kept from the interrupted simulation (--restart renders "
+        "them all)\n",
+        r.images_kept, r.images);
+  }
   fmt::print("run '{}': {} acquisitions x {} modules x 3 images = {} images of {}x{} px\n", s.name,
              r.plan.acquisitions, s.rig.modules, r.images, module.camera.width,
              module.camera.height);

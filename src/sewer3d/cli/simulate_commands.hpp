@@ -54,6 +54,7 @@ struct RunArgs {
   std::string realism;  ///< RealismProfile over the scenario's error sources
   bool quiet = false;
   bool allow_large = false;  ///< skip CheckRunFits
+  bool restart = false;      ///< render every image, keeping nothing of an interrupted simulation
 };
 
 /// Registers `simulate run` under `simulate`.

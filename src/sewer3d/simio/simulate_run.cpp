@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <mutex>
@@ -87,6 +88,45 @@ void PrepareRunFolder(const fs::path& out) {
   for (const char* sub : {"images", "truth"}) RemoveFolder(out / sub);
 }
 
+// Whether `out` holds an interrupted simulation of this very run (same scenario, rig and
+// pattern): the images it finished are the ones this simulation would render.
+bool IsInterruptedRunOf(const fs::path& out, const Scenario& s, const Rig& rig,
+                        const BinaryArray& pattern) {
+  try {
+    return IsSimulatedRun(out) && !ReadRunInfo(out / "run.json").complete &&
+           ReadTextFile(out / "truth" / "scenario.json") == ScenarioToJson(s) + "\n" &&
+           ReadTextFile(out / "rig.json") == RigToJson(rig) &&
+           ReadPatternMatrix(out / "pattern.png") == pattern;
+  } catch (const std::exception&) {
+    return false;  // anything unreadable: not a run to resume
+  }
+}
+
+bool WritesTruthDepth(const Scenario& s, const RunImage& shot) {
+  return s.truth_depth == TruthDepth::kAll ||
+         (s.truth_depth == TruthDepth::kPattern && shot.kind == ImageKind::kPattern);
+}
+
+// The files one shot writes: its image, and its truth depth and albedo where the scenario asks.
+struct ShotFiles {
+  ShotFiles(const fs::path& out, const Scenario& s, const RunImage& shot) : image(out / shot.file) {
+    const std::string stem = ImageStem(shot.module, shot.counter, shot.kind);
+    if (WritesTruthDepth(s, shot)) depth = out / "truth" / "depth" / (stem + ".tiff");
+    if (s.truth_albedo) albedo_stem = out / "truth" / "albedo" / stem;
+  }
+  // All of them on disk (each written atomically: a file there is whole).
+  bool Written() const {
+    std::vector<fs::path> files{image};
+    if (!depth.empty()) files.push_back(depth);
+    if (!albedo_stem.empty()) {
+      for (const fs::path& f : TruthAlbedoFiles(albedo_stem)) files.push_back(f);
+    }
+    return std::all_of(files.begin(), files.end(),
+                       [](const fs::path& f) { return IsRegularFile(f); });
+  }
+  fs::path image, depth, albedo_stem;  // empty: not written
+};
+
 }  // namespace
 
 bool IsSimulatedRun(const fs::path& folder) {
@@ -109,9 +149,7 @@ RunSizeEstimate EstimateRunSize(const Scenario& scenario, const ModuleDescriptio
   const double pixels = double(module.camera.width) * module.camera.height;
   int depth_maps = 0;
   for (const RunImage& shot : setup.plan.shots) {
-    depth_maps +=
-        scenario.truth_depth == TruthDepth::kAll ||
-        (scenario.truth_depth == TruthDepth::kPattern && shot.kind == ImageKind::kPattern);
+    depth_maps += WritesTruthDepth(scenario, shot);
   }
   const double per_image = 0.5 + (scenario.truth_albedo ? 2.0 : 0.0);
   size.bytes = static_cast<std::uintmax_t>(pixels * (per_image * size.images + 4.0 * depth_maps));
@@ -140,7 +178,7 @@ void CheckRunFits(const RunSizeEstimate& size, const fs::path& out) {
 
 SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& module_in,
                          const BinaryArray& pattern, const fs::path& out,
-                         const RunProgress& progress) {
+                         const RunProgress& progress, bool restart) {
   const auto start = std::chrono::steady_clock::now();
   ModuleDescription module = module_in;
   module.pattern.matrix_path = "pattern.png";
@@ -151,7 +189,8 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
   SimulatedRun result;
   result.plan = setup.plan;
   result.duration_s = trajectory.DurationS();
-  PrepareRunFolder(out);
+  const bool resume = !restart && IsInterruptedRunOf(out, scenario, rig, pattern);
+  if (!resume) PrepareRunFolder(out);
   result.overlap =
       NeighbourOverlaps(rig, scenario.capture.nominal_diameter_mm, Eigen::Vector2d::Zero(), true);
   const CapturePlan& plan = result.plan;
@@ -186,9 +225,17 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
   WriteImage(out / "truth" / "overview.png", RunOverview(pipe, rig, trajectory, plan));
 
   const int total = static_cast<int>(plan.shots.size());
-  std::atomic<int> done{0};
+  std::vector<char> kept(total, 0);
+  if (resume) {
+    for (const char* sub : {"images", "truth"}) RemoveStaleTemporaries(out / sub);
+    for (int i = 0; i < total; ++i) kept[i] = ShotFiles(out, scenario, plan.shots[i]).Written();
+    result.images_kept = static_cast<int>(std::count(kept.begin(), kept.end(), 1));
+  }
+  std::atomic<int> done{result.images_kept};
   std::mutex progress_mutex;
+  if (progress && resume) progress(result.images_kept, total);
   tbb::parallel_for(0, total, 1, [&](int i) {
+    if (kept[i]) return;
     const RunImage& shot = plan.shots[i];
     const RigModule& m = rig.modules[shot.module];
     const Rigid3d world_from_camera = poses[i].world_from_carrier * m.carrier_from_camera;
@@ -210,30 +257,21 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
     o.speed_mm_s = velocity.norm();
     if (o.speed_mm_s > 0.0)
       o.motion_direction = world_from_camera.rotation.conjugate() * velocity.normalized();
-    const bool truth =
-        scenario.truth_depth == TruthDepth::kAll ||
-        (scenario.truth_depth == TruthDepth::kPattern && shot.kind == ImageKind::kPattern);
-    o.truth_depth = truth;
+    const ShotFiles files(out, scenario, shot);
+    o.truth_depth = !files.depth.empty();
     o.white_balance = white_balance[shot.module];
     // Pattern images too: the colour the RGB-D stage gives at the pattern instant is judged
     // against what the camera saw then.
     o.truth_albedo = scenario.truth_albedo;
     const RenderedFrame frame =
         RenderFrame(m.module, pattern, PipeView(pipe, world_from_camera), o);
-    const fs::path image = out / index[i].file;
+    // The image last: a shot whose image is on disk has its truth too (resumption checks all).
+    if (o.truth_depth) WriteImage(files.depth, frame.truth_depth);
+    if (o.truth_albedo) WriteTruthAlbedo(files.albedo_stem, frame.truth_albedo);
     if (shot.kind == ImageKind::kPattern)
-      WritePatternImage(image, frame, o.sensor.bits);
+      WritePatternImage(files.image, frame, o.sensor.bits);
     else
-      WriteTextureImage(image, frame, o.sensor.bits);
-    if (truth) {
-      WriteImage(
-          out / "truth" / "depth" / (ImageStem(shot.module, shot.counter, shot.kind) + ".tiff"),
-          frame.truth_depth);
-    }
-    if (o.truth_albedo) {
-      WriteTruthAlbedo(out / "truth" / "albedo" / ImageStem(shot.module, shot.counter, shot.kind),
-                       frame.truth_albedo);
-    }
+      WriteTextureImage(files.image, frame, o.sensor.bits);
     const int now = ++done;
     if (progress) {
       const std::lock_guard<std::mutex> lock(progress_mutex);

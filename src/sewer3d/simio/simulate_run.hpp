@@ -18,9 +18,10 @@ namespace sewer3d {
 struct SimulatedRun {
   CapturePlan plan;
   int images = 0;
-  double duration_s = 0.0;                ///< of the run (robot time)
-  double wall_seconds = 0.0;              ///< to simulate it
-  std::uintmax_t bytes = 0;               ///< on disk
+  double duration_s = 0.0;    ///< of the run (robot time)
+  double wall_seconds = 0.0;  ///< to simulate it
+  std::uintmax_t bytes = 0;   ///< on disk
+  int images_kept = 0;        ///< of an interrupted simulation of the same run, not rendered again
   std::vector<NeighbourOverlap> overlap;  ///< 3-D coverage at the nominal diameter, centred
 };
 
@@ -54,10 +55,14 @@ inline constexpr int kMaxPlannedImages = 200'000;
 inline constexpr std::uint64_t kMaxOdometryRows = 20'000'000;
 
 /// Every module of the rig uses `module` and `pattern` (its matrix is written as pattern.png).
-/// A folder holding an earlier simulated run has its images and truth removed first (no stale
-/// image survives); a non-empty folder that is not a simulated run is refused (FileError).
+/// A folder holding an interrupted simulation of the same run (run.json not complete; the same
+/// scenario, rig and pattern) keeps the images it finished — every file of a shot written —
+/// and renders the rest, unless `restart`: images are rendered independently and
+/// deterministically, so the resumed run is the uninterrupted one. A folder holding any other
+/// simulated run has its images and truth removed first (no stale image survives); a non-empty
+/// folder that is not a simulated run is refused (FileError).
 SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& module,
                          const BinaryArray& pattern, const std::filesystem::path& out,
-                         const RunProgress& progress);
+                         const RunProgress& progress, bool restart = false);
 
 }  // namespace sewer3d

@@ -10,7 +10,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <vector>
 
 #include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/io/image_io.hpp"
@@ -131,6 +134,53 @@ TEST_F(TinyRun, RunFolderLoadsCompleteAndMatchesThePlan) {
   EXPECT_GE(run.odometry.back().time_s, run.images.back().time_s);
   EXPECT_GT(result_.bytes, 1000u);
   for (const NeighbourOverlap& o : result_.overlap) EXPECT_GT(o.overlap_deg, 5.0);
+}
+
+std::string FileText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A simulation killed part-way (run.json not complete, some shots' files missing, a writer's
+// temporary left) goes on from the images it finished and ends with the uninterrupted run.
+TEST_F(TinyRun, AnInterruptedSimulationResumesToTheSameFiles) {
+  const fs::path cut = dir_.string() + "_cut";
+  fs::remove_all(cut);
+  fs::copy(dir_, cut, fs::copy_options::recursive);
+  const std::string info = FileText(cut / "run.json");
+  const std::string complete = "\"complete\": true";
+  ASSERT_NE(info.find(complete), std::string::npos);
+  std::ofstream(cut / "run.json") << std::string(info).replace(info.find(complete), complete.size(),
+                                                               "\"complete\": false");
+  const CaptureRun run = LoadRun(dir_);
+  ASSERT_GE(run.images.size(), 8u);
+  const std::vector<std::size_t> lost_image = {0, 5, run.images.size() - 1};
+  for (std::size_t i : lost_image) fs::remove(cut / run.images[i].file);
+  // A shot whose image was written but not its truth depth is rendered again as well.
+  const RunImage& half = run.images[3];
+  fs::remove(cut / "truth" / "depth" / (ImageStem(half.module, half.counter, half.kind) + ".tiff"));
+  const fs::path temporary = cut / "images" / ".x.png.tmp-1-0.png";
+  std::ofstream(temporary) << "half an image";
+  const fs::path kept_image = cut / run.images[1].file;
+  const auto kept_time = fs::last_write_time(kept_image);
+
+  const Scenario s = PresetScenario("tiny");
+  int first_done = -1;
+  const SimulatedRun resumed = SimulateRun(s, testing::SmallDefaultModule(s.camera_width),
+                                           DefaultPatternArray(), cut, [&](int done, int) {
+                                             if (first_done < 0) first_done = done;
+                                           });
+  EXPECT_EQ(resumed.images_kept, result_.images - 4);
+  EXPECT_EQ(first_done, result_.images - 4);  // the progress starts where the last run stopped
+  EXPECT_TRUE(LoadRun(cut).info.complete);
+  EXPECT_FALSE(fs::exists(temporary));
+  EXPECT_EQ(fs::last_write_time(kept_image), kept_time);  // not rendered again
+  for (const auto& e : fs::recursive_directory_iterator(dir_)) {
+    const fs::path rel = fs::relative(e.path(), dir_);
+    if (!e.is_regular_file() || rel == "run.json") continue;
+    EXPECT_EQ(FileText(cut / rel), FileText(e.path())) << rel;
+  }
+  fs::remove_all(cut);
 }
 
 }  // namespace

@@ -38,6 +38,11 @@ void WriteCameraGains(const std::filesystem::path& path,
   WriteTextFile(path, text);
 }
 
+std::vector<std::filesystem::path> TruthAlbedoFiles(const std::filesystem::path& path_stem) {
+  const std::string stem = path_stem.string();
+  return {stem + ".png", stem + "_linear.png"};
+}
+
 void WriteTruthAlbedo(const std::filesystem::path& path_stem, const cv::Mat3f& albedo_rgb) {
   cv::Mat3b srgb(albedo_rgb.size());
   cv::Mat3w linear(albedo_rgb.size());
@@ -51,9 +56,9 @@ void WriteTruthAlbedo(const std::filesystem::path& path_stem, const cv::Mat3f& a
       }
     }
   }
-  const std::string stem = path_stem.string();
-  WriteImage(stem + ".png", srgb);
-  WriteImage(stem + "_linear.png", linear);
+  const std::vector<std::filesystem::path> files = TruthAlbedoFiles(path_stem);
+  WriteImage(files[0], srgb);
+  WriteImage(files[1], linear);
 }
 
 void WriteOdometryTruth(const std::filesystem::path& path,

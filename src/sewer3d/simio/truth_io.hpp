@@ -42,6 +42,8 @@ void WriteCameraGains(const std::filesystem::path& path,
 /// `<path_stem>.png` (8-bit sRGB) and `<path_stem>_linear.png` (16-bit, albedo × 65535), both
 /// in the BGR order cv::imwrite expects, 0 where NaN. Creates the folder.
 void WriteTruthAlbedo(const std::filesystem::path& path_stem, const cv::Mat3f& albedo_rgb);
+/// The two files WriteTruthAlbedo writes for `path_stem`.
+std::vector<std::filesystem::path> TruthAlbedoFiles(const std::filesystem::path& path_stem);
 
 /// truth/features.json: every joint, feature and deformed section with id, EN 13508-2 main
 /// code, station, clock position and true dimensions.
