@@ -47,6 +47,7 @@ int RunEvaluateModel(const std::string& run_folder, const std::string& workspace
   PrintRow("all", e.all);
   for (const auto& [name, f] : e.by_coverage) PrintRow(name, f);
   for (const auto& [name, f] : e.by_material) PrintRow(name, f);
+  PrintRow("away from steps", e.clean);
   const ErrorFigures& a = e.axis_offset;
   fmt::print("{}\n", a.cells == 0 ? "lateral axis offset from the truth: not estimated (no station "
                                     "has measured wall over half its circumference and most of "
@@ -58,6 +59,7 @@ int RunEvaluateModel(const std::string& run_folder, const std::string& workspace
   if (a.cells > 0) {
     PrintRow("all", e.after_axis_offset);
     for (const auto& [name, f] : e.after_axis_offset_by_material) PrintRow(name, f);
+    PrintRow("away from steps", e.clean_after_axis_offset);
   }
   const CircumferenceFigures& c = e.circumference;
   fmt::print("{}\n",

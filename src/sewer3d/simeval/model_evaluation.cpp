@@ -12,6 +12,7 @@
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/simeval/profile_evaluation.hpp"
 #include "sewer3d/simeval/truth_alignment.hpp"
 #include "sewer3d/simio/render_json.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
@@ -24,6 +25,7 @@ void ModelEvaluationOptions::Check() const {
   SEWER3D_VALIDATE(max_cells >= target_cells, "max_cells",
                    "must be at least target_cells (" << target_cells << "), got " << max_cells);
   ValidatePositive("station_bin_mm", station_bin_mm);
+  ValidateNotNegative("clean_margin_mm", clean_margin_mm);
   ValidatePositive("axis_outlier_mm", axis_outlier_mm);
   SEWER3D_VALIDATE(circumference_directions >= 8, "circumference_directions",
                    "must be ≥ 8, got " << circumference_directions);
@@ -59,6 +61,7 @@ struct RowCell {
   int j = 0;  ///< evaluated column
   Material material = Material::kConcrete;
   float error_mm = 0.0f;
+  bool clean = false;  ///< away from joints and features
 };
 
 /// The first harmonic (a, b) of a row's errors around the clock, e ≈ c + a cos θ + b sin θ: the
@@ -196,7 +199,7 @@ ModelEvaluation EvaluatePipeModel(const PipeModel& model, const PipeGeometry& tr
   std::array<std::vector<float>, 3> by_coverage;
   std::map<Material, std::vector<float>> by_material;
   std::array<std::vector<float>, 12> by_hour;
-  std::vector<float> after_axis, axis_offsets;
+  std::vector<float> after_axis, axis_offsets, clean, clean_after_axis;
   std::map<Material, std::vector<float>> after_axis_by_material;
   std::vector<RowCell> row_cells;
   const double radius = model.info.centreline.radius_mm;
@@ -220,7 +223,9 @@ ModelEvaluation EvaluatePipeModel(const PipeModel& model, const PipeGeometry& tr
       by_coverage[coverage].push_back(error);
       by_material[truth.world().sections[at.section].material].push_back(error);
       by_hour[hour_c[j]].push_back(error);
-      row_cells.push_back({j, truth.world().sections[at.section].material, error});
+      const bool away = IsCleanStation(truth, at.station_mm, options.clean_margin_mm);
+      if (away) clean.push_back(error);
+      row_cells.push_back({j, truth.world().sections[at.section].material, error, away});
     }
     const auto offset = AxisOffset(row_cells, out_cols, cos_c, sin_c, options.axis_outlier_mm);
     if (!offset) continue;
@@ -231,10 +236,13 @@ ModelEvaluation EvaluatePipeModel(const PipeModel& model, const PipeGeometry& tr
       e.after_axis_offset_mm(i, cell.j) = residual;
       after_axis.push_back(residual);
       after_axis_by_material[cell.material].push_back(residual);
+      if (cell.clean) clean_after_axis.push_back(residual);
     }
   }
   e.axis_offset = Figures(std::move(axis_offsets));
   e.after_axis_offset = Figures(std::move(after_axis));
+  e.clean = Figures(std::move(clean));
+  e.clean_after_axis_offset = Figures(std::move(clean_after_axis));
   for (auto& [material, list] : after_axis_by_material)
     e.after_axis_offset_by_material[MaterialName(material)] = Figures(std::move(list));
   e.all = Figures(std::move(all));

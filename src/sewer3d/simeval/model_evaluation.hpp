@@ -39,6 +39,9 @@ struct ModelEvaluationOptions {
   int circumference_directions = 720;  ///< clock directions per cross-section
   /// Axis offset per row: cells with |error| above this (joint gaps) are left out of the fit.
   double axis_outlier_mm = 2.0;
+  /// "Away from step faces" (issue 16): cells whose true station lies more than this from every
+  /// joint's gap and every feature's extent (IsCleanStation) form the `clean` class.
+  double clean_margin_mm = 10.0;
   void Check() const;
 };
 
@@ -75,7 +78,9 @@ struct ModelEvaluation {
   /// |lateral axis offset| per row (cells = rows fitted; mean_mm = mean |offset|, median_abs_mm,
   /// p95_abs_mm, max_abs_mm of |offset|).
   ErrorFigures axis_offset;
-  ErrorFigures after_axis_offset;  ///< the fitted rows' errors with their axis offset removed
+  ErrorFigures after_axis_offset;        ///< the fitted rows' errors with their axis offset removed
+  ErrorFigures clean;                    ///< cells away from joints and features
+  ErrorFigures clean_after_axis_offset;  ///< the same with their row's axis offset removed
   std::map<std::string, ErrorFigures> after_axis_offset_by_material;
   CircumferenceFigures circumference;
   std::vector<CircumferenceSample> circumference_profile;

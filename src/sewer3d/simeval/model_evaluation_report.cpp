@@ -96,6 +96,8 @@ std::string ModelEvaluationToJson(const ModelEvaluation& e) {
         {"p95_mm", Value(e.axis_offset.p95_abs_mm, e.axis_offset.cells > 0)},
         {"max_mm", Value(e.axis_offset.max_abs_mm, e.axis_offset.cells > 0)}}},
       {"after_axis_offset", FiguresJson(e.after_axis_offset)},
+      {"clean", FiguresJson(e.clean)},
+      {"clean_after_axis_offset", FiguresJson(e.clean_after_axis_offset)},
       {"after_axis_offset_by_material", after_axis},
       {"circumference",
        {{"sections", c.sections},

@@ -1,5 +1,7 @@
 #include "sewer3d/simeval/registration_evaluation.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -48,8 +50,10 @@ RegistrationEvaluation EvaluateRegistration(const std::filesystem::path& run_fol
   e.truth_from_model = alignment.truth_from_model;
   for (size_t i = 0; i < poses.size(); ++i) {
     const Eigen::Vector3d c_world = alignment.true_centres.col(static_cast<Eigen::Index>(i));
-    const double error =
-        (e.truth_from_model * poses[i].world_from_camera.translation - c_world).norm();
+    const Eigen::Vector3d offset =
+        e.truth_from_model * poses[i].world_from_camera.translation - c_world;
+    e.node_errors.push_back({poses[i].module, poses[i].counter, c_world, offset});
+    const double error = offset.norm();
     Add(e.ate, error);
     const int section = pipe.Locate(c_world).section;
     Add(e.ate_by_material[MaterialName(pipe.world().sections[section].material)], error);
@@ -60,7 +64,8 @@ RegistrationEvaluation EvaluateRegistration(const std::filesystem::path& run_fol
   // Accepted rows of edges.csv are graph.g2o's edges, in order.
   const std::vector<RegistrationEdgeRow> rows = ReadRegistrationEdges(folder / "edges.csv");
   const PoseGraph graph = ReadG2o(folder / "graph.g2o");
-  std::map<std::string, std::vector<double>> dt, dr, nees;
+  std::map<std::string, std::vector<double>> dt, dr, wall, nees;
+  const Eigen::Vector3d on_wall(0.0, 0.0, 150.0);  // in the second camera's frame
   size_t k = 0;
   for (const RegistrationEdgeRow& row : rows) {
     if (!row.accepted) continue;
@@ -70,16 +75,30 @@ RegistrationEvaluation EvaluateRegistration(const std::filesystem::path& run_fol
     const Rigid3d& wa = truth.at(edge.from);
     const Rigid3d& wb = truth.at(edge.to);
     const Rigid3d true_ab = wa.Inverse() * wb;
-    dt[row.type].push_back((edge.a_from_b.translation - true_ab.translation).norm());
-    dr[row.type].push_back(edge.a_from_b.rotation.angularDistance(true_ab.rotation) * kRadToDeg);
     const Eigen::Matrix<double, 6, 1> r = EdgeResidual(edge, wa, wb);
-    nees[row.type].push_back(r.dot(edge.information * r));
+    const EdgeError error{
+        row.from_module,
+        row.from_counter,
+        row.to_module,
+        row.to_counter,
+        row.type,
+        (edge.a_from_b.translation - true_ab.translation).norm(),
+        edge.a_from_b.rotation.angularDistance(true_ab.rotation) * kRadToDeg,
+        (edge.a_from_b * on_wall - true_ab * on_wall).norm(),
+        r.dot(edge.information * r),
+        (Eigen::Matrix<double, 6, 1>() << r.head<3>(), r.tail<3>() * kRadToDeg).finished()};
+    e.edge_errors.push_back(error);
+    dt[row.type].push_back(error.translation_mm);
+    dr[row.type].push_back(error.rotation_deg);
+    wall[row.type].push_back(error.wall_mm);
+    nees[row.type].push_back(error.nees);
   }
   for (auto& [type, list] : nees) {
     EdgeErrorFigures& f = e.edges[type];
     f.accepted = static_cast<int>(list.size());
     f.median_translation_mm = Median(dt[type]);
     f.median_rotation_deg = Median(dr[type]);
+    f.median_wall_mm = Median(wall[type]);
     for (double x : list) f.mean_nees += x / static_cast<double>(list.size());
     f.median_nees = Median(list);
   }
@@ -96,11 +115,36 @@ std::string RegistrationEvaluationToJson(const RegistrationEvaluation& e) {
     edges[type] = {{"accepted", f.accepted},
                    {"median_translation_mm", f.median_translation_mm},
                    {"median_rotation_deg", f.median_rotation_deg},
+                   {"median_wall_mm", f.median_wall_mm},
                    {"mean_nees", f.mean_nees},
                    {"median_nees", f.median_nees}};
   }
   const nlohmann::json j = {{"ate", ate(e.ate)}, {"ate_by_material", materials}, {"edges", edges}};
   return j.dump(2) + "\n";
+}
+
+std::string EdgeErrorsToCsv(const std::vector<EdgeError>& errors) {
+  std::string text =
+      "from_module,from_counter,to_module,to_counter,type,translation_mm,rotation_deg,wall_mm,"
+      "nees,tx_mm,ty_mm,tz_mm,rx_deg,ry_deg,rz_deg\n";
+  for (const EdgeError& x : errors) {
+    text += fmt::format("{},{},{},{},{},{:.4f},{:.5f},{:.4f},{:.3f}", x.from_module, x.from_counter,
+                        x.to_module, x.to_counter, x.type, x.translation_mm, x.rotation_deg,
+                        x.wall_mm, x.nees);
+    for (int i = 0; i < 6; ++i) text += fmt::format(",{:.5f}", x.residual[i]);
+    text += "\n";
+  }
+  return text;
+}
+
+std::string NodeErrorsToCsv(const std::vector<NodeError>& errors) {
+  std::string text = "module,counter,x_mm,y_mm,z_mm,ex_mm,ey_mm,ez_mm\n";
+  for (const NodeError& n : errors) {
+    text += fmt::format("{},{},{:.3f},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f}\n", n.module, n.counter,
+                        n.true_centre_mm.x(), n.true_centre_mm.y(), n.true_centre_mm.z(),
+                        n.error_mm.x(), n.error_mm.y(), n.error_mm.z());
+  }
+  return text;
 }
 
 }  // namespace sewer3d
