@@ -17,6 +17,7 @@ rows=(
   "+texture feature,projection,texture"
   "+rig+odometry feature,projection,texture,rig,odometry"
   "+straightness feature,projection,texture,rig,odometry,straightness"
+  "+bias feature,projection,texture,rig,odometry,straightness,bias"
 )
 printf '| evidence | ATE RMS (mm) | max (mm) | per material (RMS mm) | edges accepted / rejected |\n'
 printf '|---|---|---|---|---|\n'

@@ -27,8 +27,8 @@ Command AddRegisterCommand(CLI::App& app) {
     std::string run, out;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     bool quiet = false, force = false;
-    std::vector<std::string> edges{"feature", "projection", "texture",
-                                   "rig",     "odometry",   "straightness"};
+    std::vector<std::string> edges{"feature",  "projection",   "texture", "rig",
+                                   "odometry", "straightness", "bias"};
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -42,11 +42,12 @@ Command AddRegisterCommand(CLI::App& app) {
       ->check(CLI::Range(1, 256));
   sub->add_option("--edges", args->edges,
                   "Edge types the graph may use (ablation): feature, projection, texture (the "
-                  "projection edges' photometric term), rig, odometry, straightness; `none` "
-                  "keeps the odometry + rig poses")
+                  "projection edges' photometric term), rig, odometry, straightness, bias (the "
+                  "bias shared by the registrations between the same two modules, estimated); "
+                  "`none` keeps the odometry + rig poses")
       ->delimiter(',')
       ->check(CLI::IsMember(
-          {"feature", "projection", "texture", "rig", "odometry", "straightness", "none"}))
+          {"feature", "projection", "texture", "rig", "odometry", "straightness", "bias", "none"}))
       ->capture_default_str();
   sub->add_flag("--force", args->force,
                 "Redo the stage from scratch, also when it was run with other options");
@@ -69,6 +70,7 @@ Command AddRegisterCommand(CLI::App& app) {
             options.priors.rig = use("rig");
             options.priors.odometry = use("odometry");
             options.priors.straightness = use("straightness");
+            options.fusion.group_biases = use("bias");
             ProgressBar bar(args->quiet);
             auto progress = [&](const std::string& pass, int done, int total) {
               bar.Update("register " + pass, done, total, pass == "pairs" ? "pairs" : "steps");

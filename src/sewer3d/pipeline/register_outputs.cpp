@@ -49,35 +49,37 @@ std::string RegisterOptionsJson(const RegisterStageOptions& o) {
   const FeatureRegistrationOptions& f = o.pairs.features;
   const ProjectionRegistrationOptions& p = o.pairs.projection;
   const PriorEdgeOptions& r = o.priors;
-  const json j = {
-      {"neighbours",
-       {{"nominal_diameter_mm", o.neighbours.nominal_diameter_mm},
-        {"grid_step_px", o.neighbours.grid_step_px},
-        {"min_overlap", o.neighbours.min_overlap},
-        {"max_counter_gap", o.neighbours.max_counter_gap}}},
-      {"features",
-       {{"contrast_threshold", f.contrast_threshold},
-        {"ratio", f.ratio},
-        {"max_keypoints", f.max_keypoints},
-        {"min_inliers", f.points.min_inliers}}},
-      {"feature_registration", o.pairs.feature_registration},
-      {"between_modules_floor",
-       {o.pairs.between_modules_floor_mm, o.pairs.between_modules_floor_deg}},
-      {"projection",
-       {{"enabled", o.pairs.projection_fallback},
-        {"sample_step_px", p.sample_step_px},
-        {"photometric", p.photometric.enabled},
-        {"max_distance_mm", p.max_distance_mm}}},
-      {"priors",
-       {{"rig", r.rig},
-        {"odometry", r.odometry},
-        {"straightness", r.straightness},
-        {"rig_sigma_mm", r.rig_sigma_mm},
-        {"rig_sigma_deg", r.rig_sigma_deg},
-        {"odometry_noise_mm", r.odometry_noise_mm},
-        {"min_bend_radius_mm", r.min_bend_radius_mm}}},
-      {"fusion", {{"huber_delta", o.fusion.huber_delta}, {"gate_chi2", o.fusion.gate_chi2}}},
-      {"min_depth_points", o.min_depth_points}};
+  const json j = {{"neighbours",
+                   {{"nominal_diameter_mm", o.neighbours.nominal_diameter_mm},
+                    {"grid_step_px", o.neighbours.grid_step_px},
+                    {"min_overlap", o.neighbours.min_overlap},
+                    {"max_counter_gap", o.neighbours.max_counter_gap}}},
+                  {"features",
+                   {{"contrast_threshold", f.contrast_threshold},
+                    {"ratio", f.ratio},
+                    {"max_keypoints", f.max_keypoints},
+                    {"min_inliers", f.points.min_inliers}}},
+                  {"feature_registration", o.pairs.feature_registration},
+                  {"between_modules_floor",
+                   {o.pairs.between_modules_floor_mm, o.pairs.between_modules_floor_deg}},
+                  {"projection",
+                   {{"enabled", o.pairs.projection_fallback},
+                    {"sample_step_px", p.sample_step_px},
+                    {"photometric", p.photometric.enabled},
+                    {"max_distance_mm", p.max_distance_mm}}},
+                  {"priors",
+                   {{"rig", r.rig},
+                    {"odometry", r.odometry},
+                    {"straightness", r.straightness},
+                    {"rig_sigma_mm", r.rig_sigma_mm},
+                    {"rig_sigma_deg", r.rig_sigma_deg},
+                    {"odometry_noise_mm", r.odometry_noise_mm},
+                    {"min_bend_radius_mm", r.min_bend_radius_mm}}},
+                  {"fusion",
+                   {{"huber_delta", o.fusion.huber_delta},
+                    {"gate_chi2", o.fusion.gate_chi2},
+                    {"group_biases", o.fusion.group_biases}}},
+                  {"min_depth_points", o.min_depth_points}};
   return j.dump();
 }
 
@@ -103,6 +105,16 @@ std::string RegisterStageReportToJson(const RegisterStageReport& report) {
                             {"edges", p.edges},
                             {"rejected", p.rejected},
                             {"median_rejected_offset_mm", p.median_rejected_offset_mm}});
+  }
+  json biases = json::array();
+  for (const EdgeGroupBias& b : report.fusion.biases) {
+    const Eigen::Vector3d turn = b.bias.tail<3>() * (180.0 / M_PI);
+    biases.push_back({{"type", RegistrationEdgeTypeName(b.type)},
+                      {"modules", {b.module_a, b.module_b}},
+                      {"counter_step", b.counter_step},
+                      {"edges", b.edges},
+                      {"translation_mm", {b.bias[0], b.bias[1], b.bias[2]}},
+                      {"rotation_deg", {turn.x(), turn.y(), turn.z()}}});
   }
   const CarrierOffsetEstimate& c = report.carrier_offset;
   const json j = {
@@ -143,6 +155,7 @@ std::string RegisterStageReportToJson(const RegisterStageReport& report) {
         {"final_solve", SolveJson(report.fusion.final_solve)},
         {"by_type", by_type},
         {"module_pairs", module_pairs},
+        {"group_biases", biases},
         {"rig_warnings", report.rig_warnings},
         {"graph_warnings", report.graph_warnings}}},
       {"seconds",

@@ -26,7 +26,17 @@ void PoseGraph::AddEdge(const PoseEdge& edge) {
   SEWER3D_VALIDATE(
       edge.a_from_b.translation.allFinite() && edge.a_from_b.rotation.coeffs().allFinite(), "",
       "edge " << edge.from << " -> " << edge.to << " has non-finite values");
+  SEWER3D_VALIDATE(edge.bias < 0 || biases_.count(edge.bias) != 0, "",
+                   "edge " << edge.from << " -> " << edge.to << " names bias group " << edge.bias
+                           << ", which is not set");
   edges_.push_back(edge);
+}
+
+void PoseGraph::SetBias(int id, const EdgeBias& bias) {
+  SEWER3D_VALIDATE(IsSymmetricPositiveDefinite(bias.prior_information), "",
+                   "prior information of bias group " << id << " is not positive definite");
+  SEWER3D_VALIDATE(bias.value.allFinite(), "", "bias group " << id << " has non-finite values");
+  biases_[id] = bias;
 }
 
 void PoseGraph::AddRegularisationEdge(int a, int b, const Rigid3d& a_from_b,
@@ -41,6 +51,19 @@ void PoseGraph::AddRegularisationEdge(int a, int b, const Rigid3d& a_from_b,
   edge.information = 0.5 * (edge.information + edge.information.transpose()).eval();
   edge.kind = EdgeKind::kRegularisation;
   AddEdge(edge);
+}
+
+void PoseGraph::AddZeroSum(const BiasSum& sum) {
+  SEWER3D_VALIDATE(
+      sum.groups.size() == sum.frames.size(), "",
+      "a zero sum with " << sum.groups.size() << " groups and " << sum.frames.size() << " frames");
+  for (int g : sum.groups) {
+    SEWER3D_VALIDATE(biases_.count(g) != 0, "",
+                     "zero sum names bias group " << g << ", which is not set");
+  }
+  SEWER3D_VALIDATE(IsSymmetricPositiveDefinite(sum.information), "",
+                   "information of a zero sum is not positive definite");
+  zero_sums_.push_back(sum);
 }
 
 Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& world_from_a,
@@ -58,8 +81,17 @@ Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& wo
 double GraphCost(const PoseGraph& graph) {
   double cost = 0.0;
   for (const PoseEdge& e : graph.edges()) {
-    const auto r = EdgeResidual(e, graph.node(e.from), graph.node(e.to));
+    auto r = EdgeResidual(e, graph.node(e.from), graph.node(e.to));
+    if (e.bias >= 0) r -= graph.biases().at(e.bias).value;
     cost += 0.5 * r.dot(e.information * r);
+  }
+  for (const auto& [id, b] : graph.biases())
+    cost += 0.5 * b.value.dot(b.prior_information * b.value);
+  for (const BiasSum& z : graph.zero_sums()) {
+    Eigen::Matrix<double, 6, 1> sum = Eigen::Matrix<double, 6, 1>::Zero();
+    for (size_t k = 0; k < z.groups.size(); ++k)
+      sum += z.frames[k] * graph.biases().at(z.groups[k]).value;
+    cost += 0.5 * sum.dot(z.information * sum);
   }
   return cost;
 }

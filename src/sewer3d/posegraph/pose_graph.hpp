@@ -32,6 +32,23 @@ struct PoseEdge {
   EdgeKind kind = EdgeKind::kGeneric;
   /// Huber scale for this edge's residual norm (<= 0: plain least squares).
   double huber_delta = 0.0;
+  /// The group (PoseGraph::biases()) whose bias b this edge's measurement shares: the residual
+  /// becomes r − b; −1: none.
+  int bias = -1;
+};
+
+/// A bias shared by a group of edges (one sensor's systematic error, e.g. every registration
+/// between the same two modules): estimated with the poses under a zero-mean Gaussian prior.
+struct EdgeBias {
+  Eigen::Matrix<double, 6, 1> value = Eigen::Matrix<double, 6, 1>::Zero();
+  Matrix6d prior_information = Matrix6d::Identity();  ///< SPD
+};
+
+/// Σ_k frames[k] · b(groups[k]) = 0, with `information` on the sum (PoseGraph::AddZeroSum).
+struct BiasSum {
+  std::vector<int> groups;
+  std::vector<Matrix6d> frames;
+  Matrix6d information = Matrix6d::Identity();
 };
 
 class PoseGraph {
@@ -43,9 +60,21 @@ class PoseGraph {
   Rigid3d& mutable_node(int id) { return nodes_.at(id); }
   const std::map<int, Rigid3d>& nodes() const { return nodes_; }
 
-  /// Adds an edge; throws std::invalid_argument for unknown nodes, a self-loop, or an
-  /// information matrix that is not symmetric positive definite.
+  /// Adds an edge; throws std::invalid_argument for unknown nodes, a self-loop, an
+  /// information matrix that is not symmetric positive definite, or a bias group not set.
   void AddEdge(const PoseEdge& edge);
+
+  /// Adds or replaces bias group `id` (std::invalid_argument: a prior that is not SPD).
+  void SetBias(int id, const EdgeBias& bias);
+  const std::map<int, EdgeBias>& biases() const { return biases_; }
+  std::map<int, EdgeBias>& mutable_biases() { return biases_; }
+
+  /// Biases whose sum Σ A_g b_g is known to be zero (e.g. the same kind of error of several
+  /// sensors that err independently, each bias turned into a common frame by A_g), with this
+  /// information on the sum: ½ (Σ A b)ᵀ Ω (Σ A b) joins the cost. std::invalid_argument: a
+  /// group not set, sizes that differ, or information that is not SPD.
+  void AddZeroSum(const BiasSum& sum);
+  const std::vector<BiasSum>& zero_sums() const { return zero_sums_; }
 
   /// The paper's regularisation edge: "node b sits at a_from_b relative to node a" with the
   /// given 6x6 covariance (translation mm², rotation rad²), e.g. first and last acquisition
@@ -64,6 +93,8 @@ class PoseGraph {
   std::map<int, Rigid3d> nodes_;
   std::vector<PoseEdge> edges_;
   std::vector<int> fixed_;
+  std::map<int, EdgeBias> biases_;
+  std::vector<BiasSum> zero_sums_;
 };
 
 /// The residual of one edge at the given poses (Ceres' pose_graph_3d convention):
@@ -73,6 +104,8 @@ Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& wo
 
 /// ½ Σ rᵀ Ω r over all edges (no robust loss): the cost convention of Ceres' example and of
 /// the published benchmark values.
+/// ½ Σ rᵀΩr, with r − b for edges of a bias group, plus ½ Σ bᵀ P b of the biases' priors and
+/// the zero sums' terms.
 double GraphCost(const PoseGraph& graph);
 
 /// GraphCost with every edge's measurement inverted (b_from_a in place of a_from_b): far below

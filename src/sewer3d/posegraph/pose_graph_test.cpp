@@ -6,6 +6,9 @@
 
 #include <memory>
 #include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/posegraph/edge_cost.hpp"
@@ -191,6 +194,78 @@ TEST(Optimise, HuberLossResistsAWrongRegistration) {
   const double robust = max_distance(solve(1.0, true), clean);
   EXPECT_GT(plain, 20.0);
   EXPECT_LT(robust, plain / 20.0) << "plain " << plain;
+}
+
+// Ten poses 10 mm apart along x, each step measured twice (σ 0.01 mm, 0.01 rad); the measurements
+// of `groups` (one list per bias group, by step set) read every step 0.2 mm long.
+PoseGraph TwiceMeasuredSteps(const std::vector<double>& set_bias_mm,
+                             const std::vector<int>& group) {
+  PoseGraph graph;
+  for (int i = 0; i < 10; ++i)
+    graph.SetNode(i, {Eigen::Quaterniond::Identity(), Eigen::Vector3d(10.0 * i, 0.0, 0.0)});
+  EdgeBias prior;
+  prior.prior_information.diagonal() << 1, 1, 1, 1, 1, 1;  // σ 1 mm, 1 rad: weak
+  for (int g : group) {
+    if (g >= 0 && graph.biases().count(g) == 0) graph.SetBias(g, prior);
+  }
+  for (size_t set = 0; set < set_bias_mm.size(); ++set) {
+    for (int i = 0; i + 1 < 10; ++i) {
+      PoseEdge e;
+      e.from = i;
+      e.to = i + 1;
+      e.a_from_b = {Eigen::Quaterniond::Identity(), Eigen::Vector3d(10.0 + set_bias_mm[set], 0, 0)};
+      e.information.diagonal() << 1e4, 1e4, 1e4, 1e4, 1e4, 1e4;
+      e.bias = group[set];
+      graph.AddEdge(e);
+    }
+  }
+  graph.fixed_nodes() = {0};
+  return graph;
+}
+
+TEST(Optimise, EstimatesTheBiasAGroupOfEdgesShares) {
+  // Exact steps and steps 0.2 mm long: alone, least squares splits the difference.
+  PoseGraph plain = TwiceMeasuredSteps({0.0, 0.2}, {-1, -1});
+  PoseGraphOptions options;
+  options.init = PoseGraphInit::kGiven;
+  ASSERT_TRUE(OptimisePoseGraph(plain, options).usable);
+  EXPECT_NEAR(plain.node(9).translation.x(), 90.0 + 9 * 0.1, 1e-3);
+  // The long ones as a bias group: the bias takes the 0.2 mm (shrunk by the weak prior: 9 edges
+  // of 1e4 against 1), and the steps are exact.
+  PoseGraph biased = TwiceMeasuredSteps({0.0, 0.2}, {-1, 0});
+  const PoseGraphReport report = OptimisePoseGraph(biased, options);
+  ASSERT_TRUE(report.usable);
+  EXPECT_NEAR(biased.node(9).translation.x(), 90.0, 1e-3);
+  EXPECT_NEAR(biased.biases().at(0).value.x(), -0.2, 1e-3);  // r − b = 0 with r = −0.2
+  EXPECT_NEAR(biased.biases().at(0).value.tail<5>().norm(), 0.0, 1e-6);
+  EXPECT_NEAR(report.final_cost, GraphCost(biased), 1e-9);
+  EXPECT_NEAR(report.final_cost, 0.5 * 0.2 * 0.2, 1e-3);  // the prior's term: the edges fit
+  // Both sets biased alike, in two groups held to a zero sum: the common part stays in the
+  // poses (the data say the steps are 10.2 mm), not in the biases.
+  PoseGraph both = TwiceMeasuredSteps({0.2, 0.2}, {0, 1});
+  both.AddZeroSum(
+      {{0, 1}, {Matrix6d::Identity(), Matrix6d::Identity()}, Matrix6d::Identity() * 1e6});
+  ASSERT_TRUE(OptimisePoseGraph(both, options).usable);
+  EXPECT_NEAR(both.node(9).translation.x(), 90.0 + 9 * 0.2, 1e-3);
+  EXPECT_NEAR(both.biases().at(0).value.norm(), 0.0, 1e-4);
+  EXPECT_NEAR(both.biases().at(1).value.norm(), 0.0, 1e-4);
+  // A graph with biases is not a pose graph: no certificate.
+  options.certify = true;
+  const PoseGraphReport certified = OptimisePoseGraph(biased, options);
+  EXPECT_FALSE(certified.certificate_applicable);
+  EXPECT_NE(certified.certificate_reason.find("bias"), std::string::npos);
+}
+
+TEST(PoseGraph, RefusesEdgesOfABiasGroupNotSet) {
+  PoseGraph graph;
+  graph.SetNode(0, Rigid3d());
+  graph.SetNode(1, Rigid3d());
+  PoseEdge e;
+  e.to = 1;
+  e.bias = 3;
+  EXPECT_THROW(graph.AddEdge(e), std::invalid_argument);
+  EXPECT_THROW(graph.AddZeroSum({{3}, {Matrix6d::Identity()}, Matrix6d::Identity()}),
+               std::invalid_argument);
 }
 
 // A straight run of 20 poses 100 mm apart, measured with 0.1 mm and 1 mrad of noise and

@@ -1,12 +1,14 @@
 #include "sewer3d/posegraph/solver.hpp"
 
 #include <ceres/ceres.h>
+#include <ceres/normal_prior.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <unordered_map>
 
 #include "sewer3d/core/check.hpp"
@@ -183,13 +185,42 @@ LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
     p[i] = pose.translation;
     q[i] = pose.rotation;
   }
+  std::map<int, Eigen::Matrix<double, 6, 1>> bias;
+  for (const auto& [id, b] : graph.biases()) bias[id] = b.value;
   ceres::Problem problem;
   for (const PoseEdge& e : graph.edges()) {
     const int a = ix.index_of_id.at(e.from), b = ix.index_of_id.at(e.to);
     const double delta = e.huber_delta > 0.0 ? e.huber_delta : options.huber_delta;
     ceres::LossFunction* loss = delta > 0.0 ? new ceres::HuberLoss(delta) : nullptr;
-    problem.AddResidualBlock(EdgeCost::Create(e.a_from_b, SqrtInformation(e.information)), loss,
-                             p[a].data(), q[a].coeffs().data(), p[b].data(), q[b].coeffs().data());
+    const Matrix6d sqrt_information = SqrtInformation(e.information);
+    if (e.bias >= 0) {
+      problem.AddResidualBlock(BiasedEdgeCost::Create(e.a_from_b, sqrt_information), loss,
+                               p[a].data(), q[a].coeffs().data(), p[b].data(), q[b].coeffs().data(),
+                               bias.at(e.bias).data());
+    } else {
+      problem.AddResidualBlock(EdgeCost::Create(e.a_from_b, sqrt_information), loss, p[a].data(),
+                               q[a].coeffs().data(), p[b].data(), q[b].coeffs().data());
+    }
+  }
+  // Each bias's prior (only those some edge uses: an unused one stays as it is).
+  for (const auto& [id, b] : graph.biases()) {
+    if (!problem.HasParameterBlock(bias.at(id).data())) continue;
+    const Matrix6d s = SqrtInformation(b.prior_information);
+    problem.AddResidualBlock(new ceres::NormalPrior(ceres::Matrix(s), ceres::Vector::Zero(6)),
+                             nullptr, bias.at(id).data());
+  }
+  for (const BiasSum& z : graph.zero_sums()) {
+    std::vector<double*> blocks;
+    std::vector<Matrix6d> frames;
+    for (size_t k = 0; k < z.groups.size(); ++k) {
+      double* block = bias.at(z.groups[k]).data();
+      if (!problem.HasParameterBlock(block)) continue;
+      blocks.push_back(block);
+      frames.push_back(z.frames[k]);
+    }
+    if (blocks.empty()) continue;
+    problem.AddResidualBlock(new BiasSumCost(std::move(frames), SqrtInformation(z.information)),
+                             nullptr, blocks);
   }
   for (size_t i = 0; i < count; ++i) {
     if (!problem.HasParameterBlock(p[i].data())) continue;
@@ -215,8 +246,10 @@ LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
   bool finite = true;
   for (size_t i = 0; i < count; ++i)
     finite = finite && p[i].allFinite() && q[i].coeffs().allFinite();
-  if (finite) {  // a diverged solve leaves the initial poses in place
+  for (const auto& [id, b] : bias) finite = finite && b.allFinite();
+  if (finite) {  // a diverged solve leaves the initial poses and biases in place
     for (size_t i = 0; i < count; ++i) graph.mutable_node(ix.id_of_index[i]) = Rigid3d(q[i], p[i]);
+    for (const auto& [id, b] : bias) graph.mutable_biases().at(id).value = b;
   }
   // Ceres reports -1 steps when it did not iterate.
   result.iterations =
@@ -235,6 +268,10 @@ void Certify(PoseGraph& graph, const PoseGraphOptions& options, PoseGraphReport&
   const auto start = Clock::now();
   if (options.huber_delta > 0.0) {
     report.certificate_reason = "robust loss";
+    return;
+  }
+  if (!graph.biases().empty()) {
+    report.certificate_reason = "edge biases (estimated with the poses: not a pose graph)";
     return;
   }
   PoseGraph rounded;

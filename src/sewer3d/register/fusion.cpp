@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <tuple>
+#include <utility>
 
 #include "sewer3d/core/check.hpp"
 
@@ -9,6 +12,11 @@ namespace sewer3d {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
+// Information of a zero sum of biases (BiasGroups): σ 0.005 mm and 0.001° — held, not weighed.
+const Matrix6d kZeroSum = (Vector6d() << Eigen::Vector3d::Constant(1.0 / (0.005 * 0.005)),
+                           Eigen::Vector3d::Constant(std::pow(0.001 / kRadToDeg, -2)))
+                              .finished()
+                              .asDiagonal();
 
 EdgeKind KindOf(RegistrationEdgeType type) {
   switch (type) {
@@ -44,16 +52,112 @@ PoseEdge ToPoseEdge(const RegistrationEdge& e, double huber_delta) {
   return p;
 }
 
-/// The graph of the accepted edges at the given poses (node 0 fixed).
+using GroupKey = std::tuple<int, int, int, int>;  // type, module a, module b, counter step
+
+// The edges that share a bias: per edge its group (or −1), each group's key, and the families
+// of groups whose biases sum to zero. Groups are of feature edges only: projection edges are
+// few per group and degenerate on a plain cylinder (a bias there would fill the directions
+// their information leaves open). A family: the registrations of each module with itself at one
+// counter step (the along pairs). Their common part, in the carrier's frame, is the carrier's
+// motion itself (its speed; a turn of every module alike: the "bent pipe"), which only the
+// odometry and the straightness prior could tell from a bias; the modules' calibrations err
+// independently, so their mean is taken as zero. Each bias is turned from its camera's frame
+// into the model frame by the camera's initial orientation.
+struct BiasGroups {
+  std::vector<int> of_edge;
+  std::vector<GroupKey> keys;
+  std::vector<BiasSum> zero_sums;
+};
+
+// The residual's frame (camera a's: translation and rotation vector) into the model frame.
+Matrix6d ModelFromCamera(const AcquisitionNode& a) {
+  const Eigen::Matrix3d r = a.world_from_camera.RotationMatrix();
+  Matrix6d m = Matrix6d::Zero();
+  m.topLeftCorner<3, 3>() = r;
+  m.bottomRightCorner<3, 3>() = r;
+  return m;
+}
+
+BiasGroups FindBiasGroups(const std::vector<AcquisitionNode>& nodes,
+                          const std::vector<RegistrationEdge>& edges,
+                          const FusionOptions& options) {
+  BiasGroups groups;
+  groups.of_edge.assign(edges.size(), -1);
+  if (!options.group_biases) return groups;
+  std::map<GroupKey, std::vector<size_t>> members;
+  for (size_t k = 0; k < edges.size(); ++k) {
+    const RegistrationEdge& e = edges[k];
+    if (e.type != RegistrationEdgeType::kFeature) continue;
+    members[{static_cast<int>(e.type), nodes[e.a].module, nodes[e.b].module,
+             nodes[e.b].counter - nodes[e.a].counter}]
+        .push_back(k);
+  }
+  std::map<std::pair<int, int>, BiasSum> along;  // type, counter step
+  for (const auto& [key, list] : members) {
+    if (static_cast<int>(list.size()) < options.min_bias_edges) continue;
+    const int g = static_cast<int>(groups.keys.size());
+    for (size_t k : list) groups.of_edge[k] = g;
+    groups.keys.push_back(key);
+    const auto& [type, module_a, module_b, step] = key;
+    if (module_a != module_b) continue;
+    BiasSum& family = along[{type, step}];
+    family.groups.push_back(g);
+    family.frames.push_back(ModelFromCamera(nodes[edges[list.front()].a]));
+    family.information = kZeroSum;
+  }
+  for (auto& [family, sum] : along) groups.zero_sums.push_back(std::move(sum));
+  return groups;
+}
+
+/// The graph of the accepted edges at the given poses (node 0 fixed), each group's edges
+/// sharing its bias (starting at `bias`, prior information `prior`).
 PoseGraph BuildGraph(const std::vector<Rigid3d>& poses, const std::vector<RegistrationEdge>& edges,
-                     const std::vector<bool>& accepted, double huber_delta) {
+                     const std::vector<bool>& accepted, double huber_delta,
+                     const BiasGroups& groups, const std::vector<Vector6d>& bias,
+                     const Matrix6d& prior) {
   PoseGraph graph;
   for (int i = 0; i < static_cast<int>(poses.size()); ++i) graph.SetNode(i, poses[i]);
+  for (size_t g = 0; g < groups.keys.size(); ++g)
+    graph.SetBias(static_cast<int>(g), EdgeBias{bias[g], prior});
+  for (const BiasSum& family : groups.zero_sums) graph.AddZeroSum(family);
   for (size_t k = 0; k < edges.size(); ++k) {
-    if (accepted[k]) graph.AddEdge(ToPoseEdge(edges[k], huber_delta));
+    if (!accepted[k]) continue;
+    PoseEdge e = ToPoseEdge(edges[k], huber_delta);
+    e.bias = groups.keys.empty() ? -1 : groups.of_edge[k];
+    graph.AddEdge(e);
   }
   graph.fixed_nodes() = {0};
   return graph;
+}
+
+std::vector<Vector6d> Biases(const PoseGraph& graph, size_t count) {
+  std::vector<Vector6d> bias(count);
+  for (size_t g = 0; g < count; ++g) bias[g] = graph.biases().at(static_cast<int>(g)).value;
+  return bias;
+}
+
+// The measurement whose residual is smaller by `bias` (translation: p̂ + b_t; rotation: the
+// residual 2 vec(q̂ q⁻¹) is about the rotation vector, so q̂ turns by −b_r first).
+Rigid3d Corrected(const Rigid3d& a_from_b, const Vector6d& bias) {
+  Rigid3d c = a_from_b;
+  c.translation += bias.head<3>();
+  const Eigen::Vector3d turn = -bias.tail<3>();
+  if (const double angle = turn.norm(); angle > 0.0) {
+    c.rotation =
+        (Eigen::Quaterniond(Eigen::AngleAxisd(angle, turn / angle)) * c.rotation).normalized();
+  }
+  return c;
+}
+
+// The edges with their groups' biases taken out of the measurements.
+std::vector<RegistrationEdge> Corrected(std::vector<RegistrationEdge> edges,
+                                        const BiasGroups& groups,
+                                        const std::vector<Vector6d>& bias) {
+  for (size_t k = 0; k < edges.size(); ++k) {
+    if (const int g = groups.of_edge[k]; g >= 0)
+      edges[k].a_from_b = Corrected(edges[k].a_from_b, bias[g]);
+  }
+  return edges;
 }
 
 std::vector<Rigid3d> Poses(const PoseGraph& graph, size_t count) {
@@ -104,6 +208,9 @@ void FusionOptions::Check() const {
   SEWER3D_VALIDATE(max_iterations >= 1, "max_iterations", "must be ≥ 1, got " << max_iterations);
   SEWER3D_VALIDATE(threads >= 1, "threads", "must be ≥ 1, got " << threads);
   SEWER3D_VALIDATE(max_certify_nodes >= 0, "max_certify_nodes", "must be ≥ 0");
+  SEWER3D_VALIDATE(min_bias_edges >= 1, "min_bias_edges", "must be ≥ 1, got " << min_bias_edges);
+  ValidatePositive("bias_sigma_mm", bias_sigma_mm);
+  ValidatePositive("bias_sigma_deg", bias_sigma_deg);
 }
 
 FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
@@ -121,20 +228,29 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
   result.chi2.assign(edges.size(), 0.0);
   std::vector<Rigid3d> poses;
   for (const AcquisitionNode& node : nodes) poses.push_back(node.world_from_camera);
+  const BiasGroups groups = FindBiasGroups(nodes, edges, options);
+  std::vector<Vector6d> bias(groups.keys.size(), Vector6d::Zero());
+  Vector6d prior;
+  prior << Eigen::Vector3d::Constant(std::pow(options.bias_sigma_mm, -2)),
+      Eigen::Vector3d::Constant(std::pow(options.bias_sigma_deg / kRadToDeg, -2));
+  const Matrix6d prior_information = prior.asDiagonal();
 
   PoseGraphOptions solve;
   solve.init = PoseGraphInit::kGiven;
   solve.max_iterations = options.max_iterations;
   solve.num_threads = options.threads;
-  PoseGraph graph = BuildGraph(poses, edges, result.accepted, options.huber_delta);
+  PoseGraph graph = BuildGraph(poses, edges, result.accepted, options.huber_delta, groups, bias,
+                               prior_information);
   result.report.first_solve = OptimisePoseGraph(graph, solve);
   poses = Poses(graph, nodes.size());
+  bias = Biases(graph, bias.size());
 
   // Gate, then least squares on what is left, until the gate rejects nothing more.
   for (int round = 0; round < options.max_gate_rounds; ++round) {
+    const std::vector<RegistrationEdge> corrected = Corrected(edges, groups, bias);
     int rejected_now = 0;
     for (size_t k = 0; k < edges.size(); ++k) {
-      const Vector6d r = Residual(edges[k], poses);
+      const Vector6d r = Residual(corrected[k], poses);
       result.chi2[k] = r.dot(edges[k].information * r);
       if (result.accepted[k] && IsRobustEdge(edges[k].type) && result.chi2[k] > options.gate_chi2) {
         result.accepted[k] = false;
@@ -144,23 +260,37 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
     if (round > 0 && rejected_now == 0) break;
     result.report.rejected += rejected_now;
     ++result.report.gate_rounds;
-    graph = BuildGraph(poses, edges, result.accepted, 0.0);
-    solve.certify = false;
+    graph = BuildGraph(poses, edges, result.accepted, 0.0, groups, bias, prior_information);
     result.report.final_solve = OptimisePoseGraph(graph, solve);
     poses = Poses(graph, nodes.size());
+    bias = Biases(graph, bias.size());
   }
-  // The certificate of the final (least-squares) graph.
+  // The biases go into the measurements: what is left is a pose graph (written as graph.g2o),
+  // and the certificate applies to it.
+  result.edges = Corrected(edges, groups, bias);
+  graph = BuildGraph(poses, result.edges, result.accepted, 0.0, BiasGroups{}, {}, Matrix6d());
   if (options.certify && n <= options.max_certify_nodes && n > 1) {
     solve.certify = true;
     result.report.final_solve = OptimisePoseGraph(graph, solve);
     poses = Poses(graph, nodes.size());
   }
   for (size_t k = 0; k < edges.size(); ++k) {
-    const Vector6d r = Residual(edges[k], poses);
+    const Vector6d r = Residual(result.edges[k], poses);
     result.chi2[k] = r.dot(edges[k].information * r);
   }
   result.report.usable = result.report.first_solve.usable && result.report.final_solve.usable;
-  Statistics(edges, poses, result);
+  Statistics(result.edges, poses, result);
+  for (size_t g = 0; g < groups.keys.size(); ++g) {
+    EdgeGroupBias b;
+    b.type = static_cast<RegistrationEdgeType>(std::get<0>(groups.keys[g]));
+    b.module_a = std::get<1>(groups.keys[g]);
+    b.module_b = std::get<2>(groups.keys[g]);
+    b.counter_step = std::get<3>(groups.keys[g]);
+    for (size_t k = 0; k < edges.size(); ++k)
+      b.edges += groups.of_edge[k] == static_cast<int>(g) && result.accepted[k];
+    b.bias = bias[g];
+    result.report.biases.push_back(b);
+  }
   result.world_from_camera = std::move(poses);
   result.graph = std::move(graph);
   return result;
