@@ -20,6 +20,7 @@ int RunEvaluateRegistration(const std::string& run_folder, const std::string& wo
   WriteTextFileAtomically(folder / "evaluation.json", RegistrationEvaluationToJson(e));
   WriteTextFileAtomically(folder / "edges.csv", EdgeErrorsToCsv(e.edge_errors));
   WriteTextFileAtomically(folder / "nodes.csv", NodeErrorsToCsv(e.node_errors));
+  WriteTextFileAtomically(folder / "trajectory_error.svg", TrajectoryErrorSvg(e.node_errors));
   fmt::print(
       "absolute trajectory error of {} camera centres (one rigid alignment): RMS {:.3f} mm, "
       "max {:.3f} mm\n",
@@ -35,8 +36,10 @@ int RunEvaluateRegistration(const std::string& run_folder, const std::string& wo
                f.accepted, f.median_translation_mm, f.median_rotation_deg, f.median_wall_mm,
                f.mean_nees, f.median_nees);
   }
-  fmt::print("wrote {}, edges.csv (every accepted edge) and nodes.csv (every camera)\n",
-             (folder / "evaluation.json").string());
+  fmt::print(
+      "wrote {}, edges.csv (every accepted edge), nodes.csv (every camera) and "
+      "trajectory_error.svg\n",
+      (folder / "evaluation.json").string());
   return 0;
 }
 

@@ -124,6 +124,15 @@ std::string LinePlotSvg(const std::vector<double>& x, const std::string& x_label
   return out + "</svg>\n";
 }
 
+std::string StandaloneSvg(const std::string& inline_svg) {
+  const std::string head = "<svg class=\"plot\"";
+  if (inline_svg.rfind(head, 0) != 0) return inline_svg;
+  const std::size_t end = inline_svg.find('>');
+  return "<svg xmlns=\"http://www.w3.org/2000/svg\" font-family=\"sans-serif\" font-size=\"12\"" +
+         inline_svg.substr(head.size(), end - head.size()) + ">" +
+         "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>" + inline_svg.substr(end + 1);
+}
+
 std::string ProfilePlots(const Profile& profile) {
   std::vector<double> x;
   PlotSeries mean{"mean", "#1f5fbf", {}}, lo{"min", "#8fb0e0", {}}, hi{"max", "#e08f8f", {}};

@@ -20,6 +20,9 @@ struct PlotSeries {
 std::string LinePlotSvg(const std::vector<double>& x, const std::string& x_label,
                         const std::vector<PlotSeries>& series, const std::string& y_label);
 
+/// LinePlotSvg's inline SVG as a file of its own (the SVG namespace, a white background).
+std::string StandaloneSvg(const std::string& inline_svg);
+
 /// "1, 2 or 5 × 10^k" tick positions covering [lo, hi] (about `count` of them).
 std::vector<double> NiceTicks(double lo, double hi, int count);
 

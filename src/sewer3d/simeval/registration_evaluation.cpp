@@ -4,13 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <utility>
 #include <vector>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/g2o_io.hpp"
 #include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/run_io.hpp"
+#include "sewer3d/report/profile_plots.hpp"
 #include "sewer3d/simeval/truth_alignment.hpp"
 #include "sewer3d/simio/render_json.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
@@ -145,6 +148,39 @@ std::string NodeErrorsToCsv(const std::vector<NodeError>& errors) {
                         n.error_mm.x(), n.error_mm.y(), n.error_mm.z());
   }
   return text;
+}
+
+std::vector<CarrierError> CarrierErrors(const std::vector<NodeError>& errors) {
+  std::map<int, std::pair<int, CarrierError>> sums;  // counter → cameras, sums
+  for (const NodeError& n : errors) {
+    auto& [count, sum] = sums[n.counter];
+    ++count;
+    sum.counter = n.counter;
+    sum.true_centre_mm += n.true_centre_mm;
+    sum.error_mm += n.error_mm;
+  }
+  std::vector<CarrierError> carrier;
+  for (auto& [counter, entry] : sums) {
+    CarrierError c = entry.second;
+    c.true_centre_mm /= entry.first;
+    c.error_mm /= entry.first;
+    carrier.push_back(c);
+  }
+  return carrier;
+}
+
+std::string TrajectoryErrorSvg(const std::vector<NodeError>& errors) {
+  std::vector<double> station;
+  PlotSeries x{"x (across)", "#c0392b", {}}, y{"y (down)", "#1f5fbf", {}},
+      z{"z (along)", "#2e8b57", {}};
+  for (const CarrierError& c : CarrierErrors(errors)) {
+    station.push_back(c.true_centre_mm.z() / 1000.0);
+    x.y.push_back(c.error_mm.x());
+    y.y.push_back(c.error_mm.y());
+    z.y.push_back(c.error_mm.z());
+  }
+  return StandaloneSvg(LinePlotSvg(station, "true station of the cameras (m)", {x, y, z},
+                                   "mean camera error per counter (mm)"));
 }
 
 }  // namespace sewer3d

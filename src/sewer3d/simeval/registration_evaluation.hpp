@@ -75,6 +75,18 @@ std::string RegistrationEvaluationToJson(const RegistrationEvaluation& evaluatio
 /// translation_mm,rotation_deg,wall_mm,nees, then the residual as tx_mm,ty_mm,tz_mm,rx_deg,ry_deg,
 /// rz_deg).
 std::string EdgeErrorsToCsv(const std::vector<EdgeError>& errors);
+/// Per counter (ascending), the mean of its cameras' true centres and of their errors: the
+/// carrier's error along the run.
+struct CarrierError {
+  int counter = 0;
+  Eigen::Vector3d true_centre_mm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d error_mm = Eigen::Vector3d::Zero();
+};
+std::vector<CarrierError> CarrierErrors(const std::vector<NodeError>& errors);
+
+/// CarrierErrors as an SVG file: world x, y (down) and z (along the pipe) over the true station
+/// (m).
+std::string TrajectoryErrorSvg(const std::vector<NodeError>& errors);
 /// Every camera centre's error as CSV text (module,counter,x_mm,y_mm,z_mm of the true centre,
 /// ex_mm,ey_mm,ez_mm: the aligned registered centre − the true one, world axes).
 std::string NodeErrorsToCsv(const std::vector<NodeError>& errors);

@@ -7,10 +7,12 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/model/axis_curve.hpp"
+#include "sewer3d/simeval/registration_evaluation.hpp"
 
 namespace sewer3d {
 namespace {
@@ -72,6 +74,27 @@ TEST(LocalTruthFromModel, HoldsOnEachSideOfASlip) {
   // Too few cameras in the window: the whole run's alignment.
   EXPECT_NEAR(LocalTruthFromModel(a, *line, 2000.0, 120.0).translation.z(),
               a.truth_from_model.translation.z(), 1e-12);
+}
+
+// The carrier's error per counter (evaluate registration's trajectory_error.svg): the mean of
+// its cameras', counters ascending whatever the order of the rows.
+TEST(CarrierErrors, AveragesEachCountersCameras) {
+  std::vector<NodeError> nodes;
+  nodes.push_back({0, 1, {0, 0, 100}, {0.2, 0.4, 0}});
+  nodes.push_back({1, 0, {0, 10, 40}, {1.0, 0, 0}});
+  nodes.push_back({2, 1, {0, 20, 100}, {0.4, 0.0, 0.3}});
+  nodes.push_back({3, 0, {0, -10, 60}, {-1.0, 0, 0.5}});
+  const std::vector<CarrierError> carrier = CarrierErrors(nodes);
+  ASSERT_EQ(carrier.size(), 2u);
+  EXPECT_EQ(carrier[0].counter, 0);
+  EXPECT_TRUE(carrier[0].true_centre_mm.isApprox(Eigen::Vector3d(0, 0, 50)));
+  EXPECT_TRUE(carrier[0].error_mm.isApprox(Eigen::Vector3d(0, 0, 0.25)));
+  EXPECT_EQ(carrier[1].counter, 1);
+  EXPECT_TRUE(carrier[1].true_centre_mm.isApprox(Eigen::Vector3d(0, 10, 100)));
+  EXPECT_TRUE(carrier[1].error_mm.isApprox(Eigen::Vector3d(0.3, 0.2, 0.15)));
+  const std::string svg = TrajectoryErrorSvg(nodes);
+  EXPECT_EQ(svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0), 0u) << svg.substr(0, 80);
+  EXPECT_NE(svg.find("y (down)"), std::string::npos);
 }
 
 }  // namespace
