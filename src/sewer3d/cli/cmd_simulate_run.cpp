@@ -75,14 +75,7 @@ int RunRun(const RunArgs& a) {
                  a.scenario, s.camera_width, module_file.string(), module.camera.width);
       s.camera_width = module.camera.width;
     }
-    // RUN/truth/scenario.json reproduces the run: it names the module used (--module included),
-    // from its own folder.
-    std::error_code ec;
-    const std::filesystem::path truth = std::filesystem::absolute(a.out) / "truth";
-    const std::filesystem::path relative =
-        std::filesystem::relative(std::filesystem::absolute(module_file), truth, ec);
-    s.module_file = (ec || relative.empty() ? std::filesystem::absolute(module_file) : relative)
-                        .generic_string();
+    s.module_file = ModuleFileFromTruth(a.out, module_file);
   } else {
     DefaultModuleOptions options;
     options.camera_width = s.camera_width;
@@ -132,12 +125,6 @@ int RunRun(const RunArgs& a) {
       size.bytes / 1e6);
   std::fflush(stdout);
   in_scenario(simulate);
-  if (r.images_kept > 0) {
-    fmt::print(
-        "resumed: {} of {} images kept from the interrupted simulation (--restart renders "
-        "them all)\n",
-        r.images_kept, r.images);
-  }
   fmt::print("run '{}': {} acquisitions x {} modules x 3 images = {} images of {}x{} px\n", s.name,
              r.plan.acquisitions, s.rig.modules, r.images, module.camera.width,
              module.camera.height);
@@ -151,7 +138,10 @@ int RunRun(const RunArgs& a) {
     overlap += fmt::format(" m{}-m{} {:.1f} deg", o.module, o.next, o.overlap_deg);
   fmt::print("neighbour overlap (3-D, DN{:.0f}, centred):{}\n", s.capture.nominal_diameter_mm,
              overlap);
-  fmt::print("wrote {} ({:.1f} MB) in {:.1f} s\n", a.out, r.bytes / 1e6, r.wall_seconds);
+  std::string kept;
+  if (r.images_kept > 0)
+    kept = fmt::format("; {} of {} images kept (--restart renders all)", r.images_kept, r.images);
+  fmt::print("wrote {} ({:.1f} MB) in {:.1f} s{}\n", a.out, r.bytes / 1e6, r.wall_seconds, kept);
   return 0;
 }
 

@@ -319,4 +319,13 @@ Scenario ReadScenario(const std::filesystem::path& path) {
   return ParseScenario(ReadTextFile(path), path);
 }
 
+std::string ModuleFileFromTruth(const std::filesystem::path& run_folder,
+                                const std::filesystem::path& module_file) {
+  std::error_code ec;
+  const std::filesystem::path truth = std::filesystem::absolute(run_folder) / "truth";
+  const std::filesystem::path absolute = std::filesystem::absolute(module_file);
+  const std::filesystem::path relative = std::filesystem::relative(absolute, truth, ec);
+  return (ec || relative.empty() ? absolute : relative).generic_string();
+}
+
 }  // namespace sewer3d
