@@ -4,12 +4,22 @@
 # Each case runs under a time limit and an address-space limit, so a hang or a memory blow-up
 # fails its case instead of the machine.
 #   SEWER3D=build/sewer3d bash tests/bad_inputs/run.sh [NAME_REGEX]
-# With SEWER3D_SHARD=K/N only every N-th case from the K-th on runs (its own fixtures), so CTest
-# runs the table as N tests side by side.
+# With SEWER3D_SHARD=K/N only every N-th case from the K-th on runs, so CTest runs the table as
+# N tests side by side. The fixtures take a minute to write: `run.sh --prepare DIR` writes them
+# once into DIR, and SEWER3D_FIXTURES=DIR makes a run copy them from there (each shard its own
+# copy: cases may write beside them) instead of writing its own.
 set -u
 S=${SEWER3D:?set SEWER3D to the sewer3d binary}
 S=$(cd "$(dirname "$S")" && pwd)/$(basename "$S")
 here=$(cd "$(dirname "$0")" && pwd)
+if [ "${1:-}" = "--prepare" ]; then
+  dir=${2:?--prepare needs a folder}
+  rm -rf "$dir" && mkdir -p "$dir" || exit 1
+  export S
+  bash "$here/fixtures.sh" "$dir" || { echo "FAIL: fixtures"; exit 1; }
+  touch "$dir/.complete"
+  exit 0
+fi
 only=${1:-}
 shard=${SEWER3D_SHARD:-1/1}
 shard_k=${shard%/*}
@@ -33,7 +43,17 @@ if [ -n "${ASAN_OPTIONS:-}" ]; then
 fi
 export SLOW
 
-bash "$here/fixtures.sh" "$T" || { echo "FAIL: fixtures"; exit 1; }
+if [ -n "${SEWER3D_FIXTURES:-}" ]; then
+  [ -f "$SEWER3D_FIXTURES/.complete" ] || { echo "FAIL: no fixtures in $SEWER3D_FIXTURES"; exit 1; }
+  cp -a "$SEWER3D_FIXTURES/." "$T/" || { echo "FAIL: copying the fixtures"; exit 1; }
+  # A workspace records its run's absolute path: point the copies' at the copied runs.
+  from=$(cd "$SEWER3D_FIXTURES" && pwd)
+  grep -rlF --include=workspace.json -- "$from" "$T" | while read -r f; do
+    sed -i "s|$from/|$T/|g" "$f"
+  done
+else
+  bash "$here/fixtures.sh" "$T" || { echo "FAIL: fixtures"; exit 1; }
+fi
 
 failures=0
 cases=0
