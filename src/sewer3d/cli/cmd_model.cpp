@@ -50,6 +50,9 @@ void AddModelStageOptions(CLI::App& sub, ModelStageOptions& o) {
   sub.add_option("--mesh-step-mm", o.displaced.step_mm, "Vertex spacing of mesh.glb")
       ->capture_default_str()
       ->check(CLI::Range(0.1, 1000.0));
+  sub.add_flag("!--no-module-offsets", o.module_offsets,
+               "Take no range offset off each module's pixels (by default each module's offset "
+               "is estimated where its neighbours see the same wall)");
   sub.add_flag("--keep-tiles", o.keep_tiles,
                "Keep WS/model/tiles/ when the whole-run map files are written");
 }

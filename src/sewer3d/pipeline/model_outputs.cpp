@@ -79,6 +79,17 @@ json CentrelineReportJson(const CentrelineFitReport& c) {
   return j;
 }
 
+json ModuleOffsetsJson(const ModuleOffsets& m) {
+  json j = {{"estimated", m.estimated},
+            {"range_offset_mm", m.range_mm},
+            {"seam_cells", m.pair_cells},
+            {"cells", m.cells},
+            {"seam_rms_before_mm", m.rms_before_mm},
+            {"seam_rms_after_mm", m.rms_after_mm}};
+  if (!m.estimated) j["why"] = m.why;
+  return j;
+}
+
 }  // namespace
 
 std::string ModelOptionsJson(const ModelStageOptions& o) {
@@ -92,6 +103,7 @@ std::string ModelOptionsJson(const ModelStageOptions& o) {
                   {"slice_spacing_mm", o.centreline.slice_spacing_mm},
                   {"smoothing_half_width_mm", o.centreline.smoothing_half_width_mm},
                   {"max_hole_mm", o.maps.max_hole_mm},
+                  {"module_offsets", o.module_offsets},
                   {"mesh_step_mm", o.displaced.step_mm},
                   {"keep_tiles", o.keep_tiles}};
   return j.dump();
@@ -106,6 +118,7 @@ std::string ModelStageReportToJson(const ModelStageReport& r) {
                   {"nominal_diameter_mm", r.nominal_diameter_mm},
                   {"grid", GridJson(r.grid)},
                   {"splat_radius_mm", r.splat_radius_mm},
+                  {"module_offsets", ModuleOffsetsJson(r.module_offsets)},
                   {"tiles", r.tiles},
                   {"tiles_from_earlier_run", r.tiles_from_earlier_run},
                   {"measured_fraction", r.measured_fraction},

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sewer3d/model/unroll.hpp"
 #include "sewer3d/register/depth_geometry.hpp"
 
 namespace sewer3d {
@@ -14,6 +15,24 @@ std::vector<Eigen::Vector3d> FitSamples(const cv::Mat1f& depth_mm, const CameraM
   const int step = std::max(1, static_cast<int>(std::sqrt(pixels / std::max(target, 1))));
   std::vector<Eigen::Vector3d> out = SampleDepthPoints(depth_mm, camera, step);
   for (Eigen::Vector3d& p : out) p = world_from_camera * p;
+  return out;
+}
+
+std::vector<ModuleWallSample> WallSamples(
+    const Centreline& centreline, const std::vector<ModelAcquisition>& acquisitions,
+    const std::vector<std::vector<Eigen::Vector3d>>& samples) {
+  std::vector<ModuleWallSample> out;
+  double guess = centreline.station0_mm;
+  for (std::size_t i = 0; i < acquisitions.size() && i < samples.size(); ++i) {
+    const Eigen::Vector3d& centre = acquisitions[i].world_from_camera.translation;
+    for (const Eigen::Vector3d& p : samples[i]) {
+      const CylPoint cyl = Unroll(centreline, p, guess);
+      guess = cyl.station_mm;
+      const Eigen::Vector3d radial = centreline.FrameAt(cyl.station_mm).Direction(cyl.clock_rad);
+      const double cosine = std::abs((p - centre).normalized().dot(radial));
+      out.push_back({acquisitions[i].module, cyl.station_mm, cyl.clock_rad, cyl.radius_mm, cosine});
+    }
+  }
   return out;
 }
 
@@ -65,7 +84,10 @@ long long AddAcquisitionPixels(MapAccumulator& maps, const cv::Mat1f& depth_mm,
       const float z = depth_mm(v, u);
       const cv::Vec2f& xy = normalised(v, u);
       if (!(HasDepth(z) && std::isfinite(xy[0]))) continue;
-      const Eigen::Vector3d p = world_from_camera * Eigen::Vector3d(xy[0] * z, xy[1] * z, z);
+      // The module's range offset, along the ray: z shrinks by offset / |(x, y, 1)|.
+      const double zc =
+          z - weighting.range_offset_mm / std::sqrt(1.0 + xy[0] * xy[0] + xy[1] * xy[1]);
+      const Eigen::Vector3d p = world_from_camera * Eigen::Vector3d(xy[0] * zc, xy[1] * zc, zc);
       const double weight = DepthWeight(z, weighting.depth_sigma_ref_mm, weighting.depth_ref_mm) *
                             BorderFeather(u, v, depth_mm.cols, depth_mm.rows, weighting.feather_px);
       const cv::Vec3b& c = color_bgr(v, u);

@@ -11,6 +11,8 @@
 #include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/core/rigid3.hpp"
 #include "sewer3d/model/map_accumulator.hpp"
+#include "sewer3d/model/module_offsets.hpp"
+#include "sewer3d/model/pipe_map.hpp"
 
 namespace sewer3d {
 
@@ -26,12 +28,20 @@ struct ModelAcquisition {
 std::vector<Eigen::Vector3d> FitSamples(const cv::Mat1f& depth_mm, const CameraModel& camera,
                                         const Rigid3d& world_from_camera, int target);
 
+/// The fit samples of every acquisition (`samples[i]` of `acquisitions[i]`, model frame) as
+/// wall samples of its module: cylindrical coordinates about `centreline`, and the cosine of
+/// each ray's incidence on the wall (taken as radial) for EstimateModuleOffsets.
+std::vector<ModuleWallSample> WallSamples(const Centreline& centreline,
+                                          const std::vector<ModelAcquisition>& acquisitions,
+                                          const std::vector<std::vector<Eigen::Vector3d>>& samples);
+
 /// How pixels become weighted map samples.
 struct PixelWeighting {
   int pixel_step = 1;
   double feather_px = 50.0;
   double depth_sigma_ref_mm = 0.03;
   double depth_ref_mm = 150.0;
+  double range_offset_mm = 0.0;  ///< taken off every ray's range (the module's, ModuleOffsets)
 };
 
 /// The depth map's holes enclosed along a row or a column (pixels without depth between two

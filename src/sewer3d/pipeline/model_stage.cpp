@@ -164,7 +164,8 @@ void WriteTiles(const CaptureRun& run, const std::filesystem::path& ws, const Ce
             throw FileError(RgbdAcquisitionFiles(ws / "rgbd", a.module, a.counter).depth,
                             "not the size of module " + std::to_string(a.module) + "'s camera");
           const PixelWeighting weighting{o.pixel_step, o.feather_fraction * in.depth_mm.cols,
-                                         o.depth_sigma_ref_mm, o.depth_ref_mm};
+                                         o.depth_sigma_ref_mm, o.depth_ref_mm,
+                                         report.module_offsets.range_mm[a.module]};
           AddAcquisitionPixels(maps, in.depth_mm, in.color_bgr, normalised[a.module],
                                a.world_from_camera, weighting);
         }
@@ -210,6 +211,7 @@ void ModelStageOptions::Check() const {
   ValidatePositive("depth_ref_mm", depth_ref_mm);
   centreline.Check();
   maps.Check();
+  offsets.Check();
   files.Check();
   base.Check();
   displaced.Check();
@@ -279,6 +281,13 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
   info.encoding = options.files.encoding;
   info.view_range_mm = options.files.view_range_mm;
   info.grid = StationGrid(info.centreline, samples, acquisitions, options.resolution_mm);
+  report.module_offsets.range_mm.assign(run.rig.modules.size(), 0.0);
+  report.module_offsets.why = "off (--no-module-offsets)";
+  if (options.module_offsets) {
+    report.module_offsets = EstimateModuleOffsets(
+        WallSamples(info.centreline, acquisitions, samples),
+        static_cast<int>(run.rig.modules.size()), info.centreline.radius_mm, options.offsets);
+  }
   samples.clear();
   report.grid = info.grid;
   report.splat_radius_mm = SplatRadius(run, options);

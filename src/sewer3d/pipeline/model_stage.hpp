@@ -20,6 +20,7 @@
 #include "sewer3d/model/centreline_fit.hpp"
 #include "sewer3d/model/map_accumulator.hpp"
 #include "sewer3d/model/mesh.hpp"
+#include "sewer3d/model/module_offsets.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/run/capture_run.hpp"
 
@@ -44,6 +45,10 @@ struct ModelStageOptions {
   /// hole_edge_band_mm 5: hole edges at the frames' median, as the rgbd stage draws each
   /// frame's holes to the midpoints toward its lost spots (docs/rgbd.md).
   MapAccumulatorOptions maps{.hole_edge_band_mm = 5.0};
+  /// Each module's range offset from the seams (model/module_offsets.hpp), taken off its
+  /// pixels' ranges before they go into the maps; false: none.
+  bool module_offsets = true;
+  ModuleOffsetOptions offsets;
   ModelFileOptions files;
   BaseCylinderOptions base;
   DisplacedMeshOptions displaced;
@@ -71,6 +76,7 @@ struct ModelStageReport {
   double nominal_diameter_mm = 0.0;
   MapGrid grid;
   double splat_radius_mm = 0.0;  ///< as used
+  ModuleOffsets module_offsets;  ///< as taken off (all zero when off or not estimated)
   int tiles = 0, tiles_from_earlier_run = 0;
   double measured_fraction = 0.0, filled_fraction = 0.0;  ///< of the grid's cells
   std::size_t surface_points = 0;

@@ -133,6 +133,24 @@ TEST_F(ModelStageTiny, DisplacementIsRoundWallAndTheJointStep) {
   EXPECT_NEAR(std::abs(after - before), 3.95, 0.5);
 }
 
+// The tiny run's modules carry the `paper` profile's calibration error, which reads each
+// module's wall a few hundredths of a millimetre too far or too near: the seams show it, and
+// the offsets estimated there bring the seams' cells together (model/module_offsets_test.cpp
+// has the estimator against known offsets).
+TEST_F(ModelStageTiny, EachModulesRangeOffsetComesFromTheSeams) {
+  const ModuleOffsets& m = report_.module_offsets;
+  ASSERT_TRUE(m.estimated) << m.why;
+  ASSERT_EQ(m.range_mm.size(), 6u);
+  double sum = 0.0;
+  for (const double x : m.range_mm) {
+    EXPECT_LT(std::abs(x), 0.3);  // a calibration's, not a pose's
+    sum += x;
+  }
+  EXPECT_NEAR(sum, 0.0, 1e-9);
+  EXPECT_GT(m.cells, 100);
+  EXPECT_LT(m.rms_after_mm, m.rms_before_mm);
+}
+
 TEST_F(ModelStageTiny, ResumedStageKeepsItsTiles) {
   // As if killed while writing the last tile: its files are incomplete.
   const fs::path tiles = dir_ / "ws" / "model" / "tiles";

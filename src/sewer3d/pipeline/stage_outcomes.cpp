@@ -1,5 +1,6 @@
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "sewer3d/pipeline/process_chain.hpp"
@@ -100,6 +101,16 @@ StageOutcome ModelOutcome(const ModelStageReport& r, const std::filesystem::path
       r.grid.rows, r.grid.cols, r.grid.resolution_mm, r.tiles, r.tiles_from_earlier_run,
       100.0 * r.measured_fraction, 100.0 * r.filled_fraction, r.displaced_vertices,
       r.displaced_step_mm, r.seconds, r.seconds_per_acquisition);
+  const ModuleOffsets& m = r.module_offsets;
+  if (m.estimated) {
+    const auto [lo, hi] = std::minmax_element(m.range_mm.begin(), m.range_mm.end());
+    o.details.push_back(fmt::format(
+        "model: module range offsets {:+.3f} … {:+.3f} mm from {} seam cells (their RMS {:.3f} "
+        "→ {:.3f} mm)",
+        *lo, *hi, m.cells, m.rms_before_mm, m.rms_after_mm));
+  } else {
+    o.details.push_back("model: no module range offsets: " + m.why);
+  }
   for (const std::string& w : r.warnings) o.details.push_back("warning: model: " + w);
   return o;
 }
