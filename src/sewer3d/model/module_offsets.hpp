@@ -8,7 +8,10 @@
 /// incidence). Over the ring of modules the differences give every offset but their common
 /// part (a diameter error, which no overlap can see): the estimate has zero sum.
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace sewer3d {
@@ -39,6 +42,30 @@ struct ModuleOffsets {
   int cells = 0;                 ///< cells compared
   double rms_before_mm = 0.0;    ///< weighted RMS of the radius differences in the cells
   double rms_after_mm = 0.0;     ///< the same with the offsets taken out
+};
+
+/// Collects wall samples into the cells (memory: the cells' sums, not the samples), then
+/// estimates the offsets.
+class ModuleOffsetEstimator {
+ public:
+  /// `modules` modules 0 … modules − 1, neighbours in a ring; `radius_mm` the model radius
+  /// (sets the cells' width in clock).
+  ModuleOffsetEstimator(int modules, double radius_mm, const ModuleOffsetOptions& options);
+  void Add(const ModuleWallSample& sample);
+  /// As EstimateModuleOffsets below.
+  [[nodiscard]] ModuleOffsets Estimate() const;
+
+ private:
+  struct Sums {
+    double radius = 0.0, cosine = 0.0;
+    int n = 0;
+  };
+  int modules_;
+  double radius_mm_;
+  ModuleOffsetOptions options_;
+  std::int64_t clock_cells_;
+  std::unordered_map<std::int64_t, std::size_t> index_;  // cell → its first module's sums
+  std::vector<Sums> sums_;                               // modules_ per cell
 };
 
 /// The offsets of `modules` modules (0 … modules − 1, neighbours in a ring) from their samples,

@@ -18,10 +18,9 @@ std::vector<Eigen::Vector3d> FitSamples(const cv::Mat1f& depth_mm, const CameraM
   return out;
 }
 
-std::vector<ModuleWallSample> WallSamples(
-    const Centreline& centreline, const std::vector<ModelAcquisition>& acquisitions,
-    const std::vector<std::vector<Eigen::Vector3d>>& samples) {
-  std::vector<ModuleWallSample> out;
+void AddWallSamples(ModuleOffsetEstimator& estimator, const Centreline& centreline,
+                    const std::vector<ModelAcquisition>& acquisitions,
+                    const std::vector<std::vector<Eigen::Vector3d>>& samples) {
   double guess = centreline.station0_mm;
   for (std::size_t i = 0; i < acquisitions.size() && i < samples.size(); ++i) {
     const Eigen::Vector3d& centre = acquisitions[i].world_from_camera.translation;
@@ -29,11 +28,10 @@ std::vector<ModuleWallSample> WallSamples(
       const CylPoint cyl = Unroll(centreline, p, guess);
       guess = cyl.station_mm;
       const Eigen::Vector3d radial = centreline.FrameAt(cyl.station_mm).Direction(cyl.clock_rad);
-      const double cosine = std::abs((p - centre).normalized().dot(radial));
-      out.push_back({acquisitions[i].module, cyl.station_mm, cyl.clock_rad, cyl.radius_mm, cosine});
+      estimator.Add({acquisitions[i].module, cyl.station_mm, cyl.clock_rad, cyl.radius_mm,
+                     std::abs((p - centre).normalized().dot(radial))});
     }
   }
-  return out;
 }
 
 namespace {

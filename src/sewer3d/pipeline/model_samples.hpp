@@ -28,12 +28,12 @@ struct ModelAcquisition {
 std::vector<Eigen::Vector3d> FitSamples(const cv::Mat1f& depth_mm, const CameraModel& camera,
                                         const Rigid3d& world_from_camera, int target);
 
-/// The fit samples of every acquisition (`samples[i]` of `acquisitions[i]`, model frame) as
-/// wall samples of its module: cylindrical coordinates about `centreline`, and the cosine of
-/// each ray's incidence on the wall (taken as radial) for EstimateModuleOffsets.
-std::vector<ModuleWallSample> WallSamples(const Centreline& centreline,
-                                          const std::vector<ModelAcquisition>& acquisitions,
-                                          const std::vector<std::vector<Eigen::Vector3d>>& samples);
+/// Adds the fit samples of every acquisition (`samples[i]` of `acquisitions[i]`, model frame)
+/// to `estimator` as wall samples of its module: cylindrical coordinates about `centreline`,
+/// and the cosine of each ray's incidence on the wall (taken as radial).
+void AddWallSamples(ModuleOffsetEstimator& estimator, const Centreline& centreline,
+                    const std::vector<ModelAcquisition>& acquisitions,
+                    const std::vector<std::vector<Eigen::Vector3d>>& samples);
 
 /// How pixels become weighted map samples.
 struct PixelWeighting {

@@ -284,9 +284,10 @@ ModelStageReport RunModelStage(const CaptureRun& run, Workspace& workspace,
   report.module_offsets.range_mm.assign(run.rig.modules.size(), 0.0);
   report.module_offsets.why = "off (--no-module-offsets)";
   if (options.module_offsets) {
-    report.module_offsets = EstimateModuleOffsets(
-        WallSamples(info.centreline, acquisitions, samples),
-        static_cast<int>(run.rig.modules.size()), info.centreline.radius_mm, options.offsets);
+    ModuleOffsetEstimator estimator(static_cast<int>(run.rig.modules.size()),
+                                    info.centreline.radius_mm, options.offsets);
+    AddWallSamples(estimator, info.centreline, acquisitions, samples);
+    report.module_offsets = estimator.Estimate();
   }
   samples.clear();
   report.grid = info.grid;
