@@ -20,12 +20,10 @@
 #include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/io/text_file.hpp"
-#include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/pipeline/model_stage.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
-#include "sewer3d/simio/simulate_run.hpp"
-#include "sewer3d/testing/small_module.hpp"
+#include "sewer3d/pipeline/tiny_run_test_util.hpp"
 
 namespace sewer3d {
 namespace {
@@ -37,10 +35,7 @@ class ModelStageTiny : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = fs::temp_directory_path() / "sewer3d_model_stage_sim_test";
     fs::remove_all(dir_);
-    Scenario s = PresetScenario("tiny");
-    s.truth_depth = TruthDepth::kNone;
-    SimulateRun(s, testing::SmallDefaultModule(s.camera_width), DefaultPatternArray(), dir_ / "run",
-                {});
+    testing::MakeTinyRun(dir_ / "run");
     run_ = LoadRun(dir_ / "run");
     Workspace ws(dir_ / "ws", run_.folder);
     RgbdStageOptions rgbd;

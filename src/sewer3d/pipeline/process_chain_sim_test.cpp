@@ -17,11 +17,9 @@
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
-#include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
 #include "sewer3d/pipeline/report_stage.hpp"
-#include "sewer3d/simio/simulate_run.hpp"
-#include "sewer3d/testing/small_module.hpp"
+#include "sewer3d/pipeline/tiny_run_test_util.hpp"
 
 namespace sewer3d {
 namespace {
@@ -35,10 +33,7 @@ bool Contains(const std::string& text, const std::string& part) {
 TEST(ProcessChainTiny, LeavesOutBadAcquisitionsResumesAndSkipsWhatIsDone) {
   const fs::path dir = fs::temp_directory_path() / "sewer3d_process_chain_sim_test";
   fs::remove_all(dir);
-  Scenario s = PresetScenario("tiny");
-  s.truth_depth = TruthDepth::kNone;
-  SimulateRun(s, testing::SmallDefaultModule(s.camera_width), DefaultPatternArray(), dir / "run",
-              {});
+  testing::MakeTinyRun(dir / "run");
   ProcessOptions options;
   options.threads = 2;
   options.resolution_mm = 0.5;

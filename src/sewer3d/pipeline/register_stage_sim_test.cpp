@@ -14,12 +14,10 @@
 #include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/run_io.hpp"
 #include "sewer3d/io/workspace_io.hpp"
-#include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
+#include "sewer3d/pipeline/tiny_run_test_util.hpp"
 #include "sewer3d/simeval/registration_evaluation.hpp"
-#include "sewer3d/simio/simulate_run.hpp"
-#include "sewer3d/testing/small_module.hpp"
 
 namespace sewer3d {
 namespace {
@@ -31,10 +29,7 @@ class RegisterStageTiny : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = fs::temp_directory_path() / "sewer3d_register_stage_sim_test";
     fs::remove_all(dir_);
-    Scenario s = PresetScenario("tiny");
-    s.truth_depth = TruthDepth::kNone;
-    SimulateRun(s, testing::SmallDefaultModule(s.camera_width), DefaultPatternArray(), dir_ / "run",
-                {});
+    testing::MakeTinyRun(dir_ / "run");
     // m3's second acquisition: a dark pattern image, so it has no depth.
     const fs::path pattern =
         dir_ / "run" / "images" / (ImageStem(3, 1, ImageKind::kPattern) + ".png");
