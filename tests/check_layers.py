@@ -7,7 +7,8 @@ and checks that
     the modules it links, directly or through them;
   - a test links its own module and sewer3d_testing only, plus the simulator (sewer3d_sim,
     sewer3d_simio) when all its files are named *_sim_test.cpp (tests against rendered images
-    or simulated runs), and includes accordingly;
+    or simulated runs), and includes accordingly (so may a header *_sim_test.hpp beside them,
+    what several of them share);
   - nothing but the simulator's own modules (sim, simio), the programs and simulator tests
     reaches sim/: a capture run is processed without the renderer;
   - only tests link sewer3d_testing; module dependencies have no cycle;
@@ -110,6 +111,10 @@ def check(layers_txt, root, injected=None):
                 if f.endswith(("_test.cpp")) or not f.endswith((".hpp", ".cpp", ".h")):
                     continue
                 path = os.path.join(folder_path, f)
+                if f.endswith("_sim_test.hpp"):  # support shared by the folder's sim tests
+                    check_file(path, allowed_for([folder] + sorted(SIMULATOR)) | {"testing"},
+                               f"sim tests of {folder}")
+                    continue
                 if f.endswith(".cpp") and os.path.normpath(path) not in owned:
                     errors.append(f"src/sewer3d/{folder}/{f}: in no target (add it to SOURCES)")
                 check_file(path, allowed, f"module {folder}")

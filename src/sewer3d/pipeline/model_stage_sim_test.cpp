@@ -23,7 +23,7 @@
 #include "sewer3d/pipeline/model_stage.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
-#include "sewer3d/pipeline/tiny_run_test_util.hpp"
+#include "sewer3d/pipeline/tiny_run_sim_test.hpp"
 
 namespace sewer3d {
 namespace {

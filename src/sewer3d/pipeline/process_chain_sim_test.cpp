@@ -19,7 +19,7 @@
 #include "sewer3d/io/workspace_io.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
 #include "sewer3d/pipeline/report_stage.hpp"
-#include "sewer3d/pipeline/tiny_run_test_util.hpp"
+#include "sewer3d/pipeline/tiny_run_sim_test.hpp"
 
 namespace sewer3d {
 namespace {

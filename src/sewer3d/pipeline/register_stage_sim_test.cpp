@@ -16,7 +16,7 @@
 #include "sewer3d/io/workspace_io.hpp"
 #include "sewer3d/pipeline/register_stage.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
-#include "sewer3d/pipeline/tiny_run_test_util.hpp"
+#include "sewer3d/pipeline/tiny_run_sim_test.hpp"
 #include "sewer3d/simeval/registration_evaluation.hpp"
 
 namespace sewer3d {

@@ -21,7 +21,7 @@
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/io/workspace_io.hpp"
 #include "sewer3d/pipeline/rgbd_stage.hpp"
-#include "sewer3d/pipeline/tiny_run_test_util.hpp"
+#include "sewer3d/pipeline/tiny_run_sim_test.hpp"
 
 namespace sewer3d {
 namespace {

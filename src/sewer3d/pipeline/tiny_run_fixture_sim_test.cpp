@@ -1,4 +1,4 @@
-// Writes the tiny run the stage tests share (tiny_run_test_util.hpp) into SEWER3D_TINY_RUN —
+// Writes the tiny run the stage tests share (tiny_run_sim_test.hpp) into SEWER3D_TINY_RUN —
 // CTest runs it before them as a fixture — or, without that variable, into a temporary folder;
 // either way checks that it is a whole capture run of six modules.
 
@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "sewer3d/io/run_io.hpp"
-#include "sewer3d/pipeline/tiny_run_test_util.hpp"
+#include "sewer3d/pipeline/tiny_run_sim_test.hpp"
 
 namespace sewer3d {
 namespace {
