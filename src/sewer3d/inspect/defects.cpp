@@ -155,6 +155,8 @@ Observation Deposit(const Wall& wall, const cv::Mat1f& res, const MapComponent& 
   const double theta = 2.0 * std::acos(std::clamp((r - h) / r, -1.0, 1.0));
   Observation o = Describe(wall, res, comp, -1.0, h, threshold);
   o.code = "BBC";
+  // Its place is the middle of its width: a flat bed's highest cell lies anywhere on it.
+  o.clock_h = ClockRadToHours(wall.Clock(0.5 * (comp.col_min + comp.col_max)));
   // The bed's ramps are steep and often not measured: the deposit goes on along the invert
   // through unmeasured rows next to it (up to 50 mm).
   int first = comp.row_min, last = comp.row_max;
@@ -243,6 +245,26 @@ void Grow(MapComponent& box, const MapComponent& c) {
   box.col_max = std::max(box.col_max, c.col_max);
 }
 
+/// `regions` where their boxes come within `margin_rows`, `margin_cols` of each other joined
+/// (cells listed in order, boxes grown), until no two are that near.
+std::vector<MapComponent> MergeNear(std::vector<MapComponent> regions, int margin_rows,
+                                    int margin_cols) {
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (std::size_t i = 0; i < regions.size() && !merged; ++i) {
+      for (std::size_t j = i + 1; j < regions.size() && !merged; ++j) {
+        if (!Near(regions[i], regions[j], margin_rows, margin_cols)) continue;
+        regions[i].cells.insert(regions[i].cells.end(), regions[j].cells.begin(),
+                                regions[j].cells.end());
+        Grow(regions[i], regions[j]);
+        regions.erase(regions.begin() + static_cast<std::ptrdiff_t>(j));
+        merged = true;
+      }
+    }
+  }
+  return regions;
+}
+
 }  // namespace
 
 std::vector<cv::Point> InteriorCells(const std::vector<cv::Point>& cells, int radius_rows,
@@ -276,30 +298,21 @@ std::vector<Observation> FindDefects(const CoarseMap& map, const cv::Mat1f& resi
   std::vector<MapComponent> inward = HysteresisComponents(residual, -1.0, 0.5 * in_high, in_high);
   std::vector<MapComponent> outward = HysteresisComponents(residual, 1.0, 0.5 * out_high, out_high);
   // Connections: bores first, then every region next to one joins it.
-  std::vector<ConnectionParts> connections;
   std::vector<bool> used_in(inward.size(), false), used_out(outward.size(), false);
   const int margin_rows = static_cast<int>(options.connection_margin_mm / wall.RowMm());
   const int margin_cols = static_cast<int>(options.connection_margin_mm / wall.ColMm());
+  std::vector<MapComponent> bores;
   for (std::size_t i = 0; i < outward.size(); ++i) {
     if (Percentile(SignedValues(residual, wall, outward[i].cells, 1.0), 0.9) <
         options.bore_depth_mm)
       continue;
     used_out[i] = true;
-    connections.push_back({outward[i].cells, {}, outward[i]});
+    bores.push_back(outward[i]);
   }
   // Parts of one bore split by unmeasured cells, and the regions next to a bore, join it.
-  for (bool merged = true; merged;) {
-    merged = false;
-    for (std::size_t i = 0; i < connections.size() && !merged; ++i) {
-      for (std::size_t j = i + 1; j < connections.size() && !merged; ++j) {
-        if (!Near(connections[i].box, connections[j].box, margin_rows, margin_cols)) continue;
-        connections[i].bore.insert(connections[i].bore.end(), connections[j].bore.begin(),
-                                   connections[j].bore.end());
-        Grow(connections[i].box, connections[j].box);
-        connections.erase(connections.begin() + static_cast<std::ptrdiff_t>(j));
-        merged = true;
-      }
-    }
+  std::vector<ConnectionParts> connections;
+  for (const MapComponent& bore : MergeNear(std::move(bores), margin_rows, margin_cols)) {
+    connections.push_back({bore.cells, {}, bore});
   }
   auto join = [&](std::vector<MapComponent>& regions, std::vector<bool>& used,
                   ConnectionParts& parts, std::vector<cv::Point>& into) {
@@ -318,14 +331,23 @@ std::vector<Observation> FindDefects(const CoarseMap& map, const cv::Mat1f& resi
   for (const ConnectionParts& c : connections) {
     out.push_back(Connection(wall, residual, c, nominal_diameter_mm, in_high));
   }
+  // A deposit's bed is one region, its ramps' measured islands (split from it by the steep
+  // ramp's lost spots) with it.
+  std::vector<MapComponent> bed, obstacles;
   for (std::size_t i = 0; i < inward.size(); ++i) {
+    if (used_in[i]) continue;
     const MapComponent& c = inward[i];
-    if (used_in[i] || static_cast<double>(c.cells.size()) < min_cells) continue;
     const double clock = ClockRadToHours(wall.Clock(0.5 * (c.col_min + c.col_max)));
-    if (std::abs(clock - 6.0) <= options.invert_half_h) {
+    (std::abs(clock - 6.0) <= options.invert_half_h ? bed : obstacles).push_back(c);
+  }
+  for (const MapComponent& c :
+       MergeNear(std::move(bed), static_cast<int>(options.deposit_join_mm / wall.RowMm()),
+                 static_cast<int>(options.deposit_join_mm / wall.ColMm()))) {
+    if (static_cast<double>(c.cells.size()) >= min_cells)
       out.push_back(Deposit(wall, residual, c, nominal_diameter_mm, in_high));
-      continue;
-    }
+  }
+  for (const MapComponent& c : obstacles) {
+    if (static_cast<double>(c.cells.size()) < min_cells) continue;
     const double height = Percentile(SignedValues(residual, wall, c.cells, -1.0), 0.9);
     Observation o = Describe(wall, residual, c, -1.0, height, in_high);
     o.code = "BBE";
@@ -358,6 +380,7 @@ void DefectOptions::Check() const {
   ValidatePositive("crack_elongation", crack_elongation);
   ValidatePositive("crack_max_width_mm", crack_max_width_mm);
   ValidatePositive("bore_depth_mm", bore_depth_mm);
+  ValidateNotNegative("deposit_join_mm", deposit_join_mm);
   ValidateNotNegative("connection_margin_mm", connection_margin_mm);
   SEWER3D_VALIDATE(invert_half_h > 0.0 && invert_half_h <= 6.0, "invert_half_h",
                    "must be in (0, 6] h, got " << invert_half_h);

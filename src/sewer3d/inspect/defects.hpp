@@ -25,7 +25,10 @@ struct DefectOptions {
   double min_area_mm2 = 50.0;     ///< smaller regions are ignored
   double crack_elongation = 4.0;  ///< length / width from which an outward region is a crack
   double crack_max_width_mm = 6.0;
-  double invert_half_h = 1.0;  ///< a deposit's deepest point lies within ± this of 6 o'clock
+  double invert_half_h = 1.0;  ///< a deposit's middle lies within ± this of 6 o'clock
+  /// Regions at the invert this near each other are one deposit (a bed's steep ramps lose
+  /// spots: their measured islands stand apart from the bed).
+  double deposit_join_mm = 30.0;
   /// A spall's mean depth is taken over its cells at least this far inside its outline: the
   /// rim's slope, widened by the depth maps' interpolation between spots, would make it read
   /// shallow by an amount that depends on the cameras' resolution.

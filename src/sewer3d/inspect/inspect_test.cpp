@@ -100,6 +100,21 @@ float DeflectedJointWall(double s, double th) {
                                         std::cos(th - ClockHoursToRad(9.0)));
 }
 
+// A DN300 pipe with a deposit 20 mm high at the invert from s = 250 to 400, its end ramped
+// down over the last 30 mm: the steep part (s 370 … 392) lost its spots, the ramp's foot is
+// measured only in islands; a flying-pixel clump stands 10 mm off the bed at 5.3 h.
+float RampedDepositWall(double s, double th) {
+  const double c = std::cos(ClockDiff(th, kPi));
+  if (s < 250.0 || s > 400.0 || c <= 0.0) return 0.0F;
+  const double h = 20.0 * std::min(1.0, (400.0 - s) / 30.0);
+  const double arc = kRadius * ClockDiff(th, kPi);
+  if (s > 370.0 && (s < 392.0 || std::sin(arc / 4.0) < 0.0)) return kNaN;
+  const double bed = std::max(0.0, kRadius - (kRadius - h) / c);
+  const bool clump =
+      std::abs(s - 300.0) < 2.5 && std::abs(ClockDiff(th, ClockHoursToRad(5.3))) * kRadius < 2.5;
+  return static_cast<float>(-bed - (clump && bed > 0.0 ? 10.0 : 0.0));
+}
+
 CoarseMap SyntheticMap(double resolution_mm = 0.5, float (*wall)(double, double) = Wall) {
   const MapGrid grid = MakeMapGrid(0.0, 600.0, kRadius, resolution_mm);
   PipeMaps maps;
@@ -228,6 +243,26 @@ TEST(Inspect, MeasuresASpallWhoseFloorLostItsSpotsAsOnePatch) {
   apart.defects = islands_only;
   // Alone, every island (≤ 25 mm²) is under min_area_mm2: the patch would be missed.
   EXPECT_TRUE(Inspect(SyntheticMap(0.5, HoledSpallWall), Straight(), apart).observations.empty());
+}
+
+// A deposit's ramp islands are part of it, and its place is the middle of its bed (session
+// 48's full-size run reported the ramp of its deposit as two more, "invented").
+TEST(Inspect, MeasuresADepositWithItsRampIslandsAsOne) {
+  const Inspection in = Inspect(SyntheticMap(0.5, RampedDepositWall), Straight(), {});
+  ASSERT_EQ(in.observations.size(), 1U);
+  const Observation* deposit = Only(in, "BBC");
+  ASSERT_NE(deposit, nullptr);
+  EXPECT_NEAR(deposit->station_mm, 250.0, 3.0);
+  EXPECT_NEAR(deposit->length_mm, 150.0, 6.0);
+  EXPECT_NEAR(deposit->clock_h, 6.0, 0.1);
+  EXPECT_NEAR(Q(deposit, "height_mm"), 20.0, 1.0);
+  DefectOptions apart;
+  apart.deposit_join_mm = 0.0;
+  InspectOptions islands_apart;
+  islands_apart.defects = apart;
+  EXPECT_GT(
+      Inspect(SyntheticMap(0.5, RampedDepositWall), Straight(), islands_apart).observations.size(),
+      1U);
 }
 
 // A joint that is only deflected (BAJ C) is placed where its next pipe turns toward.
