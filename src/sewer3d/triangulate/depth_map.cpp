@@ -82,55 +82,68 @@ std::uint64_t EdgeKey(int a, int b) {
 // a fraction of the nearest (a wall seen at 60° from its normal, spots 2 mm apart: ~2 %).
 constexpr double kMaxMarginDepthSpan = 0.05;
 
-// Each triangle of `mesh` that lost one spot (grid ids a, b with points, c without) and shares
-// its edge ab with a filled triangle abd is drawn over the half nearer ab: c's camera pixel is
-// where the affine map of abd's elements onto their pixels puts c's element, its inverse depth
-// on abd's plane of inverse depth over the image.
+// The margin of the unfilled triangle abc over its half nearer ab, drawn on the plane of the
+// filled triangle abd across ab (grid ids; a, b, d with points).
+void DrawMargin(const ElementMesh& mesh, const std::vector<int>& point_of,
+                const std::vector<Eigen::Vector2d>& pixels, const std::vector<double>& depths_mm,
+                double max_edge_px, const std::array<int, 4>& abcd, cv::Mat1f& depth) {
+  const auto [a, b, c, d] = abcd;
+  const int pa = point_of[a], pb = point_of[b], pd = point_of[d];
+  // Not from a steep triangle (a step's flank, a lateral's bore seen end-on): its plane
+  // says little about where the surface goes on.
+  const double lo = std::min({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
+  const double hi = std::max({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
+  if (hi - lo > kMaxMarginDepthSpan * lo) return;
+  Eigen::Matrix2d elements, image;
+  elements << ElementOf(mesh, b) - ElementOf(mesh, a), ElementOf(mesh, d) - ElementOf(mesh, a);
+  image << pixels[pb] - pixels[pa], pixels[pd] - pixels[pa];
+  if (std::abs(elements.determinant()) < 1e-12) return;
+  const Eigen::Vector2d pc =
+      pixels[pa] + image * elements.inverse() * (ElementOf(mesh, c) - ElementOf(mesh, a));
+  // c's barycentric weights in abd, extrapolated, give abd's inverse depth at pc.
+  const double area = SignedArea(pixels[pa], pixels[pb], pixels[pd]);
+  if (std::abs(area) < 1e-9) return;
+  const double wa = SignedArea(pc, pixels[pb], pixels[pd]) / area;
+  const double wb = SignedArea(pc, pixels[pd], pixels[pa]) / area;
+  // Not from a triangle too small to reach c (more than three of its heights beyond).
+  const double wd = 1.0 - wa - wb;
+  if (wd < -3.0) return;
+  const double inverse = wa / depths_mm[pa] + wb / depths_mm[pb] + wd / depths_mm[pd];
+  if (!(inverse > 0.0)) return;
+  FillTriangle(pixels[pa], pixels[pb], pc, depths_mm[pa], depths_mm[pb], 1.0 / inverse, max_edge_px,
+               depth, 0.5, true);
+}
+
+// Each triangle of `mesh` that is not filled — it lost a spot, or its spots straddle a depth
+// step (an edge too long, folded) — and shares an edge ab (both spots seen) with a filled
+// triangle abd is drawn over the half nearer ab: its third element c's camera pixel is where
+// the affine map of abd's elements onto their pixels puts c's element, its inverse depth on
+// abd's plane of inverse depth over the image. At a step the surface ends somewhere between
+// a, b and c as the projector sees it: c's ray missed it.
 void FillHoleMargins(const ElementMesh& mesh, const std::vector<int>& point_of,
                      const std::vector<std::array<int, 3>>& filled,
                      const std::vector<Eigen::Vector2d>& pixels,
                      const std::vector<double>& depths_mm, double max_edge_px, cv::Mat1f& depth) {
-  std::unordered_map<std::uint64_t, int> opposite;  // edge -> the filled triangle's third id
+  // Edge -> the third id of a filled triangle on it, and how many filled triangles it has.
+  std::unordered_map<std::uint64_t, std::pair<int, int>> opposite;
   opposite.reserve(3 * filled.size());
-  for (const std::array<int, 3>& t : filled)
-    for (int k = 0; k < 3; ++k) opposite[EdgeKey(t[k], t[(k + 1) % 3])] = t[(k + 2) % 3];
-  for (const std::array<int, 3>& t : mesh.triangles) {
-    int lost = -1, seen = 0;
+  for (const std::array<int, 3>& t : filled) {
     for (int k = 0; k < 3; ++k) {
-      if (point_of[t[k]] >= 0)
-        ++seen;
-      else
-        lost = k;
+      auto& [third, count] = opposite[EdgeKey(t[k], t[(k + 1) % 3])];
+      third = t[(k + 2) % 3];
+      ++count;
     }
-    if (seen != 2 || point_of[t[lost]] == -2) continue;
-    const int a = t[(lost + 1) % 3], b = t[(lost + 2) % 3], c = t[lost];
-    const auto it = opposite.find(EdgeKey(a, b));
-    if (it == opposite.end()) continue;
-    const int d = it->second;
-    const int pa = point_of[a], pb = point_of[b], pd = point_of[d];
-    // Not from a steep triangle (a step's flank, a lateral's bore seen end-on): its plane
-    // says little about where the surface goes on.
-    const double lo = std::min({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
-    const double hi = std::max({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
-    if (hi - lo > kMaxMarginDepthSpan * lo) continue;
-    Eigen::Matrix2d elements, image;
-    elements << ElementOf(mesh, b) - ElementOf(mesh, a), ElementOf(mesh, d) - ElementOf(mesh, a);
-    image << pixels[pb] - pixels[pa], pixels[pd] - pixels[pa];
-    if (std::abs(elements.determinant()) < 1e-12) continue;
-    const Eigen::Vector2d pc =
-        pixels[pa] + image * elements.inverse() * (ElementOf(mesh, c) - ElementOf(mesh, a));
-    // c's barycentric weights in abd, extrapolated, give abd's inverse depth at pc.
-    const double area = SignedArea(pixels[pa], pixels[pb], pixels[pd]);
-    if (std::abs(area) < 1e-9) continue;
-    const double wa = SignedArea(pc, pixels[pb], pixels[pd]) / area;
-    const double wb = SignedArea(pc, pixels[pd], pixels[pa]) / area;
-    // Not from a triangle too small to reach c (more than three of its heights beyond).
-    const double wd = 1.0 - wa - wb;
-    if (wd < -3.0) continue;
-    const double inverse = wa / depths_mm[pa] + wb / depths_mm[pb] + wd / depths_mm[pd];
-    if (!(inverse > 0.0)) continue;
-    FillTriangle(pixels[pa], pixels[pb], pc, depths_mm[pa], depths_mm[pb], 1.0 / inverse,
-                 max_edge_px, depth, 0.5, true);
+  }
+  for (const std::array<int, 3>& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[(k + 1) % 3], b = t[(k + 2) % 3], c = t[k];
+      if (point_of[a] < 0 || point_of[b] < 0 || point_of[c] == -2) continue;
+      const auto it = opposite.find(EdgeKey(a, b));
+      // Only where ab has one filled triangle, and that is not t itself.
+      if (it == opposite.end() || it->second.second != 1 || it->second.first == c) continue;
+      DrawMargin(mesh, point_of, pixels, depths_mm, max_edge_px, {a, b, c, it->second.first},
+                 depth);
+    }
   }
 }
 

@@ -341,5 +341,41 @@ TEST(DepthMap, HolesDrawnToTheMidpointsKeepTheirWidth) {
   RecordProperty("hole_width_to_midpoints_px", std::to_string(to_midpoints));
 }
 
+// A depth step (a joint's gap 40 px wide across the image, 5 % deeper): the camera sees the
+// gap's spots 30 px shifted along the baseline, so the triangles joining them to the wall
+// fold on one side and stretch past max_edge_px on the other; all their spots are seen. The
+// wall beyond the stretched side ends halfway toward where the gap's first spots would lie
+// on it — at the band's edge, not at its own first spots (the margins of session 44 were
+// drawn only toward lost spots: such a wall started about half a triangle late).
+TEST(DepthMap, AStepsSurfacesAreDrawnToTheMidpoints) {
+  const MeshedPattern meshed;
+  const double band_lo = 304.0, band_hi = 344.0, shift = 30.0;
+  MeshPoints points = PlaneOnMesh(meshed.mesh, meshed.pattern, TiltedPlane{});
+  for (std::size_t i = 0; i < points.pixels.size(); ++i) {
+    if (points.pixels[i].x() <= band_lo || points.pixels[i].x() >= band_hi) continue;
+    points.pixels[i].x() -= shift;
+    points.depths[i] *= 1.05;
+  }
+  const TiltedPlane plane;
+  const auto mean_wall_start = [&](bool midpoints) {
+    const cv::Mat1f map = InterpolateDepthOnMesh(
+        cv::Size(640, 480), meshed.mesh, points.elements, points.pixels, points.depths,
+        {.max_edge_px = 44.0, .holes_to_midpoints = midpoints});
+    double sum = 0.0;
+    for (int v = 60; v < 420; ++v) {
+      int u = static_cast<int>(band_hi) - 20;
+      while (u < 420 && !(std::abs(map(v, u) - plane.Depth({u, v})) < 1e-3 * plane.Depth({u, v})))
+        ++u;
+      sum += u;
+    }
+    return sum / 360.0;
+  };
+  const double from_first_seen = mean_wall_start(false), to_midpoint = mean_wall_start(true);
+  EXPECT_GT(from_first_seen, band_hi + 5.0);
+  EXPECT_NEAR(to_midpoint, band_hi, 3.0);
+  RecordProperty("wall_start_from_first_seen_px", std::to_string(from_first_seen));
+  RecordProperty("wall_start_to_midpoint_px", std::to_string(to_midpoint));
+}
+
 }  // namespace
 }  // namespace sewer3d
