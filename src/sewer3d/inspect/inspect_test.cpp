@@ -115,6 +115,19 @@ float RampedDepositWall(double s, double th) {
   return static_cast<float>(-bed - (clump && bed > 0.0 ? 10.0 : 0.0));
 }
 
+// A DN300 pipe whose next pipe beyond the joint at s = 297 is turned 1° toward 9 h about the
+// joint's centre: its end face turns with it, so the gap (6 mm at the axis, no data in it)
+// opens to 6 + 2.6 mm at 3 h and closes to 6 − 2.6 mm at 9 h, where the depth maps bridged
+// it wherever it is under 4 mm.
+float TurnedGapWall(double s, double th) {
+  const double t = std::tan(DegToRad(1.0));
+  const double end = 303.0 + kRadius * t * std::cos(th - ClockHoursToRad(3.0));
+  if (s > 297.0 && s < end && end - 297.0 >= 4.0) return kNaN;
+  return s < 297.0 ? 0.0F
+                   : static_cast<float>(t * std::max(0.0, s - 300.0) *
+                                        std::cos(th - ClockHoursToRad(9.0)));
+}
+
 CoarseMap SyntheticMap(double resolution_mm = 0.5, float (*wall)(double, double) = Wall) {
   const MapGrid grid = MakeMapGrid(0.0, 600.0, kRadius, resolution_mm);
   PipeMaps maps;
@@ -243,6 +256,17 @@ TEST(Inspect, MeasuresASpallWhoseFloorLostItsSpotsAsOnePatch) {
   apart.defects = islands_only;
   // Alone, every island (≤ 25 mm²) is under min_area_mm2: the patch would be missed.
   EXPECT_TRUE(Inspect(SyntheticMap(0.5, HoledSpallWall), Straight(), apart).observations.empty());
+}
+
+// A deflected joint's gap is its width at the axis: the mean of its widths around the turn,
+// not their median, which leans toward the open side where the closing side is bridged.
+TEST(Inspect, MeasuresADeflectedJointsGapAtTheAxis) {
+  const Inspection in = Inspect(SyntheticMap(0.5, TurnedGapWall), Straight(), {});
+  const Observation* joint = Only(in, "BAJ");
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(Q(joint, "gap_mm"), 6.0, 0.3);
+  EXPECT_NEAR(Q(joint, "deflection_deg"), 1.0, 0.15);
+  EXPECT_NEAR(Q(joint, "deflection_clock_h"), 9.0, 0.5);
 }
 
 // A deposit's ramp islands are part of it, and its place is the middle of its bed (session

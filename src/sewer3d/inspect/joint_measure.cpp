@@ -102,6 +102,16 @@ struct GapMeasure {
   double open_share = 0.0;  ///< share of the columns with any open length
 };
 
+/// The gap at the pipe's axis from its widths around the turn: a joint deflected by α opens
+/// by R tan α on one side and closes by as much on the other (the next pipe's end face turns
+/// with it), so the widths are the gap plus a first harmonic; their median would lean toward
+/// the wider side wherever the narrow side's columns are bridged or left out. The mean term
+/// of a robust first-harmonic fit; the median where too few columns are open for one.
+double GapAtTheAxis(const std::vector<double>& theta, const std::vector<double>& widths) {
+  const Eigen::VectorXd k = RobustHarmonicFit(theta, widths, 1);
+  return k.size() == 3 ? std::max(0.0, k(0)) : Median(widths);
+}
+
 GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_mm,
                       double half_window_mm, const JointOptions& o, const std::vector<double>& x) {
   if (sides.cols.empty()) return {};
@@ -139,14 +149,18 @@ GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_m
     widths.push_back(open * row_mm);
     if (open > 0.0) centres.push_back(moment / open);
   }
-  std::vector<double> open_widths;
-  for (const double w : widths)
-    if (w > 0.0) open_widths.push_back(w);
+  std::vector<double> open_widths, open_theta, theta;
+  for (std::size_t i = 0; i < widths.size(); ++i) {
+    theta.push_back(map.ColClockRad(sides.cols[i]));
+    if (widths[i] <= 0.0) continue;
+    open_widths.push_back(widths[i]);
+    open_theta.push_back(theta.back());
+  }
   const bool most_open = static_cast<double>(open_widths.size()) >=
                              o.min_open_share * static_cast<double>(widths.size()) &&
                          !open_widths.empty();
-  return {Median(most_open ? open_widths : widths), seen ? bottom : 0.0,
-          centres.empty() ? 0.0 : Median(centres),
+  return {GapAtTheAxis(most_open ? open_theta : theta, most_open ? open_widths : widths),
+          seen ? bottom : 0.0, centres.empty() ? 0.0 : Median(centres),
           static_cast<double>(open_widths.size()) / static_cast<double>(widths.size())};
 }
 
@@ -163,7 +177,7 @@ JointMeasure MeasureJoint(const CoarseMap& map, const Centreline& centreline, do
   // The gap measured between sides left clear of the guess (a joint found by its step:
   // of the band a gap may hide in, and only where enough columns show it open); then the
   // joint moved to its centre, and the sides fitted again clear of the measured gap.
-  const double guess = gap_guess_mm > 0.0 ? gap_guess_mm : o.unseen_gap_mm;
+  const double guess = gap_guess_mm > 0.0 ? gap_guess_mm + 2.0 * o.gap_reach_mm : o.unseen_gap_mm;
   const Sides first = FitSides(map, station_mm, guess + 2.0 * row_mm, o, x);
   const GapMeasure g = MeasureGap(map, first, station_mm, 0.5 * guess + 2.0 * row_mm, o, x);
   if (gap_guess_mm > 0.0 || (g.open_share >= o.min_open_share && g.gap_mm > 0.0)) {

@@ -126,6 +126,7 @@ void JointOptions::Check() const {
   ValidatePositive("side_length_mm", side_length_mm);
   ValidateNotNegative("side_margin_mm", side_margin_mm);
   ValidateNotNegative("unseen_gap_mm", unseen_gap_mm);
+  ValidateNotNegative("gap_reach_mm", gap_reach_mm);
   ValidatePositive("max_side_rms_factor", max_side_rms_factor);
   SEWER3D_VALIDATE(min_gap_share > 0.0 && min_gap_share <= 1.0, "min_gap_share",
                    "must be in (0, 1], got " << min_gap_share);

@@ -32,11 +32,16 @@ struct JointOptions {
   /// A row is open where it is missing, or deeper than min_gap_depth_mm below its column's
   /// median; a gap is a run of rows open over at least this share of the turn.
   double min_gap_share = 0.5;
-  /// The gap's width is the median over the columns where it is open (missing or deep) when
-  /// at least this share of the columns is: where the depth maps bridge a gap no lost spot
-  /// fell into (its columns read 0), they say nothing of its width. Where fewer are open, the
-  /// median over all columns.
+  /// The gap's width comes from the columns where it is open (missing or deep) when at least
+  /// this share of the columns is: where the depth maps bridge a gap no lost spot fell into
+  /// (its columns read 0), they say nothing of its width. Where fewer are open, from all
+  /// columns.
   double min_open_share = 1.0 / 3.0;
+  /// How far a column's gap may reach beyond the half of the open rows' width found around
+  /// the turn: a deflected joint's gap opens by R tan α on one side (2.6 mm for 1° in DN300),
+  /// and near an offset the model's centreline tilts the gap across the map by a millimetre
+  /// or two.
+  double gap_reach_mm = 4.0;
   void Check() const;
 };
 
