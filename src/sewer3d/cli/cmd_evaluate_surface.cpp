@@ -68,8 +68,11 @@ void PrintCylinder(const std::string& cloud, const Points& points,
   fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
   if (!truth) return;
   const double error = 2 * fit->radius_mm - truth->diameter_mm;
-  fmt::print("truth      diameter {:.3f} mm: error {:+.3f} mm ({:+.3f} %)\n", truth->diameter_mm,
-             error, 100 * error / truth->diameter_mm);
+  // A cylinder through a wall's joint step and relief is not the pipe's: said on the line.
+  const std::size_t n = truth->features.size();
+  fmt::print("truth      diameter {:.3f} mm: error {:+.3f} mm ({:+.3f} %{})\n", truth->diameter_mm,
+             error, 100 * error / truth->diameter_mm,
+             n ? fmt::format(", the fit holding the wall's {} features", n) : "");
 }
 
 void PrintTruthDistances(const Scene& scene, const Points& all) {
@@ -113,18 +116,17 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
                                "is in WS/model/report.json)");
   }
   const CameraCloudFacts facts = DescribeCameraCloud(all);
-  const std::size_t behind = facts.behind;
-  if (!all.empty() && behind == all.size()) {
+  if (!all.empty() && facts.behind == all.size()) {
     throw FileError(cloud, fmt::format("all {} points lie behind the camera (z <= 0): evaluate "
                                        "reads a cloud in the camera frame (z along the view)",
                                        all.size()));
   }
-  if (behind > 0) {
+  if (facts.behind > 0) {
     std::fflush(stdout);
     fmt::print(stderr,
                "sewer3d: warning: {}: {} of the {} points lie behind the camera (z <= 0) "
                "and are left out\n",
-               cloud, behind, all.size());
+               cloud, facts.behind, all.size());
   }
   const Points points = InnerPoints(all, inner_fraction);
   if (points.size() < 10 && all.size() >= 10) {  // the option leaves too few, not the file
@@ -136,11 +138,10 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
     throw FileError(cloud, fmt::format("only {} points: at least 10 are needed", all.size()));
   fmt::print("{}: {} points, {} in the inner {:.0f} %\n", cloud, all.size(), points.size(),
              100 * inner_fraction);
-  if (surface == "plane") {
+  if (surface == "plane")
     PrintPlane(cloud, points);
-  } else {
+  else
     PrintCylinder(cloud, points, truth);
-  }
   WarnOfUnits(cloud, facts);
   if (truth) PrintTruthDistances(*truth, all);
   return 0;
