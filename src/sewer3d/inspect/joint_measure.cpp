@@ -149,18 +149,18 @@ GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_m
     widths.push_back(open * row_mm);
     if (open > 0.0) centres.push_back(moment / open);
   }
-  std::vector<double> open_widths, open_theta, theta;
+  std::vector<double> open_widths, open_theta;
   for (std::size_t i = 0; i < widths.size(); ++i) {
-    theta.push_back(map.ColClockRad(sides.cols[i]));
     if (widths[i] <= 0.0) continue;
     open_widths.push_back(widths[i]);
-    open_theta.push_back(theta.back());
+    open_theta.push_back(map.ColClockRad(sides.cols[i]));
   }
   const bool most_open = static_cast<double>(open_widths.size()) >=
                              o.min_open_share * static_cast<double>(widths.size()) &&
                          !open_widths.empty();
-  return {GapAtTheAxis(most_open ? open_theta : theta, most_open ? open_widths : widths),
-          seen ? bottom : 0.0, centres.empty() ? 0.0 : Median(centres),
+  // Where few columns are open, the median over all of them (mostly 0: not in the data).
+  return {most_open ? GapAtTheAxis(open_theta, open_widths) : Median(widths), seen ? bottom : 0.0,
+          centres.empty() ? 0.0 : Median(centres),
           static_cast<double>(open_widths.size()) / static_cast<double>(widths.size())};
 }
 
