@@ -154,6 +154,12 @@ Centreline Straight() {
   return *line;
 }
 
+InspectOptions WithDefects(const DefectOptions& defects) {
+  InspectOptions options;
+  options.defects = defects;
+  return options;
+}
+
 const Observation* Only(const Inspection& in, const std::string& code) {
   const Observation* found = nullptr;
   for (const Observation& o : in.observations) {
@@ -252,10 +258,9 @@ TEST(Inspect, MeasuresASpallWhoseFloorLostItsSpotsAsOnePatch) {
   EXPECT_GT(Q(spall, "unmeasured_mm2"), 0.4 * 2400.0);
   DefectOptions islands_only;
   islands_only.max_hole_mm = 0.0;
-  InspectOptions apart;
-  apart.defects = islands_only;
   // Alone, every island (≤ 25 mm²) is under min_area_mm2: the patch would be missed.
-  EXPECT_TRUE(Inspect(SyntheticMap(0.5, HoledSpallWall), Straight(), apart).observations.empty());
+  EXPECT_TRUE(Inspect(SyntheticMap(0.5, HoledSpallWall), Straight(), WithDefects(islands_only))
+                  .observations.empty());
 }
 
 // A deflected joint's gap is its width at the axis: the mean of its widths around the turn,
@@ -282,11 +287,9 @@ TEST(Inspect, MeasuresADepositWithItsRampIslandsAsOne) {
   EXPECT_NEAR(Q(deposit, "height_mm"), 20.0, 1.0);
   DefectOptions apart;
   apart.deposit_join_mm = 0.0;
-  InspectOptions islands_apart;
-  islands_apart.defects = apart;
-  EXPECT_GT(
-      Inspect(SyntheticMap(0.5, RampedDepositWall), Straight(), islands_apart).observations.size(),
-      1U);
+  EXPECT_GT(Inspect(SyntheticMap(0.5, RampedDepositWall), Straight(), WithDefects(apart))
+                .observations.size(),
+            1U);
 }
 
 // A joint that is only deflected (BAJ C) is placed where its next pipe turns toward.
