@@ -13,6 +13,9 @@ namespace sewer3d {
 namespace {
 
 constexpr double kReferenceDistanceMm = 150.0;
+// A surface nearer to the projector than the lit point by more than this along the projector's
+// ray hides it (the relief moves points off the smooth surface by up to a few tenths).
+constexpr double kShadowToleranceMm = 0.5;
 
 // Thin-lens circle of confusion (diameter, px) of a point at depth z for a lens focused at
 // focus_mm with focal length f_px (pixels) and aperture diameter aperture_mm.
@@ -92,6 +95,16 @@ struct Setup {
     return value;  // overlapping spots add up (none do at the default pitch)
   }
 };
+
+// The projector's own line of sight: a point that a nearer surface hides from the projector
+// (the bottom of a joint's gap behind its edge, the wall behind an intrusion) gets no pattern
+// light, however the camera sees it.
+bool InProjectorShadow(const Surface& surface, const Eigen::Vector3d& projector_centre,
+                       const Eigen::Vector3d& point) {
+  const Eigen::Vector3d ray = point - projector_centre;
+  const auto blocker = surface.Intersect(projector_centre, ray);
+  return blocker && blocker->t < 1.0 - kShadowToleranceMm / ray.norm();
+}
 
 struct Sample {
   double pattern = 0.0;
@@ -175,8 +188,11 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
                                    std::pow(coc / 2.5, 2) + scatter_px * scatter_px);
     const double lens = o.vignetting ? std::pow(cos_beta, 4) : 1.0;
     const Eigen::Vector2d element_uv = *uv + s.projector_residual.ShiftPx(pi, *uv);
-    pattern += o.pattern_level * s.SpotProfile(element_uv, sigma) * lens *
-               std::pow(kReferenceDistanceMm / d_projector, 2) * cos_in;
+    const double spot = s.SpotProfile(element_uv, sigma);
+    if (spot > 0.0 && !InProjectorShadow(s.surface, projector_centre, hit->point)) {
+      pattern +=
+          o.pattern_level * spot * lens * std::pow(kReferenceDistanceMm / d_projector, 2) * cos_in;
+    }
   }
   out.pattern = (grey / 0.5) * pattern * vignetting;
   return out;

@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <vector>
 
 #include "sewer3d/core/units.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/sim/material.hpp"
+#include "sewer3d/sim/scene_presets.hpp"
 #include "sewer3d/sim/spot_truth.hpp"
 #include "sewer3d/sim/surface.hpp"
 #include "sewer3d/testing/small_module.hpp"
@@ -98,6 +100,50 @@ TEST(Renderer, TruthDepthMatchesAnalyticSurfaces) {
   RecordProperty("worst_cylinder_depth_error_mm", std::to_string(worst_cylinder));
   EXPECT_LT(worst_plane, 1e-4);
   EXPECT_LT(worst_cylinder, 1e-4);
+}
+
+// Projector and camera look from 78 mm apart, so at a depth step the camera sees wall that
+// the projector cannot reach (a joint's gap behind its edge, the wall beside an intrusion). No
+// pattern light may land there. The renderer once lit it: ghost spots in the shadow band,
+// which a real module never shows, claimed the elements of the true spots beside the step.
+TEST(Renderer, NoPatternLightWhereTheProjectorCannotSee) {
+  const ModuleDescription module = SmallModule();
+  const CameraModel camera(module.camera);
+  Scene wall;
+  wall.type = Scene::Type::kPipeWall;
+  wall.features = PipeWallPresetFeatures();
+  RenderOptions options = RenderOptions::Ideal();  // no ambient light
+  options.supersampling = 1;
+  const RenderedFrame frame = RenderFrame(module, DefaultPatternArray(), wall, options);
+  // Pixel centres hidden from the projector by 2 mm or more, tested independently of the
+  // renderer: the first wall the projector's ray meets lies that far before the point.
+  const Eigen::Vector3d projector = module.projector_from_camera.Inverse().translation;
+  cv::Mat1b hidden(frame.truth_depth.size(), 0);
+  for (int v = 0; v < hidden.rows; ++v) {
+    for (int u = 0; u < hidden.cols; ++u) {
+      const float z = frame.truth_depth(v, u);
+      if (!std::isfinite(z)) continue;
+      const Eigen::Vector2d xy = *camera.Unproject({double(u), double(v)});
+      const Eigen::Vector3d ray = double(z) * Eigen::Vector3d(xy.x(), xy.y(), 1.0) - projector;
+      const auto first = Intersect(wall, projector, ray);
+      hidden(v, u) = first && first->t < 1.0 - 2.0 / ray.norm() ? 255 : 0;
+    }
+  }
+  // A pixel's one sample lies anywhere in it: judge the pixels whose neighbours are hidden too.
+  cv::erode(hidden, hidden, cv::Mat1b(3, 3, 255));
+  int hidden_pixels = 0;
+  float hidden_light = 0.0F;
+  for (int v = 0; v < hidden.rows; ++v) {
+    for (int u = 0; u < hidden.cols; ++u) {
+      if (!hidden(v, u)) continue;
+      ++hidden_pixels;
+      hidden_light = std::max(hidden_light, frame.pattern_signal(v, u));
+    }
+  }
+  RecordProperty("hidden_pixels", hidden_pixels);
+  EXPECT_GT(hidden_pixels, 500);  // the joint's and the intrusion's shadow bands
+  EXPECT_EQ(hidden_light, 0.0F);
+  EXPECT_GT(cv::sum(frame.pattern_signal)[0], 0.0);
 }
 
 TEST(Renderer, ProjectorDefocusGrowsAwayFromFocus) {
