@@ -29,6 +29,7 @@ void ModelEvaluationOptions::Check() const {
   ValidatePositive("axis_outlier_mm", axis_outlier_mm);
   SEWER3D_VALIDATE(circumference_directions >= 8, "circumference_directions",
                    "must be ≥ 8, got " << circumference_directions);
+  ValidateNotNegative("circumference_half_band_mm", circumference_half_band_mm);
 }
 
 namespace {
@@ -119,28 +120,61 @@ double Perimeter(const std::vector<double>& r, const std::vector<double>& a) {
   return sum;
 }
 
+/// The model's mean radius over the cells of one sector of the ring: columns [col0, col1) (wrapping
+/// around the clock) of rows [row0, row1]; nullopt where fewer than 90 % of them are covered (a
+/// joint's gap, a hole).
+std::optional<double> SectorRadius(const PipeModel& model, int row0, int row1, int col0, int col1) {
+  const PipeMaps& maps = model.maps;
+  double sum = 0.0;
+  int n = 0, cells = 0;
+  for (int r = std::max(0, row0); r <= std::min(maps.grid.rows - 1, row1); ++r) {
+    for (int c = col0; c < col1; ++c, ++cells) {
+      const int cc = c % maps.grid.cols;
+      const float d = maps.displacement_mm(r, cc);
+      if (maps.coverage(r, cc) == 0 || !std::isfinite(d)) continue;
+      sum += d;
+      ++n;
+    }
+  }
+  if (n == 0 || n < 0.9 * cells) return std::nullopt;
+  return model.info.centreline.radius_mm + sum / n;
+}
+
 /// The cross-section at `row` when the model covers it all around and the true wall is found in
-/// every direction.
+/// every direction. Like a profile ring (inspect/profile.hpp), the wall is averaged over each
+/// direction's sector and ±`half_band_mm` of station, the model's cells and the true wall's
+/// rays alike (3 stations × 3 clocks per sector), so per-cell noise does not lengthen the
+/// perimeter and both sides see the same relief.
 std::optional<CircumferenceSample> CrossSection(const PipeModel& model, const PipeGeometry& truth,
                                                 const Rigid3d& truth_from_model, int row,
-                                                int directions) {
+                                                int directions, double half_band_mm) {
   const PipeMaps& maps = model.maps;
-  const AxisFrame frame = model.info.centreline.FrameAt(maps.grid.RowStationMm(row));
-  const Eigen::Vector3d origin_world = truth_from_model * frame.origin;
-  std::vector<double> clock(directions), r_model(directions), r_true(directions);
+  const Centreline& axis = model.info.centreline;
+  const double station = maps.grid.RowStationMm(row);
+  const int half_rows = static_cast<int>(std::floor(half_band_mm / maps.grid.resolution_mm));
+  std::vector<double> clock(directions), r_model(directions), r_true(directions, 0.0);
+  const double sector = 2.0 * std::numbers::pi / directions;
   for (int k = 0; k < directions; ++k) {
-    const int col = static_cast<int>(static_cast<std::int64_t>(k) * maps.grid.cols / directions);
-    const float d = maps.displacement_mm(row, col);
-    if (maps.coverage(row, col) == 0 || !std::isfinite(d)) return std::nullopt;
-    clock[k] = maps.grid.ColClockRad(col);
-    r_model[k] = model.info.centreline.radius_mm + d;
-    const auto hit =
-        truth.Intersect(origin_world, truth_from_model.rotation * frame.Direction(clock[k]));
-    if (!hit) return std::nullopt;
-    r_true[k] = hit->t;
+    const auto col0 = static_cast<int>(static_cast<std::int64_t>(k) * maps.grid.cols / directions);
+    const auto col1 =
+        static_cast<int>(static_cast<std::int64_t>(k + 1) * maps.grid.cols / directions);
+    const std::optional<double> r =
+        SectorRadius(model, row - half_rows, row + half_rows, col0, std::max(col1, col0 + 1));
+    if (!r) return std::nullopt;
+    clock[k] = (k + 0.5) * sector;
+    r_model[k] = *r;
+    for (const double ds : {-half_band_mm, 0.0, half_band_mm}) {
+      const AxisFrame frame = axis.FrameAt(station + ds);
+      const Eigen::Vector3d origin_world = truth_from_model * frame.origin;
+      for (const double dc : {-sector / 3.0, 0.0, sector / 3.0}) {
+        const auto hit = truth.Intersect(
+            origin_world, truth_from_model.rotation * frame.Direction(clock[k] + dc));
+        if (!hit) return std::nullopt;
+        r_true[k] += hit->t / 9.0;
+      }
+    }
   }
-  return CircumferenceSample{maps.grid.RowStationMm(row), Perimeter(r_model, clock),
-                             Perimeter(r_true, clock)};
+  return CircumferenceSample{station, Perimeter(r_model, clock), Perimeter(r_true, clock)};
 }
 
 void EvaluateCircumference(const PipeModel& model, const PipeGeometry& truth,
@@ -153,8 +187,8 @@ void EvaluateCircumference(const PipeModel& model, const PipeGeometry& truth,
   for (int b = 0; b < bins; ++b) {
     const int row = static_cast<int>((b + 0.5) * o.station_bin_mm / grid.resolution_mm);
     if (row >= grid.rows) break;
-    const auto sample =
-        CrossSection(model, truth, truth_from_model, row, o.circumference_directions);
+    const auto sample = CrossSection(model, truth, truth_from_model, row,
+                                     o.circumference_directions, o.circumference_half_band_mm);
     if (!sample) continue;
     e.circumference_profile.push_back(*sample);
     const double diff = sample->model_mm - sample->truth_mm;

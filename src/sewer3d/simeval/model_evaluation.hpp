@@ -10,7 +10,8 @@
 ///   and per clock hour (the modules' seams show as hours with larger errors);
 /// - per station bin, the circumference of the model's cross-section (in the centreline's normal
 ///   plane) against the true wall's cut by the same plane (rays from the same axis point in the
-///   same clock directions), for cross-sections the model covers all around;
+///   same clock directions), for cross-sections the model covers all around; both averaged
+///   over each direction's sector and a band of stations, as a profile ring is;
 /// - per evaluated map row, the lateral offset of the model's axis from the true one (the first
 ///   harmonic of the row's errors around the clock: registration drift and centreline error),
 ///   and the errors with it removed (the surface's own error: noise, seams, radius).
@@ -36,7 +37,9 @@ struct ModelEvaluationOptions {
   /// error buffers (1 GB here), on top of the model's maps.
   std::int64_t max_cells = 30'000'000;
   double station_bin_mm = 10.0;        ///< circumference: one cross-section per bin
-  int circumference_directions = 720;  ///< clock directions per cross-section
+  int circumference_directions = 360;  ///< clock directions (1° sectors) per cross-section
+  /// Each sector's wall is averaged over ± this of station (a profile ring's band; 0: one row).
+  double circumference_half_band_mm = 1.0;
   /// Axis offset per row: cells with |error| above this (joint gaps) are left out of the fit.
   double axis_outlier_mm = 2.0;
   /// "Away from step faces" (issue 16): cells whose true station lies more than this from every
