@@ -27,8 +27,10 @@ void PrintItem(const TrueItemMatch& m) {
   }
   std::string values;
   for (const TrueItemMatch::Value& v : m.values) {
-    values += fmt::format("; {} {:.2f} (true {:.2f}, {:+.2f})", v.name, v.measured, v.truth,
-                          v.measured - v.truth);
+    values += std::isfinite(v.measured)
+                  ? fmt::format("; {} {:.2f} (true {:.2f}, {:+.2f})", v.name, v.measured, v.truth,
+                                v.measured - v.truth)
+                  : fmt::format("; {} not measured (true {:.2f})", v.name, v.truth);
   }
   fmt::print("  {:<4} {:<4} = {:<4} station {:+.1f} mm, clock {:+.2f} h{}\n", m.truth_id, m.code,
              m.observation_id, m.station_error_mm, m.clock_error_h, values);

@@ -312,6 +312,8 @@ std::vector<Observation> FindDefects(const CoarseMap& map, const cv::Mat1f& resi
   // Parts of one bore split by unmeasured cells, and the regions next to a bore, join it.
   std::vector<ConnectionParts> connections;
   for (const MapComponent& bore : MergeNear(std::move(bores), margin_rows, margin_cols)) {
+    // A few cells far outward (a depth map's wrongly decoded island) are no lateral's bore.
+    if (static_cast<double>(bore.cells.size()) < min_cells) continue;
     connections.push_back({bore.cells, {}, bore});
   }
   auto join = [&](std::vector<MapComponent>& regions, std::vector<bool>& used,

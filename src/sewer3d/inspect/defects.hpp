@@ -22,7 +22,7 @@ struct DefectOptions {
   double connection_margin_mm = 15.0;
   /// Thresholds are raised to this many times the residual's robust sigma where noisier.
   double noise_factor = 6.0;
-  double min_area_mm2 = 50.0;     ///< smaller regions are ignored
+  double min_area_mm2 = 50.0;     ///< smaller regions (and bores) are ignored
   double crack_elongation = 4.0;  ///< length / width from which an outward region is a crack
   double crack_max_width_mm = 6.0;
   double invert_half_h = 1.0;  ///< a deposit's middle lies within ± this of 6 o'clock

@@ -29,11 +29,15 @@ Observation JointObservation(const JointMeasure& j, const CoarseMap& map, const 
   o.clock_h = o.clock_from_h = o.clock_to_h =
       ClockRadToHours(letter == 'C' ? j.deflection_clock_rad : j.offset_clock_rad);
   o.at_joint = true;
+  // A joint found by its step whose gap no column shows open: the gap is narrower than the
+  // depth maps resolve (their lit spots bridge it), not closed; and a gap whose bottom is not
+  // seen has no depth. Neither is measured (NaN), never 0.
+  const double none = std::numeric_limits<double>::quiet_NaN();
   o.quantities = {{"offset_mm", j.offset_mm, "mm"},
-                  {"gap_mm", j.gap_mm, "mm"},
+                  {"gap_mm", j.gap_mm > 0.0 ? j.gap_mm : none, "mm"},
                   {"deflection_deg", j.deflection_deg, "deg"},
                   {"deflection_clock_h", ClockRadToHours(j.deflection_clock_rad), "h"},
-                  {"gap_depth_mm", j.gap_depth_mm, "mm"}};
+                  {"gap_depth_mm", j.gap_depth_mm > 0.0 ? j.gap_depth_mm : none, "mm"}};
   const double strength =
       std::max(j.gap_depth_mm / opt.min_gap_depth_mm, j.offset_mm / opt.min_offset_mm);
   o.confidence = j.side_coverage * (1.0 - std::exp(-strength));
@@ -47,8 +51,6 @@ Observation JointObservation(const JointMeasure& j, const CoarseMap& map, const 
       static_cast<int>(std::lround(j.offset_clock_rad / (2.0 * std::numbers::pi) * map.fine.cols));
   o.crop.col0 = ((at - quarter / 2) % map.fine.cols + map.fine.cols) % map.fine.cols;
   o.crop.cols = quarter;
-  // A joint found by its step whose gap no column shows open: the gap is narrower than the
-  // depth maps resolve (their lit spots bridge it), not closed; gap_mm 0 says "not measured".
   const std::string gap = j.gap_mm > 0.0 ? fmt::format("gap {:.1f} mm", j.gap_mm)
                                          : std::string("gap not resolved in the maps");
   o.remark = fmt::format("joint: offset {:.1f} mm at {:.1f} h, {}, deflection {:.2f}°", j.offset_mm,

@@ -102,7 +102,8 @@ float DeflectedJointWall(double s, double th) {
 
 // A DN300 pipe with a deposit 20 mm high at the invert from s = 250 to 400, its end ramped
 // down over the last 30 mm: the steep part (s 370 … 392) lost its spots, the ramp's foot is
-// measured only in islands; a flying-pixel clump stands 10 mm off the bed at 5.3 h.
+// measured only in islands; a flying-pixel clump stands 10 mm off the bed at 5.3 h, and a
+// wrongly decoded island of 3 mm lies 76 mm behind the wall at s = 330, 6.5 h.
 float RampedDepositWall(double s, double th) {
   const double c = std::cos(ClockDiff(th, kPi));
   if (s < 250.0 || s > 400.0 || c <= 0.0) return 0.0F;
@@ -112,6 +113,8 @@ float RampedDepositWall(double s, double th) {
   const double bed = std::max(0.0, kRadius - (kRadius - h) / c);
   const bool clump =
       std::abs(s - 300.0) < 2.5 && std::abs(ClockDiff(th, ClockHoursToRad(5.3))) * kRadius < 2.5;
+  if (std::hypot(s - 330.0, ClockDiff(th, ClockHoursToRad(6.5)) * kRadius) < 1.5)
+    return 76.0F;  // a wrongly decoded island far behind the wall: no connection's bore
   return static_cast<float>(-bed - (clump && bed > 0.0 ? 10.0 : 0.0));
 }
 
@@ -126,6 +129,16 @@ float TurnedGapWall(double s, double th) {
   return s < 297.0 ? 0.0F
                    : static_cast<float>(t * std::max(0.0, s - 300.0) *
                                         std::cos(th - ClockHoursToRad(9.0)));
+}
+
+// A joint at s = 300 whose gap (8 mm) has its rough bottom (±0.4 mm) measured, 5 mm outward of
+// the near pipe's wall, but for its first millimetre (in the near edge's shadow); the next pipe
+// stands 4 mm outward at 12 h, so there the bottom lies only 1 mm below its wall (9 mm at 6 h).
+float MeasuredBottomGapWall(double s, double th) {
+  if (s < 296.0) return 0.0F;
+  if (s < 297.0) return kNaN;
+  if (s < 304.0) return static_cast<float>(5.0 + 0.4 * std::sin(4.8 * s) * std::sin(90.0 * th));
+  return static_cast<float>(4.0 * std::cos(th));
 }
 
 CoarseMap SyntheticMap(double resolution_mm = 0.5, float (*wall)(double, double) = Wall) {
@@ -230,7 +243,8 @@ TEST(Inspect, MeasuresAJointWhoseGapWasBridged) {
   EXPECT_NEAR(Q(joint, "offset_mm"), 4.0, 0.15);
   EXPECT_NEAR(std::remainder(joint->clock_h, 12.0), 0.0, 0.25);  // 12 h
   EXPECT_LT(Q(joint, "deflection_deg"), 0.1);
-  EXPECT_EQ(Q(joint, "gap_mm"), 0.0);  // none in the data: none invented
+  EXPECT_TRUE(std::isnan(Q(joint, "gap_mm")));  // none in the data: not measured, not 0
+  EXPECT_TRUE(std::isnan(Q(joint, "gap_depth_mm")));
   EXPECT_NE(joint->remark.find("gap not resolved in the maps"), std::string::npos) << joint->remark;
 }
 
@@ -290,6 +304,18 @@ TEST(Inspect, MeasuresADepositWithItsRampIslandsAsOne) {
   EXPECT_GT(Inspect(SyntheticMap(0.5, RampedDepositWall), Straight(), WithDefects(apart))
                 .observations.size(),
             1U);
+}
+
+// The gap's bottom counts as open against the wall of its own side: past the offset it lies
+// less deep below the next pipe's wall than below this one's.
+TEST(Inspect, MeasuresAGapWhoseBottomIsMeasuredPastAnOffset) {
+  const Inspection in = Inspect(SyntheticMap(0.5, MeasuredBottomGapWall), Straight(), {});
+  const Observation* joint = Only(in, "BAJ");
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(joint->station_mm, 300.0, 0.5);
+  EXPECT_NEAR(Q(joint, "gap_mm"), 8.0, 0.25);  // the bottom's old global reference: 6.85
+  EXPECT_NEAR(Q(joint, "offset_mm"), 4.0, 0.15);
+  EXPECT_NEAR(Q(joint, "gap_depth_mm"), 5.0, 0.5);
 }
 
 // A joint that is only deflected (BAJ C) is placed where its next pipe turns toward.

@@ -1,7 +1,9 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "sewer3d/core/units.hpp"
@@ -112,6 +114,43 @@ double GapAtTheAxis(const std::vector<double>& theta, const std::vector<double>&
   return k.size() == 3 ? std::max(0.0, k(0)) : Median(widths);
 }
 
+/// A column's open length over rows [r0, r1): missing cells count as open, and measured ones
+/// by their depth below the wall of their side as a share of the gap's bottom there. The
+/// bottom is the column's cells deeper than both side lines by more than min_gap_depth_mm,
+/// at their lower quartile (so that its noisy cells count as wholly open, and a cell half
+/// wall, half bottom at a 1 mm edge as half); each side's share is taken against that side's
+/// own line, since past an offset the bottom lies less deep below the next pipe's wall than
+/// below this one's. Where the column has no such bottom only missing cells are open.
+/// Returns {open length in rows, centroid of the open rows (x, weighted)}.
+std::pair<double, double> OpenRows(const CoarseMap& map, int col, const SideLine& before,
+                                   const SideLine& after, int r0, int r1, const JointOptions& o,
+                                   const std::vector<double>& x) {
+  const auto depth = [&](const SideLine& line, int r) {
+    return map.displacement_mm(r, col) - (line.value + line.slope * x[r]);
+  };
+  std::vector<double> bottom;
+  for (int r = r0; r < r1; ++r) {
+    if (std::isfinite(map.displacement_mm(r, col)) &&
+        std::min(depth(before, r), depth(after, r)) > o.min_gap_depth_mm)
+      bottom.push_back(map.displacement_mm(r, col));
+  }
+  const double level =
+      bottom.empty() ? std::numeric_limits<double>::quiet_NaN() : Percentile(bottom, 0.25);
+  double open = 0.0, moment = 0.0;
+  for (int r = r0; r < r1; ++r) {
+    const float v = map.displacement_mm(r, col), frac = map.measured(r, col);
+    const SideLine& line = x[r] < 0.0 ? before : after;
+    const double reach = level - (line.value + line.slope * x[r]);  // NaN without a bottom
+    const double deep = std::isfinite(v) && reach > o.min_gap_depth_mm
+                            ? std::clamp(depth(line, r) / reach, 0.0, 1.0)
+                            : 0.0;
+    const double here = (1.0 - frac) + frac * deep;
+    open += here;
+    moment += here * x[r];
+  }
+  return {open, open > 0.0 ? moment / open : 0.0};
+}
+
 GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_mm,
                       double half_window_mm, const JointOptions& o, const std::vector<double>& x) {
   if (sides.cols.empty()) return {};
@@ -134,20 +173,10 @@ GapMeasure MeasureGap(const CoarseMap& map, const Sides& sides, double station_m
   const bool seen = bottom >= 4.0 * o.min_gap_depth_mm;
   std::vector<double> widths, centres;
   for (std::size_t i = 0; i < sides.cols.size(); ++i) {
-    double open = 0.0, moment = 0.0;
-    for (int r = r0; r < r1; ++r) {
-      const int c = sides.cols[i];
-      const float v = map.displacement_mm(r, c), frac = map.measured(r, c);
-      const SideLine& line = x[r] < 0.0 ? sides.before[i] : sides.after[i];
-      const double deep =
-          seen && std::isfinite(v)
-              ? std::clamp((v - (line.value + line.slope * x[r])) / bottom, 0.0, 1.0)
-              : 0.0;
-      open += (1.0 - frac) + frac * deep;
-      moment += ((1.0 - frac) + frac * deep) * x[r];
-    }
+    const auto [open, centre] =
+        OpenRows(map, sides.cols[i], sides.before[i], sides.after[i], r0, r1, o, x);
     widths.push_back(open * row_mm);
-    if (open > 0.0) centres.push_back(moment / open);
+    if (open > 0.0) centres.push_back(centre);
   }
   std::vector<double> open_widths, open_theta;
   for (std::size_t i = 0; i < widths.size(); ++i) {

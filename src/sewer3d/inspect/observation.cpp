@@ -1,6 +1,10 @@
 #include "sewer3d/inspect/observation.hpp"
 
+#include <cmath>
+
 namespace sewer3d {
+
+bool Quantity::Measured() const { return std::isfinite(value); }
 
 const Quantity* Observation::Find(const std::string& name) const {
   for (const Quantity& q : quantities) {

@@ -10,13 +10,17 @@
 
 namespace sewer3d {
 
-/// One measured quantity of an observation: `name` as in the exchange files ("offset_mm",
-/// "gap_mm", "deflection_deg", "intrusion_pct_of_dn", …), its value and unit ("mm", "deg",
-/// "%", "mm2").
+/// One quantity of an observation: `name` as in the exchange files ("offset_mm", "gap_mm",
+/// "deflection_deg", "intrusion_pct_of_dn", …), its value and unit ("mm", "deg", "%", "mm2").
+/// A value of NaN is one the maps do not show (a joint's gap narrower than the depth maps
+/// resolve): not measured, never 0 — null in observations.json, empty in the CSV, left out of
+/// the ISYBAU file.
 struct Quantity {
   std::string name;
   double value = 0.0;
   std::string unit;
+
+  [[nodiscard]] bool Measured() const;
 };
 
 /// Where in the maps an observation was seen: rows [row0, row0 + rows) and columns

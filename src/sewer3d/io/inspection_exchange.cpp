@@ -22,7 +22,8 @@ std::string CsvText(const std::string& text) {
 std::string QuantityColumns(const Observation& o, size_t i) {
   if (i >= o.quantities.size()) return ",,";
   const Quantity& q = o.quantities[i];
-  return fmt::format("{},{:.3f},{}", CsvText(q.name), q.value, CsvText(q.unit));
+  const std::string value = q.Measured() ? fmt::format("{:.3f}", q.value) : std::string();
+  return fmt::format("{},{},{}", CsvText(q.name), value, CsvText(q.unit));
 }
 
 /// An element on its own line at `depth` (two spaces per level).
@@ -46,8 +47,10 @@ void Condition(std::string& xml, const Observation& o, double station_mm,
   if (!o.characterisation.empty()) Element(xml, d, "Charakterisierung1", o.characterisation);
   Element(xml, d, "Verbindung", o.at_joint ? "1" : "0");
   const char* quantification[] = {"Quantifizierung1Numerisch", "Quantifizierung2Numerisch"};
-  for (size_t i = 0; i < 2 && i < o.quantities.size(); ++i)
-    Element(xml, d, quantification[i], fmt::format("{:.2f}", o.quantities[i].value));
+  for (size_t i = 0; i < 2 && i < o.quantities.size(); ++i) {
+    if (o.quantities[i].Measured())
+      Element(xml, d, quantification[i], fmt::format("{:.2f}", o.quantities[i].value));
+  }
   if (!continuous.empty()) {
     Element(xml, d, "Streckenschaden", continuous);
     Element(xml, d, "StreckenschadenLfdNr", std::to_string(number));

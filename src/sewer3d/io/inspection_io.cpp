@@ -97,8 +97,11 @@ void WriteObservationsJson(const std::filesystem::path& path,
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const Observation& o : observations) {
     nlohmann::ordered_json quantities = nlohmann::ordered_json::array();
-    for (const Quantity& q : o.quantities)
-      quantities.push_back({{"name", q.name}, {"value", q.value}, {"unit", q.unit}});
+    for (const Quantity& q : o.quantities) {
+      const nlohmann::ordered_json value =
+          q.Measured() ? nlohmann::ordered_json(q.value) : nlohmann::ordered_json(nullptr);
+      quantities.push_back({{"name", q.name}, {"value", value}, {"unit", q.unit}});
+    }
     list.push_back({{"id", o.id},
                     {"code", o.code},
                     {"characterisation", o.characterisation},
@@ -207,8 +210,12 @@ Observation ReadObservation(const JsonReader& in, const json& j, const std::stri
     const std::string q = p + "quantities[" + std::to_string(i) + "].";
     if (!quantities[i].is_object()) in.Fail(q.substr(0, q.size() - 1), "must be an object");
     in.OnlyKnown(quantities[i], q, {"name", "value", "unit"});
-    o.quantities.push_back({in.Text(quantities[i], "name", q), in.Number(quantities[i], "value", q),
-                            in.Text(quantities[i], "unit", q, "")});
+    // null: not measured (Quantity).
+    const bool measured = !(quantities[i].contains("value") && quantities[i]["value"].is_null());
+    o.quantities.push_back(
+        {in.Text(quantities[i], "name", q),
+         measured ? in.Number(quantities[i], "value", q) : std::numeric_limits<double>::quiet_NaN(),
+         in.Text(quantities[i], "unit", q, "")});
     const Quantity& read = o.quantities.back();
     const std::string implied = UnitOfName(read.name);
     if (!implied.empty() && !read.unit.empty() && read.unit != implied) {

@@ -10,7 +10,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -333,6 +335,33 @@ TEST_F(InspectionIoTest, IsybauXmlIsWellFormedWithOneConditionPerEntry) {
   EXPECT_THROW(ParseXml("<a><b></a></b>"), std::runtime_error);
   EXPECT_THROW(ParseXml("<a>x &nbsp; y</a>"), std::runtime_error);
   EXPECT_THROW(ParseXml("<a></a><b></b>"), std::runtime_error);
+}
+
+// A quantity the maps do not show (a joint's gap the depth maps bridge) is not measured in
+// every file: null in the JSON (and NaN again when read), an empty value in the CSV, no
+// Quantifizierung in the ISYBAU file — never a 0 a reader would take for a closed gap.
+TEST_F(InspectionIoTest, AnUnmeasuredQuantityIsLeftEmptyNotZero) {
+  auto observations = SampleObservations();
+  observations[0].quantities[1].value = std::numeric_limits<double>::quiet_NaN();
+  WriteObservationsJson(files_.observations_json, observations);
+  const auto json = nlohmann::json::parse(ReadTextFile(files_.observations_json));
+  EXPECT_TRUE(json["observations"][0]["quantities"][1]["value"].is_null());
+  const auto back = ReadObservationsJson(files_.observations_json);
+  ASSERT_NE(back[0].Find("gap_mm"), nullptr);
+  EXPECT_FALSE(back[0].Find("gap_mm")->Measured());
+  EXPECT_TRUE(back[0].Find("offset_mm")->Measured());
+
+  WriteObservationsCsv(files_.observations_csv, observations);
+  EXPECT_NE(ReadTextFile(files_.observations_csv).find(",offset_mm,6.100,mm,gap_mm,,mm,"),
+            std::string::npos);
+
+  WriteObservationsIsybau(files_.observations_xml, observations, IsybauHeader{});
+  const auto leaves = ParseXml(ReadTextFile(files_.observations_xml));
+  const std::string z =
+      "Identifikation/Datenkollektive/Zustandsdatenkollektiv/InspizierteAbwassertechnischeAnlage/"
+      "OptischeInspektion/Rohrleitung/Inspektionsdaten/RZustand/";
+  EXPECT_EQ(leaves.count(z + "Quantifizierung1Numerisch"), 3u);
+  EXPECT_EQ(leaves.count(z + "Quantifizierung2Numerisch"), 0u);
 }
 
 }  // namespace

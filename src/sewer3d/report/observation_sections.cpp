@@ -16,8 +16,11 @@ namespace {
 
 std::string Quantities(const Observation& o) {
   std::string out;
-  for (const Quantity& q : o.quantities)
-    out += fmt::format("{}{} {:.4g} {}", out.empty() ? "" : "; ", q.name, q.value, q.unit);
+  for (const Quantity& q : o.quantities) {
+    out += q.Measured()
+               ? fmt::format("{}{} {:.4g} {}", out.empty() ? "" : "; ", q.name, q.value, q.unit)
+               : fmt::format("{}{} not measured", out.empty() ? "" : "; ", q.name);
+  }
   return out;
 }
 
