@@ -9,6 +9,7 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "sewer3d/core/check.hpp"
@@ -72,6 +73,13 @@ Eigen::Vector2d ElementOf(const ElementMesh& mesh, int k) {
   return {static_cast<double>(row), static_cast<double>(col)};
 }
 
+// A triangle of grid ids as one key, whatever the order of its corners (ids below 2^21).
+std::uint64_t TriangleKey(std::array<int, 3> t) {
+  std::sort(t.begin(), t.end());
+  return (static_cast<std::uint64_t>(t[0]) << 42U) | (static_cast<std::uint64_t>(t[1]) << 21U) |
+         static_cast<std::uint64_t>(t[2]);
+}
+
 std::uint64_t EdgeKey(int a, int b) {
   const auto lo = static_cast<std::uint64_t>(std::min(a, b));
   const auto hi = static_cast<std::uint64_t>(std::max(a, b));
@@ -82,36 +90,72 @@ std::uint64_t EdgeKey(int a, int b) {
 // a fraction of the nearest (a wall seen at 60° from its normal, spots 2 mm apart: ~2 %).
 constexpr double kMaxMarginDepthSpan = 0.05;
 
+// Where element c lies in the camera and at what depth by the plane of the filled triangle abd
+// (grid ids with points; its inverse depth affine over the image): false where abd is steep
+// (a step's flank, a lateral's bore seen end-on: its plane says little about where the surface
+// goes on) or too small to reach c (more than three of its heights beyond).
+bool Extrapolate(const ElementMesh& mesh, const std::vector<int>& point_of,
+                 const std::vector<Eigen::Vector2d>& pixels, const std::vector<double>& depths_mm,
+                 const std::array<int, 4>& abdc, Eigen::Vector2d& pixel, double& depth_mm) {
+  const auto [a, b, d, c] = abdc;
+  const int pa = point_of[a], pb = point_of[b], pd = point_of[d];
+  const double lo = std::min({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
+  const double hi = std::max({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
+  if (hi - lo > kMaxMarginDepthSpan * lo) return false;
+  Eigen::Matrix2d elements, image;
+  elements << ElementOf(mesh, b) - ElementOf(mesh, a), ElementOf(mesh, d) - ElementOf(mesh, a);
+  image << pixels[pb] - pixels[pa], pixels[pd] - pixels[pa];
+  if (std::abs(elements.determinant()) < 1e-12) return false;
+  pixel = pixels[pa] + image * elements.inverse() * (ElementOf(mesh, c) - ElementOf(mesh, a));
+  const double area = SignedArea(pixels[pa], pixels[pb], pixels[pd]);
+  if (std::abs(area) < 1e-9) return false;
+  const double wa = SignedArea(pixel, pixels[pb], pixels[pd]) / area;
+  const double wb = SignedArea(pixel, pixels[pd], pixels[pa]) / area;
+  const double wd = 1.0 - wa - wb;
+  if (wd < -3.0) return false;
+  const double inverse = wa / depths_mm[pa] + wb / depths_mm[pb] + wd / depths_mm[pd];
+  if (!(inverse > 0.0)) return false;
+  depth_mm = 1.0 / inverse;
+  return true;
+}
+
 // The margin of the unfilled triangle abc over its half nearer ab, drawn on the plane of the
 // filled triangle abd across ab (grid ids; a, b, d with points).
 void DrawMargin(const ElementMesh& mesh, const std::vector<int>& point_of,
                 const std::vector<Eigen::Vector2d>& pixels, const std::vector<double>& depths_mm,
                 double max_edge_px, const std::array<int, 4>& abcd, cv::Mat1f& depth) {
   const auto [a, b, c, d] = abcd;
-  const int pa = point_of[a], pb = point_of[b], pd = point_of[d];
-  // Not from a steep triangle (a step's flank, a lateral's bore seen end-on): its plane
-  // says little about where the surface goes on.
-  const double lo = std::min({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
-  const double hi = std::max({depths_mm[pa], depths_mm[pb], depths_mm[pd]});
-  if (hi - lo > kMaxMarginDepthSpan * lo) return;
-  Eigen::Matrix2d elements, image;
-  elements << ElementOf(mesh, b) - ElementOf(mesh, a), ElementOf(mesh, d) - ElementOf(mesh, a);
-  image << pixels[pb] - pixels[pa], pixels[pd] - pixels[pa];
-  if (std::abs(elements.determinant()) < 1e-12) return;
-  const Eigen::Vector2d pc =
-      pixels[pa] + image * elements.inverse() * (ElementOf(mesh, c) - ElementOf(mesh, a));
-  // c's barycentric weights in abd, extrapolated, give abd's inverse depth at pc.
-  const double area = SignedArea(pixels[pa], pixels[pb], pixels[pd]);
-  if (std::abs(area) < 1e-9) return;
-  const double wa = SignedArea(pc, pixels[pb], pixels[pd]) / area;
-  const double wb = SignedArea(pc, pixels[pd], pixels[pa]) / area;
-  // Not from a triangle too small to reach c (more than three of its heights beyond).
-  const double wd = 1.0 - wa - wb;
-  if (wd < -3.0) return;
-  const double inverse = wa / depths_mm[pa] + wb / depths_mm[pb] + wd / depths_mm[pd];
-  if (!(inverse > 0.0)) return;
-  FillTriangle(pixels[pa], pixels[pb], pc, depths_mm[pa], depths_mm[pb], 1.0 / inverse, max_edge_px,
-               depth, 0.5, true);
+  Eigen::Vector2d pc;
+  double zc = 0.0;
+  if (!Extrapolate(mesh, point_of, pixels, depths_mm, {a, b, d, c}, pc, zc)) return;
+  FillTriangle(pixels[point_of[a]], pixels[point_of[b]], pc, depths_mm[point_of[a]],
+               depths_mm[point_of[b]], zc, max_edge_px, depth, 0.5, true);
+}
+
+// The margin of the unfilled triangle bcd at its corner b only (no edge of it on the filled
+// surface: b a corner of the filled triangle f, c and d lost), the part where b's weight is at
+// least ½, on f's plane. With the edges' margins the surface then ends halfway toward the lost
+// spots all along a hole's rim; without it, it ends there only across the triangles that show the
+// hole an edge, and 1/8 of a triangle short on average where its rim runs along a row of elements.
+void DrawCornerMargin(const ElementMesh& mesh, const std::vector<int>& point_of,
+                      const std::vector<Eigen::Vector2d>& pixels,
+                      const std::vector<double>& depths_mm, double max_edge_px,
+                      const std::array<int, 3>& bcd, const std::array<int, 3>& f,
+                      cv::Mat1f& depth) {
+  const auto [b, c, d] = bcd;
+  // f's other two corners, in f's order after b.
+  const int k = f[0] == b ? 0 : f[1] == b ? 1 : 2;
+  const int e = f[(k + 1) % 3], g = f[(k + 2) % 3];
+  Eigen::Vector2d pc, pd;
+  double zc = 0.0, zd = 0.0;
+  if (!Extrapolate(mesh, point_of, pixels, depths_mm, {b, e, g, c}, pc, zc) ||
+      !Extrapolate(mesh, point_of, pixels, depths_mm, {b, e, g, d}, pd, zd))
+    return;
+  const Eigen::Vector2d& pb = pixels[point_of[b]];
+  const double zb = depths_mm[point_of[b]];
+  // Halfway in the image, and in inverse depth (affine over the image on a plane).
+  FillTriangle(pb, 0.5 * (pb + pc), 0.5 * (pb + pd), zb, 2.0 / (1.0 / zb + 1.0 / zc),
+               2.0 / (1.0 / zb + 1.0 / zd), max_edge_px, depth, 1.0, true);
 }
 
 // Each triangle of `mesh` that is not filled — it lost a spot, or its spots straddle a depth
@@ -119,30 +163,51 @@ void DrawMargin(const ElementMesh& mesh, const std::vector<int>& point_of,
 // triangle abd is drawn over the half nearer ab: its third element c's camera pixel is where
 // the affine map of abd's elements onto their pixels puts c's element, its inverse depth on
 // abd's plane of inverse depth over the image. At a step the surface ends somewhere between
-// a, b and c as the projector sees it: c's ray missed it.
+// a, b and c as the projector sees it: c's ray missed it. An unfilled triangle with no such
+// edge but a corner on the filled surface is drawn at that corner (DrawCornerMargin).
 void FillHoleMargins(const ElementMesh& mesh, const std::vector<int>& point_of,
                      const std::vector<std::array<int, 3>>& filled,
                      const std::vector<Eigen::Vector2d>& pixels,
                      const std::vector<double>& depths_mm, double max_edge_px, cv::Mat1f& depth) {
-  // Edge -> the third id of a filled triangle on it, and how many filled triangles it has.
+  // Edge -> the third id of a filled triangle on it, and how many filled triangles it has;
+  // grid id -> a filled triangle with that corner.
   std::unordered_map<std::uint64_t, std::pair<int, int>> opposite;
+  std::unordered_map<int, int> filled_at;
+  std::unordered_set<std::uint64_t> is_filled;
   opposite.reserve(3 * filled.size());
-  for (const std::array<int, 3>& t : filled) {
+  for (std::size_t i = 0; i < filled.size(); ++i) {
+    const std::array<int, 3>& t = filled[i];
+    is_filled.insert(TriangleKey(t));
     for (int k = 0; k < 3; ++k) {
       auto& [third, count] = opposite[EdgeKey(t[k], t[(k + 1) % 3])];
       third = t[(k + 2) % 3];
       ++count;
+      filled_at.emplace(t[k], static_cast<int>(i));
     }
   }
   for (const std::array<int, 3>& t : mesh.triangles) {
+    if (is_filled.contains(TriangleKey(t))) continue;
+    bool edge_margin = false;
     for (int k = 0; k < 3; ++k) {
       const int a = t[(k + 1) % 3], b = t[(k + 2) % 3], c = t[k];
       if (point_of[a] < 0 || point_of[b] < 0 || point_of[c] == -2) continue;
       const auto it = opposite.find(EdgeKey(a, b));
-      // Only where ab has one filled triangle, and that is not t itself.
-      if (it == opposite.end() || it->second.second != 1 || it->second.first == c) continue;
+      // Only where ab has one filled triangle (not t).
+      if (it == opposite.end() || it->second.second != 1) continue;
+      edge_margin = true;
       DrawMargin(mesh, point_of, pixels, depths_mm, max_edge_px, {a, b, c, it->second.first},
                  depth);
+    }
+    if (edge_margin) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int b = t[k], c = t[(k + 1) % 3], d = t[(k + 2) % 3];
+      // Toward two lost spots only: a seen one across the triangle (bd over a hole too wide
+      // for a filled triangle) is no spot this surface lost.
+      if (point_of[b] < 0 || point_of[c] != -1 || point_of[d] != -1) continue;
+      const auto f = filled_at.find(b);
+      if (f == filled_at.end()) continue;
+      DrawCornerMargin(mesh, point_of, pixels, depths_mm, max_edge_px, {b, c, d}, filled[f->second],
+                       depth);
     }
   }
 }

@@ -33,7 +33,8 @@ struct MeshDepthOptions {
   double spot_radius_px = 0.0;
   /// Where a lost spot's triangle meets a filled one, the surface is drawn on to halfway
   /// toward the lost spot (its camera position and depth extrapolated from the filled
-  /// triangle): a surface ends somewhere between the last spot seen and the first one lost,
+  /// triangle; a triangle that meets the surface only at a corner, toward its two lost spots
+  /// from that corner): a surface ends somewhere between the last spot seen and the first one lost,
   /// so one frame's hole drawn from the last spot seen is too wide by about half a triangle
   /// on each side. A model that kept every cell any frame measured (the union of the
   /// frames' surfaces) would then make holes too narrow; the model stage puts a hole's edge

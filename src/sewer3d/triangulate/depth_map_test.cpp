@@ -341,6 +341,48 @@ TEST(DepthMap, HolesDrawnToTheMidpointsKeepTheirWidth) {
   RecordProperty("hole_width_to_midpoints_px", std::to_string(to_midpoints));
 }
 
+// Every element lit, on a square grid split into triangles along one diagonal, rows 8 px apart
+// in the image; rows 10–14 lost (a hole from v = 92.5 to 132.5, its rims halfway between rows and
+// along them). Drawn to the midpoints, the hole keeps its height in every column: each rim
+// runs through triangles with an edge on the surface (drawn over their half nearer it) and
+// triangles with only a corner on it (drawn at that corner, their part where its weight is at
+// least ½); without the corners the rim zigzags and the hole reads 41.5 px (about 1/8 of a
+// row too high on each side).
+TEST(DepthMap, AHoleAlongARowOfElementsKeepsItsHeight) {
+  ElementMesh mesh;
+  mesh.rows = 25;
+  mesh.cols = 30;
+  for (int r = 0; r + 1 < mesh.rows; ++r) {
+    for (int c = 0; c + 1 < mesh.cols; ++c) {
+      const int a = mesh.Index(r, c), b = mesh.Index(r, c + 1), d = mesh.Index(r + 1, c + 1),
+                e = mesh.Index(r + 1, c);
+      mesh.triangles.push_back({a, b, d});
+      mesh.triangles.push_back({a, d, e});
+    }
+  }
+  const TiltedPlane plane;
+  std::vector<Eigen::Vector2i> elements;
+  std::vector<Eigen::Vector2d> pixels;
+  std::vector<double> depths;
+  for (int r = 0; r < mesh.rows; ++r) {
+    for (int c = 0; c < mesh.cols; ++c) {
+      if (r >= 10 && r <= 14) continue;
+      elements.emplace_back(r, c);
+      pixels.emplace_back(16.5 + 8.0 * c, 16.5 + 8.0 * r);  // (u, v): rims between pixels
+      depths.push_back(plane.Depth(pixels.back()));
+    }
+  }
+  const cv::Mat1f map = InterpolateDepthOnMesh({280, 220}, mesh, elements, pixels, depths,
+                                               {.max_edge_px = 20.0, .holes_to_midpoints = true});
+  double sum = 0.0;
+  int columns = 0;
+  for (int u = 40; u < 220; ++u, ++columns) {
+    for (int v = 80; v < 152; ++v) sum += std::isnan(map(v, u)) ? 1.0 : 0.0;
+  }
+  EXPECT_NEAR(sum / columns, 40.0, 0.5);  // pixel centres at integers: ±½ px
+  RecordProperty("hole_height_px", std::to_string(sum / columns));
+}
+
 // A depth step (a joint's gap 40 px wide across the image, 5 % deeper): the camera sees the
 // gap's spots 30 px shifted along the baseline, so the triangles joining them to the wall
 // fold on one side and stretch past max_edge_px on the other; all their spots are seen. The
