@@ -9,7 +9,6 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 #include "sewer3d/core/check.hpp"
@@ -71,13 +70,6 @@ void FillDisc(const Eigen::Vector2d& centre, double radius, double z, cv::Mat1f&
 Eigen::Vector2d ElementOf(const ElementMesh& mesh, int k) {
   const int row = k / mesh.cols, col = k % mesh.cols;
   return {static_cast<double>(row), static_cast<double>(col)};
-}
-
-// A triangle of grid ids as one key, whatever the order of its corners (ids below 2^21).
-std::uint64_t TriangleKey(std::array<int, 3> t) {
-  std::sort(t.begin(), t.end());
-  return (static_cast<std::uint64_t>(t[0]) << 42U) | (static_cast<std::uint64_t>(t[1]) << 21U) |
-         static_cast<std::uint64_t>(t[2]);
 }
 
 std::uint64_t EdgeKey(int a, int b) {
@@ -169,33 +161,38 @@ void FillHoleMargins(const ElementMesh& mesh, const std::vector<int>& point_of,
                      const std::vector<std::array<int, 3>>& filled,
                      const std::vector<Eigen::Vector2d>& pixels,
                      const std::vector<double>& depths_mm, double max_edge_px, cv::Mat1f& depth) {
-  // Edge -> the third id of a filled triangle on it, and how many filled triangles it has;
+  // Edge -> the third ids of the filled triangles on it (a mesh edge has at most two);
   // grid id -> a filled triangle with that corner.
-  std::unordered_map<std::uint64_t, std::pair<int, int>> opposite;
+  struct Sides {
+    std::array<int, 2> third{-1, -1};
+    int count = 0;
+  };
+  std::unordered_map<std::uint64_t, Sides> opposite;
   std::unordered_map<int, int> filled_at;
-  std::unordered_set<std::uint64_t> is_filled;
   opposite.reserve(3 * filled.size());
   for (std::size_t i = 0; i < filled.size(); ++i) {
     const std::array<int, 3>& t = filled[i];
-    is_filled.insert(TriangleKey(t));
     for (int k = 0; k < 3; ++k) {
-      auto& [third, count] = opposite[EdgeKey(t[k], t[(k + 1) % 3])];
-      third = t[(k + 2) % 3];
-      ++count;
+      Sides& sides = opposite[EdgeKey(t[k], t[(k + 1) % 3])];
+      sides.third[std::min(sides.count, 1)] = t[(k + 2) % 3];
+      ++sides.count;
       filled_at.emplace(t[k], static_cast<int>(i));
     }
   }
   for (const std::array<int, 3>& t : mesh.triangles) {
-    if (is_filled.contains(TriangleKey(t))) continue;
+    // t itself filled: a filled triangle on its edge t0 t1 has t2 for its third corner.
+    const auto own = opposite.find(EdgeKey(t[0], t[1]));
+    if (own != opposite.end() && (own->second.third[0] == t[2] || own->second.third[1] == t[2]))
+      continue;
     bool edge_margin = false;
     for (int k = 0; k < 3; ++k) {
       const int a = t[(k + 1) % 3], b = t[(k + 2) % 3], c = t[k];
       if (point_of[a] < 0 || point_of[b] < 0 || point_of[c] == -2) continue;
       const auto it = opposite.find(EdgeKey(a, b));
-      // Only where ab has one filled triangle (not t).
-      if (it == opposite.end() || it->second.second != 1) continue;
+      // Only where ab has one filled triangle (not t, which is not filled).
+      if (it == opposite.end() || it->second.count != 1) continue;
       edge_margin = true;
-      DrawMargin(mesh, point_of, pixels, depths_mm, max_edge_px, {a, b, c, it->second.first},
+      DrawMargin(mesh, point_of, pixels, depths_mm, max_edge_px, {a, b, c, it->second.third[0]},
                  depth);
     }
     if (edge_margin) continue;
