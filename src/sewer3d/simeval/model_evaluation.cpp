@@ -154,6 +154,13 @@ std::optional<CircumferenceSample> CrossSection(const PipeModel& model, const Pi
   const int half_rows = static_cast<int>(std::floor(half_band_mm / maps.grid.resolution_mm));
   std::vector<double> clock(directions), r_model(directions), r_true(directions, 0.0);
   const double sector = 2.0 * std::numbers::pi / directions;
+  // The true wall's rays start on the axis at three stations across the band.
+  std::array<AxisFrame, 3> frames;
+  std::array<Eigen::Vector3d, 3> origins;
+  for (int i = 0; i < 3; ++i) {
+    frames[i] = axis.FrameAt(station + (i - 1) * half_band_mm);
+    origins[i] = truth_from_model * frames[i].origin;
+  }
   for (int k = 0; k < directions; ++k) {
     const auto col0 = static_cast<int>(static_cast<std::int64_t>(k) * maps.grid.cols / directions);
     const auto col1 =
@@ -163,12 +170,10 @@ std::optional<CircumferenceSample> CrossSection(const PipeModel& model, const Pi
     if (!r) return std::nullopt;
     clock[k] = (k + 0.5) * sector;
     r_model[k] = *r;
-    for (const double ds : {-half_band_mm, 0.0, half_band_mm}) {
-      const AxisFrame frame = axis.FrameAt(station + ds);
-      const Eigen::Vector3d origin_world = truth_from_model * frame.origin;
+    for (int i = 0; i < 3; ++i) {
       for (const double dc : {-sector / 3.0, 0.0, sector / 3.0}) {
         const auto hit = truth.Intersect(
-            origin_world, truth_from_model.rotation * frame.Direction(clock[k] + dc));
+            origins[i], truth_from_model.rotation * frames[i].Direction(clock[k] + dc));
         if (!hit) return std::nullopt;
         r_true[k] += hit->t / 9.0;
       }
