@@ -26,6 +26,11 @@ grep -v '^  pose' "$out/calibrate.txt"
 echo
 python3 scripts/compare_modules.py "$out/true/module.json" "$out/calibrated/module.json"
 echo
+# Each parameter in its standard deviations, against the true module and against the nearest
+# module the file can hold for the captures' lenses (docs/calibration.md).
+"$bin" evaluate calibration --captures "$out/captures" --module "$out/calibrated/module.json" \
+  --out "$out/calibration_evaluation.json"
+echo
 printf '| capture | fit RMS, true module (mm) | fit RMS, calibrated (mm) | change | RMS to truth, true (mm) | RMS to truth, calibrated (mm) | diameter, true / calibrated (mm) |\n'
 printf '|---|---|---|---|---|---|---|\n'
 for scene in "${ACCURACY_SCENES[@]}"; do

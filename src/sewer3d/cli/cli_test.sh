@@ -195,6 +195,23 @@ done
 expect_ok "$bin" describe --module "$tmp/c/sim/truth/module.json"  # the truth module loads on its own
 expect_error "COLSxROWS" "$bin" simulate calibration --module "$tmp/c/m640x480/module.json" --board 9 --out "$tmp/c/s2"
 
+# evaluate calibration: a module with its standard deviations against the captures' truth. The
+# true module itself, given the calibration member calibrate module writes, lies 0 σ off.
+expect_error "'calibration' member" "$bin" evaluate calibration --captures "$tmp/c/sim" \
+  --module "$tmp/c/sim/truth/module.json"
+mkdir -p "$tmp/c/sigma" && cp "$tmp/c/sim/truth/pattern.png" "$tmp/c/sigma/"
+sed 's/^{/{"calibration": {"sigma": {"camera": {"fx": 0.2, "fy": 0.2, "cx": 0.1, "cy": 0.1}, "projector": {"fx": 0.2, "fy": 0.2, "cx": 0.1, "cy": 0.1}, "baseline_mm": 0.01, "rotation_deg": 0.01}},/' \
+  "$tmp/c/sim/truth/module.json" >"$tmp/c/sigma/module.json"
+expect_ok "$bin" evaluate calibration --captures "$tmp/c/sim" --module "$tmp/c/sigma/module.json" \
+  --out "$tmp/c/sigma/evaluation.json"
+grep -q "within 2 σ: 10 of 10 parameters of the true module, 10 of the nearest" "$tmp/out" ||
+  fail "evaluate calibration of the true module: $(tail -1 "$tmp/out")"
+grep -q '"within_2_sigma": 10' "$tmp/c/sigma/evaluation.json" || fail "evaluate calibration wrote no JSON"
+expect_error "truth/poses.json" "$bin" evaluate calibration --captures "$tmp/c/m640x480" \
+  --module "$tmp/c/sigma/module.json"
+expect_error "does not apply" "$bin" evaluate calibration --captures "$tmp/c/sim" \
+  --module "$tmp/c/sigma/module.json" --run "$tmp/c/sim"
+
 # calibrate module: the capture folder must hold at least 3 poses.
 mkdir -p "$tmp/c/few" && cp -r "$tmp/c/sim/pose_00" "$tmp/c/few/"
 expect_error "at least 3" "$bin" calibrate module --captures "$tmp/c/few" --board 9x6 --out "$tmp/c/mod.json"

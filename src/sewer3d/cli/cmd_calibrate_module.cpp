@@ -96,7 +96,9 @@ int RunModule(const ModuleArgs& a) {
   ModuleDescription module = calibrated.module;
   CheckCalibratedScale(module, nominal.module, a.square_mm);
   module.pattern.matrix_path = "pattern.png";
-  module.source_json.clear();
+  // Only the calibration's own extra member: none of the nominal module's.
+  module.source_json = ModuleCalibrationMember(
+      calibrated.second_pass, static_cast<int>(used.size()), static_cast<int>(poses.size()));
   SaveModule(a.out, module);
   WritePatternMatrix(fs::path(a.out).parent_path() / "pattern.png", nominal.pattern);
   PrintModuleCalibration(calibrated.second_pass, used, poses.size());

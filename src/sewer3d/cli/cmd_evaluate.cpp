@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -14,38 +15,34 @@
 #include "sewer3d/cli/evaluate_commands.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
-#include "sewer3d/io/workspace_io.hpp"
 #include "sewer3d/pipeline/workspace.hpp"
 #include "sewer3d/simeval/rgbd_evaluation.hpp"
 
 namespace sewer3d::cli {
 namespace {
 
-// Evaluating outputs that workspace.json records as stale or not done judges an earlier run of
-// the stage, not the one the workspace now stands for: said on stderr, then evaluated.
-// The warning that the workspace records the evaluated stage as not done; empty when it is.
-std::string StageNotDone(const std::filesystem::path& workspace, const std::string& kind) {
-  const std::string stage = kind == "registration" ? "register"
-                            : kind == "inspection" ? "inspect"
-                                                   : kind;
-  const std::filesystem::path record_file = workspace / "workspace.json";
-  if (!std::filesystem::is_regular_file(record_file)) return "";
-  const WorkspaceRecord record = ReadWorkspaceRecord(record_file);
-  const auto it = record.stages.find(stage);
-  if (it == record.stages.end() || it->second.done) return "";
-  return fmt::format(
-      "{}: records the {} stage as {}: evaluated the outputs an earlier run of it left (run "
-      "`sewer3d process` to bring it up to date)",
-      record_file.string(), stage, it->second.stale ? "stale" : "not done (failed or interrupted)");
-}
-
 struct Args {
-  std::string surface, cloud, truth, run, workspace, out;
+  std::string surface, cloud, truth, run, workspace, out, captures, module;
   int smoothing_px = RgbdEvaluationOptions{}.colour_smoothing_px;
   double local_alignment_mm = 0.0;
   int stride = 0;
   double inner_fraction = 0.5;
 };
+
+constexpr const char* kAllOptions[] = {
+    "--cloud",  "--truth",        "--inner-fraction",     "--run",      "--workspace", "--out",
+    "--stride", "--smoothing-px", "--local-alignment-mm", "--captures", "--module"};
+
+// The options an evaluation of `kind` takes.
+std::vector<std::string> OptionsOf(const std::string& kind) {
+  if (kind == "plane" || kind == "cylinder") return {"--cloud", "--truth", "--inner-fraction"};
+  if (kind == "calibration") return {"--captures", "--module", "--out"};
+  std::vector<std::string> own{"--run", "--workspace", "--out"};
+  if (kind == "rgbd") own.emplace_back("--smoothing-px");
+  if (kind == "model") own.emplace_back("--stride");
+  if (kind == "inspection") own.emplace_back("--local-alignment-mm");
+  return own;
+}
 
 // An evaluation of a workspace's stage against its run's truth.
 int EvaluateWorkspace(const Args& a) {
@@ -79,11 +76,17 @@ Command AddEvaluateCommand(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* sub =
       app.add_subcommand("evaluate",
-                         "Accuracy against the truth: a plane or cylinder fitted to a cloud, or a "
-                         "processing stage on a simulated run (rgbd)");
-  sub->add_option("KIND", args->surface, "plane, cylinder, rgbd, registration, model or inspection")
+                         "Accuracy against the truth: a plane or cylinder fitted to a cloud, a "
+                         "processing stage on a simulated run, or a module calibrated from "
+                         "simulated captures");
+  sub->add_option("KIND", args->surface,
+                  "plane, cylinder, rgbd, registration, model, inspection or calibration")
       ->required()
-      ->check(CLI::IsMember({"plane", "cylinder", "rgbd", "registration", "model", "inspection"}));
+      ->check(CLI::IsMember(
+          {"plane", "cylinder", "rgbd", "registration", "model", "inspection", "calibration"}));
+  sub->add_option("--captures", args->captures,
+                  "calibration: the simulated captures (simulate calibration's --out)");
+  sub->add_option("--module", args->module, "calibration: the module calibrate module wrote");
   sub->add_option("--cloud", args->cloud, "plane, cylinder: point cloud (PLY, camera frame, mm)");
   sub->add_option("--run", args->run,
                   "rgbd, registration, model, inspection: the simulated capture run (with truth/)");
@@ -104,7 +107,7 @@ Command AddEvaluateCommand(CLI::App& app) {
   sub->add_option(
       "--out", args->out,
       "rgbd, registration, model, inspection: folder for evaluation.json and pictures (default "
-      "WS/evaluation/<what>)");
+      "WS/evaluation/<what>); calibration: the evaluation's JSON file (default: none)");
   sub->add_option("--local-alignment-mm", args->local_alignment_mm,
                   "inspection: judge each observation against the truth aligned by the cameras "
                   "within ± this of it (a long run whose trajectory one alignment cannot hold); 0: "
@@ -121,28 +124,24 @@ Command AddEvaluateCommand(CLI::App& app) {
       ->check(CLI::Range(0.05, 1.0));
   sub->add_option("--truth", args->truth,
                   "scene.json of the simulated capture: errors against the true surface");
-  return {
-      sub, [args, sub] {
-        const bool of_workspace = args->surface != "plane" && args->surface != "cylinder";
-        // Options of the other kind of evaluation are refused, not ignored.
-        std::vector<std::string> others =
-            of_workspace
-                ? std::vector<std::string>{"--cloud", "--truth", "--inner-fraction"}
-                : std::vector<std::string>{"--run",    "--workspace",    "--out",
-                                           "--stride", "--smoothing-px", "--local-alignment-mm"};
-        if (of_workspace && args->surface != "rgbd") others.emplace_back("--smoothing-px");
-        if (of_workspace && args->surface != "model") others.emplace_back("--stride");
-        if (of_workspace && args->surface != "inspection")
-          others.emplace_back("--local-alignment-mm");
-        for (const std::string& name : others) {
-          if (sub->get_option(name)->count() > 0) {
-            throw InvalidValue(name, "does not apply to evaluate " + args->surface);
-          }
-        }
-        if (of_workspace) return EvaluateWorkspace(*args);
-        if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
-        return RunEvaluateSurface(args->surface, args->cloud, args->truth, args->inner_fraction);
-      }};
+  return {sub, [args, sub] {
+            // Options of another kind of evaluation are refused, not ignored.
+            const std::vector<std::string> own = OptionsOf(args->surface);
+            for (const char* name : kAllOptions) {
+              if (sub->get_option(name)->count() > 0 &&
+                  std::find(own.begin(), own.end(), name) == own.end())
+                throw InvalidValue(name, "does not apply to evaluate " + args->surface);
+            }
+            if (args->surface == "calibration") {
+              if (args->captures.empty()) throw CLI::RequiredError("--captures");
+              if (args->module.empty()) throw CLI::RequiredError("--module");
+              return RunEvaluateCalibration(args->captures, args->module, args->out);
+            }
+            if (own.front() == "--run") return EvaluateWorkspace(*args);
+            if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
+            return RunEvaluateSurface(args->surface, args->cloud, args->truth,
+                                      args->inner_fraction);
+          }};
 }
 
 }  // namespace sewer3d::cli

@@ -21,6 +21,7 @@
 #include "sewer3d/sim/renderer.hpp"
 #include "sewer3d/sim/spot_errors.hpp"
 #include "sewer3d/simio/scene_io.hpp"
+#include "sewer3d/simio/truth_io.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -100,11 +101,9 @@ int RunCalibration(const CalibrationArgs& a) {
   PrepareCaptureFolder(out, a.poses);
   CheckNotInRunOrWorkspace(out, "--out");
   ProgressBar progress(a.quiet);
-  nlohmann::json truth;
-  truth["board"] = {{"cols", board.cols}, {"rows", board.rows}, {"square_mm", board.square_mm}};
-  truth["realism"] = a.realism;
-  truth["poses"] = nlohmann::json::array();
-  WriteTextFile(out / "board.json", nlohmann::json(truth["board"]).dump(2) + "\n");
+  const nlohmann::json board_json = {
+      {"cols", board.cols}, {"rows", board.rows}, {"square_mm", board.square_mm}};
+  WriteTextFile(out / "board.json", board_json.dump(2) + "\n");
   ModuleDescription truth_module = loaded.module;  // loadable on its own: pattern beside it
   truth_module.pattern.matrix_path = "pattern.png";
   SaveModule(out / "truth" / "module.json", truth_module);
@@ -126,17 +125,10 @@ int RunCalibration(const CalibrationArgs& a) {
     o.truth_depth = false;
     const RenderedFrame pattern = RenderFrame(loaded.module, loaded.pattern, surface, o);
     WritePatternImage(dir / "pattern.png", pattern, o.sensor.bits);
-    const Eigen::Matrix3d r = poses[i].RotationMatrix();
-    const Eigen::Vector3d& t = poses[i].translation;
-    truth["poses"].push_back(
-        {{"camera_from_board",
-          {{"rotation",
-            {r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2)}},
-           {"translation_mm", {t.x(), t.y(), t.z()}}}}});
     progress.Update("simulate calibration", static_cast<int>(i + 1), static_cast<int>(poses.size()),
                     "poses");
   }
-  WriteTextFile(out / "truth" / "poses.json", truth.dump(2) + "\n");
+  WriteCalibrationTruth(out / "truth" / "poses.json", {board, a.realism, poses});
   fmt::print(
       "wrote {} poses of a {}x{} board ({} mm squares) to {}: pose_NN/texture.png, pattern.png; "
       "truth/\n",

@@ -3,6 +3,7 @@
 /// The parts of `sewer3d evaluate`: a surface fitted to a cloud, and the judges of a
 /// processing stage on a simulated run.
 
+#include <filesystem>
 #include <string>
 
 namespace sewer3d::cli {
@@ -39,5 +40,17 @@ int RunEvaluateModel(const std::string& run, const std::string& workspace, const
 /// writes DIR/evaluation.json (default WS/evaluation/inspection). Returns the exit code.
 int RunEvaluateInspection(const std::string& run, const std::string& workspace,
                           double local_alignment_mm, const std::string& out);
+
+/// `sewer3d evaluate calibration --captures DIR --module FILE [--out FILE]`: prints the
+/// calibrated module (FILE, from `calibrate module`, with its standard deviations) against the
+/// module DIR's captures were simulated with and against the nearest module a file can hold
+/// for their lenses (docs/calibration.md); writes the table as JSON to `out` when given.
+/// Returns the exit code.
+int RunEvaluateCalibration(const std::string& captures, const std::string& module,
+                           const std::string& out);
+
+/// A warning that `workspace`'s workspace.json records the stage `kind` evaluates as stale or
+/// not done (the evaluation then judges an earlier run's outputs); empty when it is done.
+std::string StageNotDone(const std::filesystem::path& workspace, const std::string& kind);
 
 }  // namespace sewer3d::cli

@@ -1,7 +1,10 @@
 #include "sewer3d/io/calibration_io.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
@@ -47,6 +50,58 @@ void WriteCornerErrorImage(const std::filesystem::path& path, const cv::Mat& gre
   cv::putText(picture, cv::format("RMS %.3f px (red: >= %.2f px)", rms_px, full), {8, 20},
               cv::FONT_HERSHEY_SIMPLEX, 0.6, {0, 255, 255}, 1, cv::LINE_AA);
   WriteImage(path, picture);
+}
+
+namespace {
+
+// The order of ModuleCalibrationResult::sigma: (object, member) of each.
+constexpr std::array<std::pair<const char*, const char*>, 10> kSigmaMembers{{{"camera", "fx"},
+                                                                             {"camera", "fy"},
+                                                                             {"camera", "cx"},
+                                                                             {"camera", "cy"},
+                                                                             {"projector", "fx"},
+                                                                             {"projector", "fy"},
+                                                                             {"projector", "cx"},
+                                                                             {"projector", "cy"},
+                                                                             {"", "baseline_mm"},
+                                                                             {"", "rotation_deg"}}};
+
+}  // namespace
+
+std::string ModuleCalibrationMember(const ModuleCalibrationResult& r, int poses_used, int poses) {
+  nlohmann::json sigma = nlohmann::json::object();
+  for (std::size_t i = 0; i < kSigmaMembers.size(); ++i) {
+    const auto [object, member] = kSigmaMembers[i];
+    if (*object == '\0')
+      sigma[member] = r.sigma[i];
+    else
+      sigma[object][member] = r.sigma[i];
+  }
+  const nlohmann::json calibration = {
+      {"poses_used", poses_used},
+      {"poses", poses},
+      {"rms_px", {{"camera", r.camera_rms_px}, {"projector", r.projector_rms_px}}},
+      {"sigma", sigma}};
+  return nlohmann::json{{"calibration", calibration}}.dump();
+}
+
+std::optional<std::array<double, 10>> ReadModuleCalibrationSigma(
+    const std::filesystem::path& module_file) {
+  const JsonReader in(module_file);
+  const auto j = in.ParseObject(ReadTextFile(module_file));
+  if (!j.contains("calibration")) return std::nullopt;
+  const auto& sigma =
+      in.RequiredObject(in.RequiredObject(j, "calibration", ""), "sigma", "calibration.");
+  std::array<double, 10> out{};
+  for (std::size_t i = 0; i < kSigmaMembers.size(); ++i) {
+    const auto [object, member] = kSigmaMembers[i];
+    const std::string prefix =
+        fmt::format("calibration.sigma.{}", *object ? std::string(object) + "." : "");
+    const auto& holder = *object ? in.RequiredObject(sigma, object, "calibration.sigma.") : sigma;
+    out[i] = in.Number(holder, member, prefix);
+    if (!(out[i] >= 0.0)) in.Fail(prefix + member, "must be a standard deviation (>= 0)");
+  }
+  return out;
 }
 
 BoardLayout ReadBoardLayout(const std::filesystem::path& file, const BoardLayout& fallback) {

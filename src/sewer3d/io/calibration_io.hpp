@@ -4,8 +4,10 @@
 /// corners coloured by reprojection error. Errors are FileError.
 
 #include <Eigen/Core>
+#include <array>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,18 @@ void WriteCameraCalibration(const std::filesystem::path& path, const CameraCalib
 void WriteCornerErrorImage(const std::filesystem::path& path, const cv::Mat& grey,
                            const std::vector<Eigen::Vector2d>& corners,
                            const std::vector<Eigen::Vector2d>& residuals, double rms_px);
+
+/// The module file `calibrate module` writes carries its calibration in an extra member (the
+/// module contract keeps such members): {"calibration": {"poses_used", "poses", "rms_px":
+/// {"camera", "projector"}, "sigma": {"camera": {fx, fy, cx, cy}, "projector": {…},
+/// "baseline_mm", "rotation_deg"}}}, one standard deviation each. Returns that object as JSON
+/// text, to be the written module's source_json.
+std::string ModuleCalibrationMember(const ModuleCalibrationResult& r, int poses_used, int poses);
+
+/// ModuleCalibrationResult::sigma from a module file's "calibration" member (FileError naming the
+/// file where it is malformed); nullopt when the module has none (not from `calibrate module`).
+std::optional<std::array<double, 10>> ReadModuleCalibrationSigma(
+    const std::filesystem::path& module_file);
 
 /// A captures folder's board.json (`simulate calibration` writes one): cols, rows and
 /// square_mm, each member it lacks taken from `fallback`.

@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "sewer3d/camera/default_module.hpp"
+#include "sewer3d/io/calibration_io.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
@@ -178,6 +179,34 @@ TEST_F(ModuleIoTest, NearUnitRotationWrittenWithFewDigitsIsAccepted) {
   d["projector_from_camera"]["rotation"] = {c, -s, 0, s, c, 0, 0, 0, 1};
   const LoadedModule loaded = LoadModule(Write(d.dump()));
   EXPECT_NEAR(loaded.module.projector_from_camera.rotation.norm(), 1.0, 1e-12);
+}
+
+// A calibrated module carries its standard deviations as an extra member; they come back in
+// ModuleCalibrationResult::sigma's order, and a module without it has none.
+TEST_F(ModuleIoTest, ACalibratedModuleCarriesItsStandardDeviations) {
+  ModuleCalibrationResult r;
+  for (std::size_t i = 0; i < r.sigma.size(); ++i) r.sigma[i] = 0.01 * static_cast<double>(i + 1);
+  r.camera_rms_px = 0.09;
+  ModuleDescription module = MakeDefaultModule({});
+  module.pattern.matrix_path = "pattern.png";
+  EXPECT_FALSE(ReadModuleCalibrationSigma(Write(ModuleToJson(module))).has_value());
+  module.source_json = ModuleCalibrationMember(r, 18, 20);
+  const fs::path file = dir_ / "calibrated.json";
+  SaveModule(file, module);
+  EXPECT_NO_THROW(LoadModule(file));
+  const auto sigma = ReadModuleCalibrationSigma(file);
+  ASSERT_TRUE(sigma.has_value());
+  for (std::size_t i = 0; i < r.sigma.size(); ++i) EXPECT_DOUBLE_EQ((*sigma)[i], r.sigma[i]);
+  json doc = json::parse(ModuleToJson(module));
+  EXPECT_EQ(doc["calibration"]["poses_used"], 18);
+  doc["calibration"]["sigma"]["projector"].erase("cy");
+  try {
+    ReadModuleCalibrationSigma(Write(doc.dump(), "no_cy.json"));
+    ADD_FAILURE() << "a sigma without projector cy was read";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("calibration.sigma.projector.cy"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

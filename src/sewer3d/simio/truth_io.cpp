@@ -10,6 +10,7 @@
 #include "sewer3d/io/csv.hpp"
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/json_reader.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
 
@@ -110,6 +111,39 @@ std::vector<TruthPose> ReadTruthPoses(const std::filesystem::path& path, std::si
                                       poses.size(), images));
   }
   return poses;
+}
+
+void WriteCalibrationTruth(const std::filesystem::path& path, const CalibrationTruth& truth) {
+  json j;
+  j["board"] = {
+      {"cols", truth.board.cols}, {"rows", truth.board.rows}, {"square_mm", truth.board.square_mm}};
+  j["realism"] = truth.realism;
+  j["poses"] = json::array();
+  for (const Rigid3d& pose : truth.camera_from_board)
+    j["poses"].push_back({{"camera_from_board", PoseToJson(pose)}});
+  WriteTextFile(path, j.dump(2) + "\n");
+}
+
+CalibrationTruth ReadCalibrationTruth(const std::filesystem::path& path) {
+  const JsonReader in(path);
+  const json j = in.ParseObject(ReadTextFile(path));
+  CalibrationTruth truth;
+  const json& board = in.RequiredObject(j, "board", "");
+  truth.board.cols = in.Integer(board, "cols", "board.", truth.board.cols);
+  truth.board.rows = in.Integer(board, "rows", "board.", truth.board.rows);
+  truth.board.square_mm = in.Positive(board, "square_mm", "board.");
+  ValidateFileContents(path, [&] { truth.board.Check(); });
+  truth.realism = in.Text(j, "realism", "", truth.realism);
+  if (truth.realism != "ideal" && truth.realism != "paper")
+    in.Fail("realism", "must be ideal or paper, got " + truth.realism);
+  const json& poses = in.Array(j, "poses", "");
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (!poses[i].is_object()) in.Fail(fmt::format("poses[{}]", i), "must be an object");
+    truth.camera_from_board.push_back(
+        in.Pose(poses[i], "camera_from_board", fmt::format("poses[{}].", i)));
+  }
+  if (truth.camera_from_board.empty()) in.Fail("poses", "holds no pose");
+  return truth;
 }
 
 void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pipe) {

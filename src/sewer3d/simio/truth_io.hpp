@@ -7,10 +7,12 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "sewer3d/core/rigid3.hpp"
 #include "sewer3d/run/capture_run.hpp"
+#include "sewer3d/sim/board.hpp"
 #include "sewer3d/sim/odometry.hpp"
 #include "sewer3d/sim/pipe_world.hpp"
 
@@ -44,6 +46,17 @@ void WriteCameraGains(const std::filesystem::path& path,
 void WriteTruthAlbedo(const std::filesystem::path& path_stem, const cv::Mat3f& albedo_rgb);
 /// The two files WriteTruthAlbedo writes for `path_stem`.
 std::vector<std::filesystem::path> TruthAlbedoFiles(const std::filesystem::path& path_stem);
+
+/// A simulated calibration capture's truth/poses.json (`simulate calibration`): the board, the
+/// realism profile the captures were rendered with ("ideal" or "paper") and each pose's
+/// camera_from_board, in the order of the pose folders.
+struct CalibrationTruth {
+  Checkerboard board;
+  std::string realism = "ideal";
+  std::vector<Rigid3d> camera_from_board;
+};
+void WriteCalibrationTruth(const std::filesystem::path& path, const CalibrationTruth& truth);
+CalibrationTruth ReadCalibrationTruth(const std::filesystem::path& path);
 
 /// truth/features.json: every joint, feature and deformed section with id, EN 13508-2 main
 /// code, station, clock position and true dimensions.
