@@ -158,6 +158,12 @@ printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nFIX 0\n' >one.g2o
   --texture-supersampling 1 >/dev/null 2>&1
 : >zero.tiff
 mkdir -p foreign_cal/pose_00
+# Calibration truths for evaluate calibration: a realism no profile has; poses that are not poses.
+mkdir -p calib_realism/truth calib_pose/truth
+cp calib/truth/module.json calib/truth/pattern.png calib_realism/truth/
+cp calib/truth/module.json calib/truth/pattern.png calib_pose/truth/
+json_with calib/truth/poses.json calib_realism/truth/poses.json 'realism="fancy"'
+json_with calib/truth/poses.json calib_pose/truth/poses.json 'poses.0.camera_from_board.rotation=[1,0,0,0,1,0,0,0,2]'
 # Session 26 (fifth probe).
 json_with m/module.json m/offset_huge.json 'pattern.offset_px=[-1e9,0]'
 json_with m/module.json m/k_huge.json 'camera.k=[1e10,0,0]'
