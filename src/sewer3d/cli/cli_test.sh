@@ -140,7 +140,7 @@ expect_ok "$bin" evaluate plane --cloud "$tmp/r/plane/cloud.ply" --truth "$tmp/s
 grep -q "RMS" "$tmp/out" || fail "evaluate prints no RMS"
 grep -Eq "plane at (89\.9[5-9]|90\.0[0-4])" "$tmp/out" || fail "evaluate does not find the 90 mm plane: $(cat "$tmp/out")"
 expect_error "cylinder\|points" "$bin" evaluate cylinder --cloud "$tmp/r/plane/cloud.ply" --inner-fraction 0.05
-expect_error "expected one of plane, cylinder, rgbd, registration, model, inspection, got sphere" "$bin" evaluate sphere --cloud "$tmp/r/plane/cloud.ply"
+expect_error "expected one of plane, cylinder, rgbd, registration, model, inspection, calibration, got sphere" "$bin" evaluate sphere --cloud "$tmp/r/plane/cloud.ply"
 # Blank, wrong-size, truncated and non-image inputs: one-line errors, no crash.
 "$bin" simulate frame --module "$tmp/m/module.json" --scene plane --distance-mm 2000 \
   --out "$tmp/s/far" --supersampling 1 >/dev/null 2>&1

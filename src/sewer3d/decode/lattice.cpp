@@ -161,6 +161,7 @@ bool GoodSeed(const Support& s) { return s.on >= kSeedMinOn && s.on >= kSeedMinS
 // (docs/decoder.md). Such a spot is not refused: it waits, and seeds in order of support once
 // no seed near the prediction is left (an oblique wall's steps may lie 0.8–1.2 times it).
 constexpr double kSeedMaxLean = 0.15;
+constexpr int kLeanSample = 256;  // spots sampled to judge whether the prediction holds
 bool NearPrediction(const LatticeSteps& steps, const LatticeSteps& predicted) {
   return (steps.row_step - predicted.row_step).norm() < kSeedMaxLean * predicted.row_step.norm() &&
          (steps.column_step - predicted.column_step).norm() <
@@ -259,6 +260,19 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
       label_edges(e.to);
     }
   };
+  // The lean check trusts the module's fronto-parallel prediction. Where most well-supported
+  // spots lie off it (a calibration board tilted by 35° close to the module), the few fits
+  // near it are the wrong ones, and seeding only from them lost whole boards: it applies
+  // where most of a sample of well-supported spots agree with the prediction.
+  int sampled_good = 0, sampled_near = 0;
+  for (int i = 0; i < n; i += std::max(1, n / kLeanSample)) {
+    const LatticeSteps steps =
+        Refine(spots, i, neighbours.Of(i), predicted[i], predicted[i], options);
+    if (!GoodSeed(LatticeSupport(spots, i, neighbours.Of(i), steps, options))) continue;
+    ++sampled_good;
+    sampled_near += NearPrediction(steps, predicted[i]) ? 1 : 0;
+  }
+  const bool check_lean = 2 * sampled_near >= sampled_good;
   // Well-supported seeds first (GoodSeed), in index order; then the rest, best supported first.
   std::vector<std::pair<int, int>> waiting;  // (−neighbours on the lattice, spot)
   for (int seed = 0; seed < n; ++seed) {
@@ -266,7 +280,7 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
     refine(seed, predicted[seed]);
     const Support support =
         LatticeSupport(spots, seed, neighbours.Of(seed), labels.steps[seed], options);
-    if (GoodSeed(support) && NearPrediction(labels.steps[seed], predicted[seed]))
+    if (GoodSeed(support) && (!check_lean || NearPrediction(labels.steps[seed], predicted[seed])))
       grow(seed);
     else
       waiting.emplace_back(-support.on, seed);
