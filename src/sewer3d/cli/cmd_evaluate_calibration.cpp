@@ -27,7 +27,7 @@ int RunEvaluateCalibration(const std::string& captures, const std::string& modul
   const CalibrationTruth truth = ReadCalibrationTruth(truth_file);
   const LoadedModule true_module = LoadModule(truth_file.parent_path() / "module.json");
   const LoadedModule calibrated = LoadModule(module);
-  const auto sigma = ReadModuleCalibrationSigma(module);
+  const auto sigma = ModuleCalibrationSigma(calibrated.module, module);
   if (!sigma) {
     throw FileError(module,
                     "has no 'calibration' member with the standard deviations (a module "

@@ -85,10 +85,11 @@ std::string ModuleCalibrationMember(const ModuleCalibrationResult& r, int poses_
   return nlohmann::json{{"calibration", calibration}}.dump();
 }
 
-std::optional<std::array<double, 10>> ReadModuleCalibrationSigma(
-    const std::filesystem::path& module_file) {
+std::optional<std::array<double, 10>> ModuleCalibrationSigma(
+    const ModuleDescription& module, const std::filesystem::path& module_file) {
+  if (module.source_json.empty()) return std::nullopt;
   const JsonReader in(module_file);
-  const auto j = in.ParseObject(ReadTextFile(module_file));
+  const auto j = in.ParseObject(module.source_json);
   if (!j.contains("calibration")) return std::nullopt;
   const auto& sigma =
       in.RequiredObject(in.RequiredObject(j, "calibration", ""), "sigma", "calibration.");

@@ -13,6 +13,7 @@
 
 #include "sewer3d/calib/camera_calibration.hpp"
 #include "sewer3d/calib/module_from_captures.hpp"
+#include "sewer3d/camera/module.hpp"
 
 namespace sewer3d {
 
@@ -41,10 +42,12 @@ void WriteCornerErrorImage(const std::filesystem::path& path, const cv::Mat& gre
 /// text, to be the written module's source_json.
 std::string ModuleCalibrationMember(const ModuleCalibrationResult& r, int poses_used, int poses);
 
-/// ModuleCalibrationResult::sigma from a module file's "calibration" member (FileError naming the
-/// file where it is malformed); nullopt when the module has none (not from `calibrate module`).
-std::optional<std::array<double, 10>> ReadModuleCalibrationSigma(
-    const std::filesystem::path& module_file);
+/// ModuleCalibrationResult::sigma from the "calibration" member of a loaded module
+/// (module.source_json, the text LoadModule read from `module_file`, which messages name;
+/// FileError where it is malformed); nullopt when the module has none (not from `calibrate
+/// module`).
+std::optional<std::array<double, 10>> ModuleCalibrationSigma(
+    const ModuleDescription& module, const std::filesystem::path& module_file);
 
 /// A captures folder's board.json (`simulate calibration` writes one): cols, rows and
 /// square_mm, each member it lacks taken from `fallback`.

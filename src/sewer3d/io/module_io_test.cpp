@@ -189,19 +189,20 @@ TEST_F(ModuleIoTest, ACalibratedModuleCarriesItsStandardDeviations) {
   r.camera_rms_px = 0.09;
   ModuleDescription module = MakeDefaultModule({});
   module.pattern.matrix_path = "pattern.png";
-  EXPECT_FALSE(ReadModuleCalibrationSigma(Write(ModuleToJson(module))).has_value());
+  const fs::path plain = Write(ModuleToJson(module));
+  EXPECT_FALSE(ModuleCalibrationSigma(LoadModule(plain).module, plain).has_value());
   module.source_json = ModuleCalibrationMember(r, 18, 20);
   const fs::path file = dir_ / "calibrated.json";
   SaveModule(file, module);
-  EXPECT_NO_THROW(LoadModule(file));
-  const auto sigma = ReadModuleCalibrationSigma(file);
+  const auto sigma = ModuleCalibrationSigma(LoadModule(file).module, file);
   ASSERT_TRUE(sigma.has_value());
   for (std::size_t i = 0; i < r.sigma.size(); ++i) EXPECT_DOUBLE_EQ((*sigma)[i], r.sigma[i]);
   json doc = json::parse(ModuleToJson(module));
   EXPECT_EQ(doc["calibration"]["poses_used"], 18);
   doc["calibration"]["sigma"]["projector"].erase("cy");
   try {
-    ReadModuleCalibrationSigma(Write(doc.dump(), "no_cy.json"));
+    const fs::path no_cy = Write(doc.dump(), "no_cy.json");
+    ModuleCalibrationSigma(LoadModule(no_cy).module, no_cy);
     ADD_FAILURE() << "a sigma without projector cy was read";
   } catch (const FileError& e) {
     EXPECT_NE(std::string(e.what()).find("calibration.sigma.projector.cy"), std::string::npos)

@@ -31,9 +31,9 @@ double AngleDeg(const Rigid3d& a, const Rigid3d& b) {
 
 }  // namespace
 
-ModuleCalibrationResult NearestFileModule(const ModuleDescription& truth, const SpotErrors& errors,
-                                          const Checkerboard& board,
-                                          const std::vector<Rigid3d>& camera_from_board) {
+std::vector<ModuleCalibrationView> CornersThroughLenses(
+    const ModuleDescription& truth, const SpotErrors& errors, const Checkerboard& board,
+    const std::vector<Rigid3d>& camera_from_board) {
   const std::vector<Eigen::Vector3d> corners =
       BoardCorners(board.cols, board.rows, board.square_mm);
   const CameraModel camera(truth.camera), projector(truth.projector);
@@ -54,8 +54,15 @@ ModuleCalibrationResult NearestFileModule(const ModuleDescription& truth, const 
     }
     views.push_back(std::move(view));
   }
-  return CalibrateModule(views, corners, truth.camera.width, truth.camera.height,
-                         truth.projector.width, truth.projector.height);
+  return views;
+}
+
+ModuleCalibrationResult NearestFileModule(const ModuleDescription& truth, const SpotErrors& errors,
+                                          const Checkerboard& board,
+                                          const std::vector<Rigid3d>& camera_from_board) {
+  return CalibrateModule(CornersThroughLenses(truth, errors, board, camera_from_board),
+                         BoardCorners(board.cols, board.rows, board.square_mm), truth.camera.width,
+                         truth.camera.height, truth.projector.width, truth.projector.height);
 }
 
 CalibrationEvaluation EvaluateCalibration(const ModuleDescription& truth,

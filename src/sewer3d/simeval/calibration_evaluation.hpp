@@ -22,9 +22,14 @@
 
 namespace sewer3d {
 
-/// The module calibration of the board's exact corners at `camera_from_board`, each moved as
-/// the renderer moves it through the lenses of `errors` (MakeLensResidual: the camera's image
-/// of a point shifted back, the projector's element at a point shifted on).
+/// The board's exact corners at `camera_from_board` as the renderer shows them through the
+/// lenses of `errors` (MakeLensResidual: the camera's image of a point shifted back, the
+/// projector's element at a point shifted on), one view per pose.
+std::vector<ModuleCalibrationView> CornersThroughLenses(
+    const ModuleDescription& truth, const SpotErrors& errors, const Checkerboard& board,
+    const std::vector<Rigid3d>& camera_from_board);
+
+/// The module calibration of those exact corners: the nearest module a file can hold.
 ModuleCalibrationResult NearestFileModule(const ModuleDescription& truth, const SpotErrors& errors,
                                           const Checkerboard& board,
                                           const std::vector<Rigid3d>& camera_from_board);

@@ -8,7 +8,6 @@
 #include <random>
 
 #include "sewer3d/calib/camera_calibration.hpp"
-#include "sewer3d/camera/camera_model.hpp"
 #include "sewer3d/testing/small_module.hpp"
 
 namespace sewer3d {
@@ -50,24 +49,15 @@ TEST(CalibrationEvaluation, ACalibrationThroughTheResidualMeetsTheNearestModuleN
   EXPECT_LT(nearest.projector_rms_px, 0.1);
   EXPECT_GT(std::abs(nearest.projector.cy - s.truth.projector.cy), 0.3);
 
-  const auto corners = BoardCorners(s.board.cols, s.board.rows, s.board.square_mm);
-  const CameraModel camera(s.truth.camera), projector(s.truth.projector);
-  const LensResidual rc = MakeLensResidual(lenses, 0), rp = MakeLensResidual(lenses, 1);
   std::mt19937 rng(3);
   std::normal_distribution<double> noise(0.0, 0.1);
-  std::vector<ModuleCalibrationView> views;
-  for (const Rigid3d& pose : s.poses) {
-    ModuleCalibrationView v;
-    for (const Eigen::Vector3d& x : corners) {
-      const Eigen::Vector3d p = pose * x;
-      const Eigen::Vector2d q = *camera.Project(p);
-      const Eigen::Vector2d u = *projector.Project(s.truth.projector_from_camera * p);
-      const Eigen::Vector2d n(noise(rng), noise(rng)), m(noise(rng), noise(rng));
-      v.camera_corners.push_back(q - rc.ShiftPx(s.truth.camera, q) + n);
-      v.projector_corners.push_back(u + rp.ShiftPx(s.truth.projector, u) + m);
-    }
-    views.push_back(v);
+  std::vector<ModuleCalibrationView> views =
+      CornersThroughLenses(s.truth, lenses, s.board, s.poses);
+  for (ModuleCalibrationView& v : views) {
+    for (Eigen::Vector2d& q : v.camera_corners) q += Eigen::Vector2d(noise(rng), noise(rng));
+    for (Eigen::Vector2d& u : v.projector_corners) u += Eigen::Vector2d(noise(rng), noise(rng));
   }
+  const auto corners = BoardCorners(s.board.cols, s.board.rows, s.board.square_mm);
   const ModuleCalibrationResult r =
       CalibrateModule(views, corners, s.truth.camera.width, s.truth.camera.height,
                       s.truth.projector.width, s.truth.projector.height);
