@@ -122,6 +122,32 @@ class BiasSumCost : public ceres::CostFunction {
   Matrix6d sqrt_information_;
 };
 
+/// A direction observation (PoseGraph::AddDirection): parameters q (4, x y z w) of the node and
+/// the world direction g (3, on the unit sphere); residual (R(q) d − g) / σ.
+class DirectionCost {
+ public:
+  DirectionCost(const Eigen::Vector3d& in_node, double sigma_rad)
+      : in_node_(in_node), inverse_sigma_(1.0 / sigma_rad) {}
+
+  template <typename T>
+  bool operator()(const T* q_ptr, const T* g_ptr, T* residuals_ptr) const {
+    Eigen::Map<const Eigen::Quaternion<T>> q(q_ptr);
+    Eigen::Map<const Eigen::Matrix<T, 3, 1>> g(g_ptr);
+    Eigen::Map<Eigen::Matrix<T, 3, 1>> residuals(residuals_ptr);
+    residuals = (q * in_node_.template cast<T>() - g) * T(inverse_sigma_);
+    return true;
+  }
+
+  static ceres::CostFunction* Create(const Eigen::Vector3d& in_node, double sigma_rad) {
+    return new ceres::AutoDiffCostFunction<DirectionCost, 3, 4, 3>(
+        new DirectionCost(in_node, sigma_rad));
+  }
+
+ private:
+  Eigen::Vector3d in_node_;
+  double inverse_sigma_;
+};
+
 /// Upper-triangular S with SᵀS = Ω (Cholesky).
 Matrix6d SqrtInformation(const Matrix6d& information);
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -66,6 +67,33 @@ void PoseGraph::AddZeroSum(const BiasSum& sum) {
   zero_sums_.push_back(sum);
 }
 
+void PoseGraph::AddDirection(const DirectionObservation& observation) {
+  SEWER3D_VALIDATE(HasNode(observation.node), "",
+                   "direction observation names missing node " << observation.node);
+  SEWER3D_VALIDATE(observation.in_node.allFinite() && observation.in_node.norm() > 0.0, "",
+                   "direction observation of node " << observation.node << " is not a direction");
+  SEWER3D_VALIDATE(observation.sigma_rad > 0.0 && std::isfinite(observation.sigma_rad), "",
+                   "direction observation of node " << observation.node << " has sigma "
+                                                    << observation.sigma_rad);
+  DirectionObservation o = observation;
+  o.in_node.normalize();
+  if (!world_direction_set_) SetWorldDirection(node(o.node).rotation * o.in_node);
+  directions_.push_back(o);
+}
+
+void PoseGraph::SetWorldDirection(const Eigen::Vector3d& direction) {
+  SEWER3D_VALIDATE(direction.allFinite() && direction.norm() > 0.0, "",
+                   "world direction is not a direction");
+  world_direction_ = direction.normalized();
+  world_direction_set_ = true;
+}
+
+Eigen::Vector3d DirectionResidual(const DirectionObservation& observation,
+                                  const Rigid3d& world_from_node,
+                                  const Eigen::Vector3d& world_direction) {
+  return (world_from_node.rotation * observation.in_node - world_direction) / observation.sigma_rad;
+}
+
 Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& world_from_a,
                                          const Rigid3d& world_from_b) {
   const Eigen::Quaterniond q_a_inverse = world_from_a.rotation.conjugate();
@@ -93,6 +121,8 @@ double GraphCost(const PoseGraph& graph) {
       sum += z.frames[k] * graph.biases().at(z.groups[k]).value;
     cost += 0.5 * sum.dot(z.information * sum);
   }
+  for (const DirectionObservation& d : graph.directions())
+    cost += 0.5 * DirectionResidual(d, graph.node(d.node), graph.world_direction()).squaredNorm();
   return cost;
 }
 

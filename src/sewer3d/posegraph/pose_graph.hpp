@@ -51,6 +51,17 @@ struct BiasSum {
   Matrix6d information = Matrix6d::Identity();
 };
 
+/// A direction measured in a node's own frame that points the same way in the world for every
+/// observation of the graph, such as gravity from an inclinometer on the carrier: the residual
+/// (R_world_from_node · in_node − g) / sigma_rad, with g the graph's world direction
+/// (PoseGraph::world_direction), a unit vector estimated with the poses. It fixes a node's
+/// tilt (two of its three angles) against all the others', whatever the edges say.
+struct DirectionObservation {
+  int node = 0;
+  Eigen::Vector3d in_node = Eigen::Vector3d::UnitY();  ///< unit
+  double sigma_rad = 1e-3;  ///< of each of the two angles across the direction
+};
+
 class PoseGraph {
  public:
   /// Adds or replaces node `id` (pose = world_from_node).
@@ -84,6 +95,15 @@ class PoseGraph {
   const std::vector<PoseEdge>& edges() const { return edges_; }
   std::vector<PoseEdge>& mutable_edges() { return edges_; }
 
+  /// Adds a direction observation (std::invalid_argument: unknown node, a direction that is not
+  /// a finite non-zero vector (it is normalised), or sigma_rad not > 0). The first one sets the
+  /// world direction to where the node's pose puts it, unless SetWorldDirection came first.
+  void AddDirection(const DirectionObservation& observation);
+  const std::vector<DirectionObservation>& directions() const { return directions_; }
+  /// The common world direction g of the direction observations (unit).
+  const Eigen::Vector3d& world_direction() const { return world_direction_; }
+  void SetWorldDirection(const Eigen::Vector3d& direction);
+
   /// Nodes held fixed by the file or the caller (gauge); the solver also fixes the first node
   /// when this is empty.
   std::vector<int>& fixed_nodes() { return fixed_; }
@@ -95,7 +115,15 @@ class PoseGraph {
   std::vector<int> fixed_;
   std::map<int, EdgeBias> biases_;
   std::vector<BiasSum> zero_sums_;
+  std::vector<DirectionObservation> directions_;
+  Eigen::Vector3d world_direction_ = Eigen::Vector3d::UnitY();
+  bool world_direction_set_ = false;
 };
+
+/// (R_world_from_node · in_node − g) / sigma_rad of one observation at the given pose.
+Eigen::Vector3d DirectionResidual(const DirectionObservation& observation,
+                                  const Rigid3d& world_from_node,
+                                  const Eigen::Vector3d& world_direction);
 
 /// The residual of one edge at the given poses (Ceres' pose_graph_3d convention):
 /// r = [R_aᵀ (p_b − p_a) − p̂_ab ; 2 vec(q̂_ab (q_a⁻¹ q_b)⁻¹)].
@@ -104,8 +132,8 @@ Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& wo
 
 /// ½ Σ rᵀ Ω r over all edges (no robust loss): the cost convention of Ceres' example and of
 /// the published benchmark values.
-/// ½ Σ rᵀΩr, with r − b for edges of a bias group, plus ½ Σ bᵀ P b of the biases' priors and
-/// the zero sums' terms.
+/// ½ Σ rᵀΩr, with r − b for edges of a bias group, plus ½ Σ bᵀ P b of the biases' priors, the
+/// zero sums' terms and ½ Σ |r|² of the direction observations.
 double GraphCost(const PoseGraph& graph);
 
 /// GraphCost with every edge's measurement inverted (b_from_a in place of a_from_b): far below

@@ -4,6 +4,8 @@
 #include <ceres/manifold.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -347,6 +349,65 @@ TEST(PoseGraph, RegularisationEdgeKeepsAStraightPipeStraight) {
   EXPECT_LT(std::abs(graph.node(n - 1).translation.y()), 1.0);
   EXPECT_LT(RotationErrorDeg(graph.node(n - 1), Rigid3d()), 0.1);
   EXPECT_THROW(graph.AddRegularisationEdge(0, 99, Rigid3d(), covariance), std::invalid_argument);
+}
+
+// A chain of 20 nodes 30 mm apart along z (y down) whose steps all read the same pitch of
+// 0.02° (the common part of miscalibrated modules): the chain bows. The direction of gravity
+// seen from every node (an inclinometer) takes the bow out; what stays is one tilt of the
+// whole chain, which the free world direction absorbs.
+PoseGraph ChainWithCommonPitch(double direction_sigma_deg) {
+  const int n = 20;
+  const double pitch = DegToRad(0.02);
+  const Rigid3d step(Eigen::Quaterniond(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX())),
+                     Eigen::Vector3d(0.0, 0.0, 30.0));
+  PoseGraph graph;
+  for (int i = 0; i < n; ++i)
+    graph.SetNode(i, Rigid3d(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 30.0 * i)));
+  Matrix6d information = Matrix6d::Identity();
+  information.diagonal() << 1e4, 1e4, 1e4, Eigen::Vector3d::Constant(std::pow(DegToRad(0.005), -2));
+  for (int i = 0; i + 1 < n; ++i) graph.AddEdge({i, i + 1, step, information});
+  if (direction_sigma_deg > 0.0) {
+    for (int i = 0; i < n; ++i)
+      graph.AddDirection({i, Eigen::Vector3d::UnitY(), DegToRad(direction_sigma_deg)});
+  }
+  return graph;
+}
+
+// Largest distance of a node from the straight line through the first and the last.
+double Bow(const PoseGraph& graph) {
+  const Eigen::Vector3d a = graph.nodes().begin()->second.translation;
+  const Eigen::Vector3d b = graph.nodes().rbegin()->second.translation;
+  const Eigen::Vector3d axis = (b - a).normalized();
+  double bow = 0.0;
+  for (const auto& [id, pose] : graph.nodes()) {
+    const Eigen::Vector3d d = pose.translation - a;
+    bow = std::max(bow, (d - d.dot(axis) * axis).norm());
+  }
+  return bow;
+}
+
+TEST(Optimise, TheDirectionOfGravityFromEveryNodeTakesOutACommonTurn) {
+  PoseGraphOptions options;
+  options.init = PoseGraphInit::kGiven;
+  options.certify = true;
+  PoseGraph bowed = ChainWithCommonPitch(0.0);
+  ASSERT_TRUE(OptimisePoseGraph(bowed, options).usable);
+  // Pitch k · 0.02° at node k: a parabola whose sagitta is 30 mm · 0.02° · 19² / 8.
+  EXPECT_NEAR(Bow(bowed), 30.0 * DegToRad(0.02) * 19 * 19 / 8, 0.02);
+  PoseGraph held = ChainWithCommonPitch(0.01);
+  const PoseGraphReport report = OptimisePoseGraph(held, options);
+  ASSERT_TRUE(report.usable);
+  EXPECT_LT(Bow(held), 0.1 * Bow(bowed));
+  // The chain as a whole may tilt (the steps say it turns 0.38° in all; the directions say it
+  // does not turn): the world direction follows the nodes' mean tilt, a rotation about x.
+  EXPECT_NEAR(held.world_direction().norm(), 1.0, 1e-12);
+  EXPECT_NEAR(held.world_direction().x(), 0.0, 1e-9);
+  EXPECT_NEAR(report.final_cost, GraphCost(held), 1e-9);
+  EXPECT_FALSE(report.certificate_applicable);
+  EXPECT_NE(report.certificate_reason.find("direction"), std::string::npos);
+  EXPECT_THROW(held.AddDirection({99, Eigen::Vector3d::UnitY(), 1e-3}), std::invalid_argument);
+  EXPECT_THROW(held.AddDirection({0, Eigen::Vector3d::Zero(), 1e-3}), std::invalid_argument);
+  EXPECT_THROW(held.AddDirection({0, Eigen::Vector3d::UnitY(), 0.0}), std::invalid_argument);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 #include <ceres/normal_prior.h>
+#include <ceres/sphere_manifold.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
@@ -222,13 +223,20 @@ LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
     problem.AddResidualBlock(new BiasSumCost(std::move(frames), SqrtInformation(z.information)),
                              nullptr, blocks);
   }
+  Eigen::Vector3d direction = graph.world_direction();
+  for (const DirectionObservation& d : graph.directions()) {
+    const int i = ix.index_of_id.at(d.node);
+    problem.AddResidualBlock(DirectionCost::Create(d.in_node, d.sigma_rad), nullptr,
+                             q[i].coeffs().data(), direction.data());
+  }
+  if (!graph.directions().empty())
+    problem.SetManifold(direction.data(), new ceres::SphereManifold<3>);
   for (size_t i = 0; i < count; ++i) {
-    if (!problem.HasParameterBlock(p[i].data())) continue;
+    if (!problem.HasParameterBlock(q[i].coeffs().data())) continue;
     problem.SetManifold(q[i].coeffs().data(), new ceres::EigenQuaternionManifold);
-    if (ix.free_index[i] < 0) {
-      problem.SetParameterBlockConstant(p[i].data());
-      problem.SetParameterBlockConstant(q[i].coeffs().data());
-    }
+    if (ix.free_index[i] >= 0) continue;
+    if (problem.HasParameterBlock(p[i].data())) problem.SetParameterBlockConstant(p[i].data());
+    problem.SetParameterBlockConstant(q[i].coeffs().data());
   }
   ceres::Solver::Options solver_options;
   solver_options.max_num_iterations = options.max_iterations;
@@ -247,9 +255,11 @@ LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
   for (size_t i = 0; i < count; ++i)
     finite = finite && p[i].allFinite() && q[i].coeffs().allFinite();
   for (const auto& [id, b] : bias) finite = finite && b.allFinite();
+  finite = finite && direction.allFinite();
   if (finite) {  // a diverged solve leaves the initial poses and biases in place
     for (size_t i = 0; i < count; ++i) graph.mutable_node(ix.id_of_index[i]) = Rigid3d(q[i], p[i]);
     for (const auto& [id, b] : bias) graph.mutable_biases().at(id).value = b;
+    if (!graph.directions().empty()) graph.SetWorldDirection(direction);
   }
   // Ceres reports -1 steps when it did not iterate.
   result.iterations =
@@ -272,6 +282,10 @@ void Certify(PoseGraph& graph, const PoseGraphOptions& options, PoseGraphReport&
   }
   if (!graph.biases().empty()) {
     report.certificate_reason = "edge biases (estimated with the poses: not a pose graph)";
+    return;
+  }
+  if (!graph.directions().empty()) {
+    report.certificate_reason = "direction observations (not a pose graph)";
     return;
   }
   PoseGraph rounded;
