@@ -12,6 +12,7 @@
 
 #include "sewer3d/io/csv.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/inclinometer_io.hpp"
 #include "sewer3d/io/json_reader.hpp"
 #include "sewer3d/io/module_io.hpp"
 #include "sewer3d/io/text_file.hpp"
@@ -469,6 +470,8 @@ CaptureRun LoadRun(const fs::path& folder, const LoadRunOptions& options) {
   CheckOdometrySpan(folder / "odometry.csv", odometry.kept, run.images);
   run.odometry = std::move(odometry.kept);
   run.odometry_findings = std::move(odometry.findings);
+  if (fs::exists(folder / "inclinometer.csv", ec))
+    run.inclinometer = ReadInclinometer(folder / "inclinometer.csv");
   return run;
 }
 

@@ -5,11 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "sewer3d/io/file_error.hpp"
 #include "sewer3d/io/image_io.hpp"
+#include "sewer3d/io/inclinometer_io.hpp"
 #include "sewer3d/io/text_file.hpp"
 #include "sewer3d/pattern/default_pattern.hpp"
 #include "sewer3d/testing/matchers.hpp"
@@ -243,6 +245,41 @@ TEST_F(RunIoTest, IncompleteRunOnlyWhenAskedAndWithoutMissingImages) {
   const CaptureRun run = LoadRun(dir_, {.allow_incomplete = true});
   EXPECT_FALSE(run.info.complete);
   EXPECT_EQ(run.images.size(), images_.size() - 1);
+}
+
+// inclinometer.csv is optional: read when it is there, normalised, refused naming file and line.
+TEST_F(RunIoTest, ReadsTheInclinometerWhereTheRunHasOne) {
+  WriteRun();
+  EXPECT_TRUE(LoadRun(dir_).inclinometer.empty());
+  const Eigen::Vector3d tilted = Eigen::Vector3d(0.0, 1.0, 0.02).normalized();
+  WriteInclinometer(dir_ / "inclinometer.csv",
+                    {{0.0, Eigen::Vector3d::UnitY(), 0}, {0.05, tilted, 0}});
+  const CaptureRun run = LoadRun(dir_);
+  ASSERT_EQ(run.inclinometer.size(), 2u);
+  EXPECT_EQ(run.inclinometer[1].line, 3);
+  EXPECT_LT((run.inclinometer[1].down_in_carrier - tilted).norm(), 1e-8);
+  // Halfway: the mean direction, normalised; outside the span or across a long gap: none.
+  const auto mid = InclinometerDownAt(run.inclinometer, 0.025);
+  ASSERT_TRUE(mid.has_value());
+  EXPECT_LT((*mid - (Eigen::Vector3d::UnitY() + tilted).normalized()).norm(), 1e-8);
+  EXPECT_FALSE(InclinometerDownAt(run.inclinometer, -0.01).has_value());
+  EXPECT_FALSE(InclinometerDownAt(run.inclinometer, 0.06).has_value());
+  EXPECT_FALSE(InclinometerDownAt(run.inclinometer, 0.025, 0.01).has_value());
+  // A reading in g rather than unit length is a direction all the same.
+  const fs::path file = dir_ / "inclinometer.csv";
+  WriteTextFile(file, "time_s,down_x,down_y,down_z\n0,0,9.81,0\n0.05,0,9.81,0.1962\n");
+  EXPECT_NEAR(LoadRun(dir_).inclinometer[1].down_in_carrier.z(), 0.02 / std::sqrt(1.0004), 1e-9);
+  WriteTextFile(file, "time_s,down_x,down_y,down_z\n0,0,1,0\n0.05,0,0,0\n");
+  EXPECT_NE(ErrorOf().find("inclinometer.csv: line 3: the direction (0, 0, 0) has no length"),
+            std::string::npos)
+      << ErrorOf();
+  WriteTextFile(file, "time_s,down_x,down_y,down_z\n0,0,1,0\n0,0,1,0\n");
+  EXPECT_NE(ErrorOf().find("inclinometer.csv: line 3: time_s 0 does not increase"),
+            std::string::npos);
+  WriteTextFile(file, "time_s,down_x,down_y,down_z\n0,0,nan,0\n");
+  EXPECT_NE(ErrorOf().find("inclinometer.csv: line 2"), std::string::npos) << ErrorOf();
+  WriteTextFile(file, "time_s,pitch,roll\n0,0,0\n");
+  EXPECT_NE(ErrorOf().find("inclinometer.csv"), std::string::npos) << ErrorOf();
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sewer3d/pattern/binary_array.hpp"
+#include "sewer3d/run/inclinometer.hpp"
 #include "sewer3d/run/odometry.hpp"
 #include "sewer3d/run/rig.hpp"
 
@@ -70,6 +71,8 @@ struct CaptureRun {
   /// What LoadRun's CheckOdometry dropped (reversals) and the gaps left: where `odometry` is
   /// only a guess (OdometryUncertaintyAt). Empty for a run not read by LoadRun.
   OdometryFindings odometry_findings;
+  /// The carrier's inclinometer (inclinometer.csv), sorted by time; empty: the run has none.
+  std::vector<InclinometerReading> inclinometer;
 };
 
 /// One module's acquisition `counter`: its triplet as indices into the run's images (−1 where
