@@ -70,6 +70,7 @@ Command AddSimulateCommand(CLI::App& app) {
   auto args = std::make_shared<FrameArgs>();
   auto run_args = std::make_shared<RunArgs>();
   auto calibration_args = std::make_shared<CalibrationArgs>();
+  auto inclinometer_args = std::make_shared<InclinometerArgs>();
   CLI::App* sim = app.add_subcommand("simulate", "Render simulated captures");
   sim->require_subcommand(1);
   CLI::App* frame =
@@ -125,8 +126,10 @@ Command AddSimulateCommand(CLI::App& app) {
       ->check(CLI::IsMember({"ideal", "paper"}));
   AddRunCommand(*sim, *run_args);
   AddCalibrationCommand(*sim, *calibration_args);
-  return {sim, [args, run_args, calibration_args, frame] {
+  AddInclinometerCommand(*sim, *inclinometer_args);
+  return {sim, [args, run_args, calibration_args, inclinometer_args, frame] {
             if (calibration_args->app->parsed()) return RunCalibration(*calibration_args);
+            if (inclinometer_args->app->parsed()) return RunInclinometer(*inclinometer_args);
             if (!frame->parsed()) return RunRun(*run_args);
             return RunFrame(*args, *frame);
           }};

@@ -46,6 +46,15 @@ struct CalibrationArgs {
 void AddCalibrationCommand(CLI::App& sim, CalibrationArgs& args);
 int RunCalibration(const CalibrationArgs& args);
 
+/// `sewer3d simulate inclinometer --run RUN`: adds the inclinometer to a simulated run.
+struct InclinometerArgs {
+  CLI::App* app = nullptr;
+  std::string run;
+};
+
+void AddInclinometerCommand(CLI::App& sim, InclinometerArgs& args);
+int RunInclinometer(const InclinometerArgs& args);
+
 /// `sewer3d simulate run`'s arguments (0 / empty: the scenario's).
 struct RunArgs {
   std::string scenario, preset, out, module;

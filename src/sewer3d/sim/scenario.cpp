@@ -223,6 +223,7 @@ void Scenario::Check() const {
                                                                     << " mm), got "
                                                                     << capture.nominal_diameter_mm);
   CheckWithin("odometry.", [&] { odometry.Check(); });
+  CheckWithin("inclinometer.", [&] { inclinometer.Check(); });
   CheckWithin("render.", [&] { render.Check(); });
   // The frames are rendered with the carrier's speed over the capture's exposure.
   RenderOptions moving = render;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sewer3d/sim/inclinometer.hpp"
 #include "sewer3d/sim/odometry.hpp"
 #include "sewer3d/sim/pipe_world.hpp"
 #include "sewer3d/sim/renderer.hpp"
@@ -35,6 +36,7 @@ struct Scenario {
   MotionOptions motion;
   CaptureOptions capture;
   OdometryOptions odometry;
+  InclinometerOptions inclinometer;
   RenderOptions render = RunRenderDefaults();
   TruthDepth truth_depth = TruthDepth::kPattern;  ///< which images get a truth depth map
   /// Each module's camera white balance is off by gains exp(σ n) on R and B (n standard normal

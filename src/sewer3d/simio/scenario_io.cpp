@@ -211,6 +211,10 @@ std::string ScenarioToJson(const Scenario& s) {
                                       {"length_mm", slip.length_mm},
                                       {"fraction", slip.fraction}});
   }
+  j["inclinometer"] = {{"enabled", s.inclinometer.enabled},
+                       {"rate_hz", s.inclinometer.rate_hz},
+                       {"noise_deg", s.inclinometer.noise_deg},
+                       {"mounting_deg", s.inclinometer.mounting_deg}};
   json render = RenderOptionsToJson(s.render);
   for (const PerShotMember& m : kPerShotMembers) render.erase(m.key);
   j["render"] = render;
@@ -223,9 +227,10 @@ std::string ScenarioToJson(const Scenario& s) {
 Scenario ParseScenario(const std::string& text, const std::filesystem::path& path) {
   const JsonReader in(path);
   const json j = in.ParseObject(text);
-  in.OnlyKnown(j, "",
-               {"name", "seed", "module", "camera_width", "rig", "pipe", "motion", "capture",
-                "odometry", "render", "truth_depth", "truth_albedo", "white_balance_error"});
+  in.OnlyKnown(
+      j, "",
+      {"name", "seed", "module", "camera_width", "rig", "pipe", "motion", "capture", "odometry",
+       "inclinometer", "render", "truth_depth", "truth_albedo", "white_balance_error"});
   Scenario s;
   s.name = in.Text(j, "name", "", path.stem().string());
   s.seed = in.Seed(j, "seed", "", 1);
@@ -292,6 +297,13 @@ Scenario ParseScenario(const std::string& text, const std::filesystem::path& pat
                                 in.Number(slips[i], "length_mm", p, 0.0),
                                 in.Number(slips[i], "fraction", p, 0.0)});
   }
+  const json& incl = in.Object(j, "inclinometer", "");
+  in.OnlyKnown(incl, "inclinometer.", {"enabled", "rate_hz", "noise_deg", "mounting_deg"});
+  InclinometerOptions& io = s.inclinometer;
+  io.enabled = in.Bool(incl, "enabled", "inclinometer.", io.enabled);
+  io.rate_hz = in.Number(incl, "rate_hz", "inclinometer.", io.rate_hz);
+  io.noise_deg = in.Number(incl, "noise_deg", "inclinometer.", io.noise_deg);
+  io.mounting_deg = in.Number(incl, "mounting_deg", "inclinometer.", io.mounting_deg);
   const json& render = in.Object(j, "render", "");
   // What the run sets per shot is the scenario's to give, not the renderer's.
   for (const PerShotMember& m : kPerShotMembers) {

@@ -20,6 +20,7 @@
 #include "sewer3d/simio/run_overview.hpp"
 #include "sewer3d/simio/scenario_io.hpp"
 #include "sewer3d/simio/scene_io.hpp"
+#include "sewer3d/simio/simulate_inclinometer.hpp"
 #include "sewer3d/simio/truth_io.hpp"
 
 namespace sewer3d {
@@ -214,6 +215,7 @@ SimulatedRun SimulateRun(const Scenario& scenario, const ModuleDescription& modu
   for (const OdometrySample& o : odometry) readings.push_back({o.time_s, o.measured_mm});
   WriteOdometry(out / "odometry.csv", readings);
   WriteOdometryTruth(out / "truth" / "odometry.csv", odometry);
+  WriteSimulatedInclinometer(out, scenario, trajectory);
   WriteTruthPoses(out / "truth" / "poses.csv", poses);
   std::vector<Eigen::Vector3d> white_balance;
   for (int k = 0; k < scenario.rig.modules; ++k)
