@@ -18,6 +18,7 @@ rows=(
   "+rig+odometry feature,projection,texture,rig,odometry"
   "+straightness feature,projection,texture,rig,odometry,straightness"
   "+bias feature,projection,texture,rig,odometry,straightness,bias"
+  "+gravity feature,projection,texture,rig,odometry,straightness,bias,gravity"
 )
 printf '| evidence | ATE RMS (mm) | max (mm) | per material (RMS mm) | edges accepted / rejected |\n'
 printf '|---|---|---|---|---|\n'

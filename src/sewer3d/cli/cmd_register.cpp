@@ -27,8 +27,9 @@ Command AddRegisterCommand(CLI::App& app) {
     std::string run, out;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     bool quiet = false, force = false;
+    double inclinometer_sigma_deg = FusionOptions{}.gravity_sigma_deg;
     std::vector<std::string> edges{"feature",  "projection",   "texture", "rig",
-                                   "odometry", "straightness", "bias"};
+                                   "odometry", "straightness", "bias",    "gravity"};
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -43,12 +44,18 @@ Command AddRegisterCommand(CLI::App& app) {
   sub->add_option("--edges", args->edges,
                   "Edge types the graph may use (ablation): feature, projection, texture (the "
                   "projection edges' photometric term), rig, odometry, straightness, bias (the "
-                  "bias shared by the registrations between the same two modules, estimated); "
+                  "bias shared by the registrations between the same two modules, estimated), "
+                  "gravity (the run's inclinometer.csv, where it has one); "
                   "`none` keeps the odometry + rig poses")
       ->delimiter(',')
-      ->check(CLI::IsMember(
-          {"feature", "projection", "texture", "rig", "odometry", "straightness", "bias", "none"}))
+      ->check(CLI::IsMember({"feature", "projection", "texture", "rig", "odometry", "straightness",
+                             "bias", "gravity", "none"}))
       ->capture_default_str();
+  sub->add_option("--inclinometer-sigma-deg", args->inclinometer_sigma_deg,
+                  "σ of one inclinometer reading across gravity, the carrier's own accelerations "
+                  "included (the gravity edges' weight)")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-4, 10.0));
   sub->add_flag("--force", args->force,
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
@@ -71,6 +78,8 @@ Command AddRegisterCommand(CLI::App& app) {
             options.priors.odometry = use("odometry");
             options.priors.straightness = use("straightness");
             options.fusion.group_biases = use("bias");
+            options.fusion.gravity = use("gravity");
+            options.fusion.gravity_sigma_deg = args->inclinometer_sigma_deg;
             ProgressBar bar(args->quiet);
             auto progress = [&](const std::string& pass, int done, int total) {
               bar.Update("register " + pass, done, total, pass == "pairs" ? "pairs" : "steps");

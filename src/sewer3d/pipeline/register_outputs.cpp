@@ -43,6 +43,16 @@ json SolveJson(const PoseGraphReport& r) {
   return j;
 }
 
+json GravityJson(const GravityReport& g) {
+  if (g.observations == 0) return {{"observations", 0}};
+  const Eigen::Vector3d& d = g.down_in_model;
+  return {{"observations", g.observations},
+          {"rms_deg", g.rms_deg},
+          {"max_deg", g.max_deg},
+          {"down_in_model", {d.x(), d.y(), d.z()}},
+          {"pipe_gradient_percent", 100.0 * d.z() / std::hypot(d.x(), d.y())}};
+}
+
 }  // namespace
 
 std::string RegisterOptionsJson(const RegisterStageOptions& o) {
@@ -78,7 +88,9 @@ std::string RegisterOptionsJson(const RegisterStageOptions& o) {
                   {"fusion",
                    {{"huber_delta", o.fusion.huber_delta},
                     {"gate_chi2", o.fusion.gate_chi2},
-                    {"group_biases", o.fusion.group_biases}}},
+                    {"group_biases", o.fusion.group_biases},
+                    {"gravity", o.fusion.gravity},
+                    {"gravity_sigma_deg", o.fusion.gravity_sigma_deg}}},
                   {"min_depth_points", o.min_depth_points}};
   return j.dump();
 }
@@ -156,6 +168,7 @@ std::string RegisterStageReportToJson(const RegisterStageReport& report) {
         {"by_type", by_type},
         {"module_pairs", module_pairs},
         {"group_biases", biases},
+        {"gravity", GravityJson(report.fusion.gravity)},
         {"rig_warnings", report.rig_warnings},
         {"graph_warnings", report.graph_warnings}}},
       {"seconds",

@@ -76,8 +76,9 @@ const std::filesystem::path& NotTheRun(const std::filesystem::path& folder,
 
 // The run's files besides its images (rgbd stamps those per acquisition), each with the first
 // stage that reads it: the rig and pattern matrices (decoding, triangulation) and the image
-// index (the texture's instants) feed rgbd; the odometry feeds register. Paths relative to the
-// run folder, as rig.json names the matrices; a matrix shared by modules is listed once.
+// index (the texture's instants) feed rgbd; the odometry and the inclinometer feed register. Paths
+// relative to the run folder, as rig.json names the matrices; a matrix shared by modules is listed
+// once.
 std::vector<std::pair<std::string, std::string>> RunFilesOf(const CaptureRun& run) {
   std::vector<std::pair<std::string, std::string>> files = {{"rig.json", "rgbd"},
                                                             {"acquisitions.csv", "rgbd"}};
@@ -87,6 +88,7 @@ std::vector<std::pair<std::string, std::string>> RunFilesOf(const CaptureRun& ru
     if (std::none_of(files.begin(), files.end(), same)) files.emplace_back(matrix, "rgbd");
   }
   files.emplace_back("odometry.csv", "register");
+  if (!run.inclinometer.empty()) files.emplace_back("inclinometer.csv", "register");
   return files;
 }
 

@@ -109,14 +109,46 @@ BiasGroups FindBiasGroups(const std::vector<AcquisitionNode>& nodes,
   return groups;
 }
 
+/// The inclinometer's direction of gravity at every node that has it, and the world's (the
+/// graph's common direction, carried from one solve to the next).
+struct Gravity {
+  std::vector<DirectionObservation> observations;
+  Eigen::Vector3d world = Eigen::Vector3d::UnitY();
+};
+
+// One observation per node with down_in_camera; the nodes of one counter read the same sensor,
+// so each weighs 1/count of one reading (σ · √count).
+Gravity GravityObservations(const std::vector<AcquisitionNode>& nodes,
+                            const FusionOptions& options) {
+  Gravity gravity;
+  if (!options.gravity) return gravity;
+  std::map<int, int> per_counter;
+  for (const AcquisitionNode& node : nodes)
+    per_counter[node.counter] += node.down_in_camera ? 1 : 0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
+    const AcquisitionNode& node = nodes[i];
+    if (!node.down_in_camera) continue;
+    const double sigma =
+        options.gravity_sigma_deg / kRadToDeg * std::sqrt(per_counter.at(node.counter));
+    gravity.observations.push_back({i, *node.down_in_camera, sigma});
+    sum += node.world_from_camera.rotation * *node.down_in_camera;
+  }
+  if (!gravity.observations.empty()) gravity.world = sum.normalized();
+  return gravity;
+}
+
 /// The graph of the accepted edges at the given poses (node 0 fixed), each group's edges
-/// sharing its bias (starting at `bias`, prior information `prior`).
+/// sharing its bias (starting at `bias`, prior information `prior`), with the gravity
+/// observations.
 PoseGraph BuildGraph(const std::vector<Rigid3d>& poses, const std::vector<RegistrationEdge>& edges,
                      const std::vector<bool>& accepted, double huber_delta,
                      const BiasGroups& groups, const std::vector<Vector6d>& bias,
-                     const Matrix6d& prior) {
+                     const Matrix6d& prior, const Gravity& gravity) {
   PoseGraph graph;
   for (int i = 0; i < static_cast<int>(poses.size()); ++i) graph.SetNode(i, poses[i]);
+  if (!gravity.observations.empty()) graph.SetWorldDirection(gravity.world);
+  for (const DirectionObservation& d : gravity.observations) graph.AddDirection(d);
   for (size_t g = 0; g < groups.keys.size(); ++g)
     graph.SetBias(static_cast<int>(g), EdgeBias{bias[g], prior});
   for (const BiasSum& family : groups.zero_sums) graph.AddZeroSum(family);
@@ -199,6 +231,22 @@ void Statistics(const std::vector<RegistrationEdge>& edges, const std::vector<Ri
   }
 }
 
+void GravityStatistics(const PoseGraph& graph, FusionReport& report) {
+  report.gravity.observations = static_cast<int>(graph.directions().size());
+  if (graph.directions().empty()) return;
+  report.gravity.down_in_model = graph.world_direction();
+  double sum = 0.0;
+  for (const DirectionObservation& d : graph.directions()) {
+    const Eigen::Vector3d seen = graph.node(d.node).rotation * d.in_node;
+    const double angle =
+        std::atan2(seen.cross(graph.world_direction()).norm(), seen.dot(graph.world_direction()));
+    sum += angle * angle;
+    report.gravity.max_deg = std::max(report.gravity.max_deg, angle * kRadToDeg);
+  }
+  report.gravity.rms_deg =
+      std::sqrt(sum / static_cast<double>(graph.directions().size())) * kRadToDeg;
+}
+
 }  // namespace
 
 void FusionOptions::Check() const {
@@ -211,6 +259,7 @@ void FusionOptions::Check() const {
   SEWER3D_VALIDATE(min_bias_edges >= 1, "min_bias_edges", "must be ≥ 1, got " << min_bias_edges);
   ValidatePositive("bias_sigma_mm", bias_sigma_mm);
   ValidatePositive("bias_sigma_deg", bias_sigma_deg);
+  ValidatePositive("gravity_sigma_deg", gravity_sigma_deg);
 }
 
 FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
@@ -239,11 +288,13 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
   solve.init = PoseGraphInit::kGiven;
   solve.max_iterations = options.max_iterations;
   solve.num_threads = options.threads;
+  Gravity gravity = GravityObservations(nodes, options);
   PoseGraph graph = BuildGraph(poses, edges, result.accepted, options.huber_delta, groups, bias,
-                               prior_information);
+                               prior_information, gravity);
   result.report.first_solve = OptimisePoseGraph(graph, solve);
   poses = Poses(graph, nodes.size());
   bias = Biases(graph, bias.size());
+  gravity.world = graph.world_direction();
 
   // Gate, then least squares on what is left, until the gate rejects nothing more.
   for (int round = 0; round < options.max_gate_rounds; ++round) {
@@ -260,15 +311,18 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
     if (round > 0 && rejected_now == 0) break;
     result.report.rejected += rejected_now;
     ++result.report.gate_rounds;
-    graph = BuildGraph(poses, edges, result.accepted, 0.0, groups, bias, prior_information);
+    graph =
+        BuildGraph(poses, edges, result.accepted, 0.0, groups, bias, prior_information, gravity);
     result.report.final_solve = OptimisePoseGraph(graph, solve);
     poses = Poses(graph, nodes.size());
     bias = Biases(graph, bias.size());
+    gravity.world = graph.world_direction();
   }
   // The biases go into the measurements: what is left is a pose graph (written as graph.g2o),
   // and the certificate applies to it.
   result.edges = Corrected(edges, groups, bias);
-  graph = BuildGraph(poses, result.edges, result.accepted, 0.0, BiasGroups{}, {}, Matrix6d());
+  graph =
+      BuildGraph(poses, result.edges, result.accepted, 0.0, BiasGroups{}, {}, Matrix6d(), gravity);
   if (options.certify && n <= options.max_certify_nodes && n > 1) {
     solve.certify = true;
     result.report.final_solve = OptimisePoseGraph(graph, solve);
@@ -280,6 +334,7 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
   }
   result.report.usable = result.report.first_solve.usable && result.report.final_solve.usable;
   Statistics(result.edges, poses, result);
+  GravityStatistics(graph, result.report);
   for (size_t g = 0; g < groups.keys.size(); ++g) {
     EdgeGroupBias b;
     b.type = static_cast<RegistrationEdgeType>(std::get<0>(groups.keys[g]));

@@ -26,6 +26,12 @@
 /// part is the carrier's own motion (speed, a turn of all modules alike: the "bent pipe"), which
 /// a bias must not take. The biases are then taken out of the measurements (`edges` of the
 /// result, graph.g2o) and the certificate, where enabled, judges that pose graph.
+///
+/// What the zero sum keeps, a turn every module's along edges share (a common part of the
+/// modules' calibration errors), bends the model, and only an absolute reference can tell it
+/// from a bent pipe: the inclinometer's direction of gravity at every acquisition
+/// (`gravity`), a direction observation whose world direction is estimated with the poses (so
+/// the pipe's gradient is free and a constant tilt of the sensor is absorbed).
 
 #include <array>
 #include <string>
@@ -48,6 +54,12 @@ struct FusionOptions {
   int min_bias_edges = 4;       ///< a group of fewer edges keeps its measurements
   double bias_sigma_mm = 0.5;   ///< prior σ of a group's bias, translation (per axis)
   double bias_sigma_deg = 0.2;  ///< and rotation
+  /// The inclinometer (AcquisitionNode::down_in_camera): each instant's direction of gravity
+  /// as a direction observation of its nodes (PoseGraph::AddDirection) with this σ per reading
+  /// (shared by the instant's nodes). It holds the carrier's pitch and roll where a turn every
+  /// registration shares would bend the model. The certificate does not apply then.
+  bool gravity = true;
+  double gravity_sigma_deg = 0.05;
 
   void Check() const;
 };
@@ -72,6 +84,15 @@ struct EdgeGroupBias {
   Eigen::Matrix<double, 6, 1> bias = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
+/// The inclinometer's part in the fusion (FusionOptions::gravity).
+struct GravityReport {
+  int observations = 0;  ///< nodes with a direction of gravity
+  /// Where the fused poses put gravity: its angle to the common direction, over the nodes.
+  double rms_deg = 0.0, max_deg = 0.0;
+  /// The common direction in the model frame (its z component: the pipe's gradient, sin).
+  Eigen::Vector3d down_in_model = Eigen::Vector3d::Zero();
+};
+
 struct FusionReport {
   PoseGraphReport first_solve;  ///< with the robust loss
   PoseGraphReport final_solve;  ///< least squares on the accepted edges (+ certificate)
@@ -80,6 +101,7 @@ struct FusionReport {
   std::array<EdgeTypeStatistics, kRegistrationEdgeTypes> by_type{};
   bool usable = false;                ///< both solves usable
   std::vector<EdgeGroupBias> biases;  ///< groups whose measurements were corrected
+  GravityReport gravity;
 };
 
 struct FusionResult {

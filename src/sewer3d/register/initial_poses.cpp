@@ -103,7 +103,12 @@ InitialPosesResult InitialPoses(const CaptureRun& run) {
     if (u.gap != nullptr) ++report.in_odometry_gap;
     const Rigid3d world_from_carrier(Eigen::Quaterniond::Identity(),
                                      Eigen::Vector3d(0.0, 0.0, node.distance_mm));
-    node.world_from_camera = world_from_carrier * run.rig.modules[acq.module].carrier_from_camera;
+    const Rigid3d& carrier_from_camera = run.rig.modules[acq.module].carrier_from_camera;
+    node.world_from_camera = world_from_carrier * carrier_from_camera;
+    if (const auto down = InclinometerDownAt(run.inclinometer, node.time_s)) {
+      node.down_in_camera = carrier_from_camera.rotation.conjugate() * *down;
+      ++report.with_inclinometer;
+    }
     out.nodes.push_back(node);
   }
   report.nodes = static_cast<int>(out.nodes.size());

@@ -11,6 +11,7 @@
 /// counter's distance, and world_from_camera = world_from_carrier · carrier_from_camera.
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "sewer3d/core/rigid3.hpp"
@@ -29,6 +30,9 @@ struct AcquisitionNode {
   double distance_sigma_mm = 0.0;
   double speed_sigma_mm_s = 0.0;
   Rigid3d world_from_camera;  ///< model frame
+  /// Gravity's direction in the camera frame at time_s from the run's inclinometer (unit);
+  /// nullopt where the run has none (or no reading around time_s).
+  std::optional<Eigen::Vector3d> down_in_camera;
 };
 
 struct InitialPosesReport {
@@ -39,6 +43,7 @@ struct InitialPosesReport {
   int odometry_backwards = 0;  ///< consecutive readings (of those kept) whose distance decreases
   int odometry_dropped = 0;    ///< readings LoadRun dropped: the distance went backwards
   int in_odometry_gap = 0;     ///< nodes placed by interpolation across a long gap
+  int with_inclinometer = 0;   ///< nodes with the direction of gravity (down_in_camera)
   double first_image_time_s = 0.0;
 };
 
