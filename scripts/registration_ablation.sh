@@ -19,6 +19,7 @@ rows=(
   "+straightness feature,projection,texture,rig,odometry,straightness"
   "+bias feature,projection,texture,rig,odometry,straightness,bias"
   "+gravity feature,projection,texture,rig,odometry,straightness,bias,gravity"
+  "+scale feature,projection,texture,rig,odometry,straightness,bias,gravity,scale"
 )
 printf '| evidence | ATE RMS (mm) | max (mm) | per material (RMS mm) | edges accepted / rejected |\n'
 printf '|---|---|---|---|---|\n'

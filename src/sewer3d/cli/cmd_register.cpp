@@ -28,8 +28,8 @@ Command AddRegisterCommand(CLI::App& app) {
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     bool quiet = false, force = false;
     double inclinometer_sigma_deg = FusionOptions{}.gravity_sigma_deg;
-    std::vector<std::string> edges{"feature",  "projection",   "texture", "rig",
-                                   "odometry", "straightness", "bias",    "gravity"};
+    std::vector<std::string> edges{"feature", "projection",   "texture", "rig",    "odometry",
+                                   "scale",   "straightness", "bias",    "gravity"};
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -45,11 +45,12 @@ Command AddRegisterCommand(CLI::App& app) {
                   "Edge types the graph may use (ablation): feature, projection, texture (the "
                   "projection edges' photometric term), rig, odometry, straightness, bias (the "
                   "bias shared by the registrations between the same two modules, estimated), "
-                  "gravity (the run's inclinometer.csv, where it has one); "
+                  "gravity (the run's inclinometer.csv, where it has one), scale (the odometry's "
+                  "scale error, estimated); "
                   "`none` keeps the odometry + rig poses")
       ->delimiter(',')
-      ->check(CLI::IsMember({"feature", "projection", "texture", "rig", "odometry", "straightness",
-                             "bias", "gravity", "none"}))
+      ->check(CLI::IsMember({"feature", "projection", "texture", "rig", "odometry", "scale",
+                             "straightness", "bias", "gravity", "none"}))
       ->capture_default_str();
   sub->add_option("--inclinometer-sigma-deg", args->inclinometer_sigma_deg,
                   "σ of one inclinometer reading across gravity, the carrier's own accelerations "
@@ -79,6 +80,7 @@ Command AddRegisterCommand(CLI::App& app) {
             options.priors.straightness = use("straightness");
             options.fusion.group_biases = use("bias");
             options.fusion.gravity = use("gravity");
+            options.fusion.odometry_scale = use("scale");
             options.fusion.gravity_sigma_deg = args->inclinometer_sigma_deg;
             ProgressBar bar(args->quiet);
             auto progress = [&](const std::string& pass, int done, int total) {

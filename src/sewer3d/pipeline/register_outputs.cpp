@@ -90,6 +90,7 @@ std::string RegisterOptionsJson(const RegisterStageOptions& o) {
                     {"gate_chi2", o.fusion.gate_chi2},
                     {"group_biases", o.fusion.group_biases},
                     {"gravity", o.fusion.gravity},
+                    {"odometry_scale", o.fusion.odometry_scale},
                     {"gravity_sigma_deg", o.fusion.gravity_sigma_deg}}},
                   {"min_depth_points", o.min_depth_points}};
   return j.dump();

@@ -66,6 +66,7 @@ using GroupKey = std::tuple<int, int, int, int>;  // type, module a, module b, c
 struct BiasGroups {
   std::vector<int> of_edge;
   std::vector<GroupKey> keys;
+  std::vector<Matrix6d> priors;  ///< per group: the information of its zero-mean prior
   std::vector<BiasSum> zero_sums;
 };
 
@@ -78,11 +79,51 @@ Matrix6d ModelFromCamera(const AcquisitionNode& a) {
   return m;
 }
 
+// The prior of a module's odometry bias: along its steps σ = odometry_scale_sigma × the mean
+// step, nothing else (a counter errs in distance only).
+Matrix6d OdometryScalePrior(const std::vector<RegistrationEdge>& edges,
+                            const std::vector<size_t>& list, const FusionOptions& options) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (size_t k : list) sum += edges[k].a_from_b.translation;
+  const double step = sum.norm() / static_cast<double>(list.size());
+  const Eigen::Vector3d u = sum.normalized();
+  const Eigen::Matrix3d along = u * u.transpose();
+  constexpr double kHeld = 1e6;  // σ 1 µm / 1 µrad: the other components stay zero
+  Matrix6d prior = Matrix6d::Identity() * kHeld;
+  prior.topLeftCorner<3, 3>() = along * std::pow(options.odometry_scale_sigma * step, -2) +
+                                (Eigen::Matrix3d::Identity() - along) * kHeld;
+  prior.bottomRightCorner<3, 3>() = Eigen::Matrix3d::Identity() * kHeld * kHeld;
+  return prior;
+}
+
+// Each module's odometry edges (at least min_bias_edges) as one group whose bias is the cable
+// counter's scale error along the steps: what feature edges measure of the true distance fixes
+// it, and it corrects the steps where nothing else sees the distance (plastic). No zero sum:
+// the scale error is common to every module by nature.
+void AddOdometryGroups(const std::vector<AcquisitionNode>& nodes,
+                       const std::vector<RegistrationEdge>& edges, const FusionOptions& options,
+                       BiasGroups& groups) {
+  std::map<int, std::vector<size_t>> per_module;
+  for (size_t k = 0; k < edges.size(); ++k) {
+    if (edges[k].type == RegistrationEdgeType::kOdometry &&
+        nodes[edges[k].a].module == nodes[edges[k].b].module)
+      per_module[nodes[edges[k].a].module].push_back(k);
+  }
+  for (const auto& [module, list] : per_module) {
+    if (static_cast<int>(list.size()) < options.min_bias_edges) continue;
+    const int g = static_cast<int>(groups.keys.size());
+    for (size_t k : list) groups.of_edge[k] = g;
+    groups.keys.emplace_back(static_cast<int>(RegistrationEdgeType::kOdometry), module, module, 1);
+    groups.priors.push_back(OdometryScalePrior(edges, list, options));
+  }
+}
+
 BiasGroups FindBiasGroups(const std::vector<AcquisitionNode>& nodes,
-                          const std::vector<RegistrationEdge>& edges,
-                          const FusionOptions& options) {
+                          const std::vector<RegistrationEdge>& edges, const FusionOptions& options,
+                          const Matrix6d& prior) {
   BiasGroups groups;
   groups.of_edge.assign(edges.size(), -1);
+  if (options.odometry_scale) AddOdometryGroups(nodes, edges, options, groups);
   if (!options.group_biases) return groups;
   std::map<GroupKey, std::vector<size_t>> members;
   for (size_t k = 0; k < edges.size(); ++k) {
@@ -98,6 +139,7 @@ BiasGroups FindBiasGroups(const std::vector<AcquisitionNode>& nodes,
     const int g = static_cast<int>(groups.keys.size());
     for (size_t k : list) groups.of_edge[k] = g;
     groups.keys.push_back(key);
+    groups.priors.push_back(prior);
     const auto& [type, module_a, module_b, step] = key;
     if (module_a != module_b) continue;
     BiasSum& family = along[{type, step}];
@@ -139,18 +181,18 @@ Gravity GravityObservations(const std::vector<AcquisitionNode>& nodes,
 }
 
 /// The graph of the accepted edges at the given poses (node 0 fixed), each group's edges
-/// sharing its bias (starting at `bias`, prior information `prior`), with the gravity
+/// sharing its bias (starting at `bias`, under its group's prior), with the gravity
 /// observations.
 PoseGraph BuildGraph(const std::vector<Rigid3d>& poses, const std::vector<RegistrationEdge>& edges,
                      const std::vector<bool>& accepted, double huber_delta,
                      const BiasGroups& groups, const std::vector<Vector6d>& bias,
-                     const Matrix6d& prior, const Gravity& gravity) {
+                     const Gravity& gravity) {
   PoseGraph graph;
   for (int i = 0; i < static_cast<int>(poses.size()); ++i) graph.SetNode(i, poses[i]);
   if (!gravity.observations.empty()) graph.SetWorldDirection(gravity.world);
   for (const DirectionObservation& d : gravity.observations) graph.AddDirection(d);
   for (size_t g = 0; g < groups.keys.size(); ++g)
-    graph.SetBias(static_cast<int>(g), EdgeBias{bias[g], prior});
+    graph.SetBias(static_cast<int>(g), EdgeBias{bias[g], groups.priors[g]});
   for (const BiasSum& family : groups.zero_sums) graph.AddZeroSum(family);
   for (size_t k = 0; k < edges.size(); ++k) {
     if (!accepted[k]) continue;
@@ -260,6 +302,7 @@ void FusionOptions::Check() const {
   ValidatePositive("bias_sigma_mm", bias_sigma_mm);
   ValidatePositive("bias_sigma_deg", bias_sigma_deg);
   ValidatePositive("gravity_sigma_deg", gravity_sigma_deg);
+  ValidatePositive("odometry_scale_sigma", odometry_scale_sigma);
 }
 
 FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
@@ -277,20 +320,19 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
   result.chi2.assign(edges.size(), 0.0);
   std::vector<Rigid3d> poses;
   for (const AcquisitionNode& node : nodes) poses.push_back(node.world_from_camera);
-  const BiasGroups groups = FindBiasGroups(nodes, edges, options);
-  std::vector<Vector6d> bias(groups.keys.size(), Vector6d::Zero());
   Vector6d prior;
   prior << Eigen::Vector3d::Constant(std::pow(options.bias_sigma_mm, -2)),
       Eigen::Vector3d::Constant(std::pow(options.bias_sigma_deg / kRadToDeg, -2));
-  const Matrix6d prior_information = prior.asDiagonal();
+  const BiasGroups groups = FindBiasGroups(nodes, edges, options, prior.asDiagonal());
+  std::vector<Vector6d> bias(groups.keys.size(), Vector6d::Zero());
 
   PoseGraphOptions solve;
   solve.init = PoseGraphInit::kGiven;
   solve.max_iterations = options.max_iterations;
   solve.num_threads = options.threads;
   Gravity gravity = GravityObservations(nodes, options);
-  PoseGraph graph = BuildGraph(poses, edges, result.accepted, options.huber_delta, groups, bias,
-                               prior_information, gravity);
+  PoseGraph graph =
+      BuildGraph(poses, edges, result.accepted, options.huber_delta, groups, bias, gravity);
   result.report.first_solve = OptimisePoseGraph(graph, solve);
   poses = Poses(graph, nodes.size());
   bias = Biases(graph, bias.size());
@@ -311,8 +353,7 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
     if (round > 0 && rejected_now == 0) break;
     result.report.rejected += rejected_now;
     ++result.report.gate_rounds;
-    graph =
-        BuildGraph(poses, edges, result.accepted, 0.0, groups, bias, prior_information, gravity);
+    graph = BuildGraph(poses, edges, result.accepted, 0.0, groups, bias, gravity);
     result.report.final_solve = OptimisePoseGraph(graph, solve);
     poses = Poses(graph, nodes.size());
     bias = Biases(graph, bias.size());
@@ -321,8 +362,7 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
   // The biases go into the measurements: what is left is a pose graph (written as graph.g2o),
   // and the certificate applies to it.
   result.edges = Corrected(edges, groups, bias);
-  graph =
-      BuildGraph(poses, result.edges, result.accepted, 0.0, BiasGroups{}, {}, Matrix6d(), gravity);
+  graph = BuildGraph(poses, result.edges, result.accepted, 0.0, BiasGroups{}, {}, gravity);
   if (options.certify && n <= options.max_certify_nodes && n > 1) {
     solve.certify = true;
     result.report.final_solve = OptimisePoseGraph(graph, solve);

@@ -60,6 +60,11 @@ struct FusionOptions {
   /// registration shares would bend the model. The certificate does not apply then.
   bool gravity = true;
   double gravity_sigma_deg = 0.05;
+  /// The cable counter's scale error: each module's odometry edges share a bias along their
+  /// steps (prior σ odometry_scale_sigma of a step), fixed where feature edges see the true
+  /// distance and carried to where nothing else does (plastic).
+  bool odometry_scale = true;
+  double odometry_scale_sigma = 0.01;
 
   void Check() const;
 };

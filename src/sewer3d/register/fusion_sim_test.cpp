@@ -3,6 +3,7 @@
 // see the tilt (plastic pipe), and lets a 30 m bend stay bent where they see it (texture).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -237,6 +238,59 @@ TEST(Fusion, TheInclinometerTakesOutACommonPitchAndKeepsAVerticalBend) {
   EXPECT_LT(bend, 0.1 * bowed) << bend;
 }
 
+// 35 acquisitions of one module 30 mm apart whose cable counter reads 0.4 % long (its default
+// scale error). The first 20 steps have feature edges (σ 0.02 mm), like concrete; the other 14
+// a projection edge blind along the axis (σ 5 mm there), like plastic. Returns the last
+// acquisition's error along the pipe.
+double ScaledOdometryEndError(bool odometry_scale, FusionReport& report) {
+  std::mt19937 rng(7);
+  constexpr int kNodes = 35;
+  std::vector<AcquisitionNode> nodes = StraightNodes(kNodes);
+  std::vector<Rigid3d> truth;
+  for (AcquisitionNode& n : nodes) {
+    truth.push_back(n.world_from_camera);
+    n.distance_mm *= 1.004;
+    n.world_from_camera.translation.z() *= 1.004;
+  }
+  Vector6d textured, blind;
+  textured << 0.02, 0.02, 0.02, 0.01 * kDeg, 0.01 * kDeg, 0.01 * kDeg;
+  blind << 0.02, 0.02, 5.0, 0.05 * kDeg, 0.05 * kDeg, 5.0 * kDeg;
+  std::vector<RegistrationEdge> edges;
+  for (int i = 0; i + 1 < kNodes; ++i) {
+    const bool seen = i < 20;
+    edges.push_back(
+        Measured(i, i + 1, truth, seen ? textured : blind,
+                 seen ? RegistrationEdgeType::kFeature : RegistrationEdgeType::kProjection, rng));
+  }
+  for (const RegistrationEdge& e : PriorEdges(nodes, OneModuleRig(), PriorEdgeOptions{}))
+    edges.push_back(e);
+  FusionOptions options;
+  options.odometry_scale = odometry_scale;
+  const FusionResult result = FuseRegistration(nodes, edges, options);
+  EXPECT_TRUE(result.report.usable);
+  report = result.report;
+  return result.world_from_camera.back().translation.z() - truth.back().translation.z();
+}
+
+TEST(Fusion, TheOdometrysScaleErrorIsTakenWhereTextureSeesTheDistance) {
+  FusionReport report;
+  // The counter's 0.4 % over the 14 blind steps: 1.7 mm at the end, less what the readings'
+  // noise (0.7 mm a step) lets the blind edges and the gate take.
+  const double plain = ScaledOdometryEndError(false, report);
+  const double scaled = ScaledOdometryEndError(true, report);
+  RecordProperty("end_along_error_mm", std::to_string(scaled) + " vs " + std::to_string(plain));
+  EXPECT_GT(plain, 0.6 * 0.004 * 14 * kStep);
+  EXPECT_LT(std::abs(scaled), 0.3 * plain) << scaled << " vs " << plain;
+  // The odometry's group: its bias is the steps' 0.12 mm excess, along the steps only.
+  const auto odometry = std::find_if(
+      report.biases.begin(), report.biases.end(),
+      [](const EdgeGroupBias& b) { return b.type == RegistrationEdgeType::kOdometry; });
+  ASSERT_NE(odometry, report.biases.end());
+  EXPECT_NEAR(std::abs(odometry->bias.z()), 0.004 * kStep, 0.04);
+  EXPECT_LT(odometry->bias.head<2>().norm(), 1e-3);
+  EXPECT_LT(odometry->bias.tail<3>().norm(), 1e-6);
+}
+
 // Two modules of the rig over 15 instants; every registration between them (same counter) errs
 // by the same 0.3 mm along the pipe, as a module's calibration error makes it. The rig edges
 // know the two cameras' offset only to the carrier's motion between their firings (σ 0.7 mm
@@ -283,6 +337,7 @@ double ModuleOffsetError(bool group_biases, FusionReport& report) {
   for (const RegistrationEdge& e : PriorEdges(nodes, rig, PriorEdgeOptions{})) edges.push_back(e);
   FusionOptions options;
   options.group_biases = group_biases;
+  options.odometry_scale = false;  // the feature groups alone (the odometry is exact here)
   options.certify = false;
   const FusionResult result = FuseRegistration(nodes, edges, options);
   EXPECT_TRUE(result.report.usable);
