@@ -92,6 +92,9 @@ std::vector<std::pair<std::string, std::string>> RunFilesOf(const CaptureRun& ru
   return files;
 }
 
+// Run files a run may lack, each with the first stage that reads it.
+const std::pair<const char*, const char*> kOptionalRunFiles[] = {{"inclinometer.csv", "register"}};
+
 }  // namespace
 
 void CheckOutsideTheRun(const std::filesystem::path& folder,
@@ -296,7 +299,16 @@ std::vector<std::string> Workspace::MarkStaleFrom(const std::string& stage) {
 }
 
 void Workspace::CheckRunFiles(const CaptureRun& run) {
-  for (const auto& [name, first_stage] : RunFilesOf(run)) {
+  // An optional run file (the inclinometer) added after the stages ran, or removed, changes
+  // what they would make; in a record without stamps (older workspaces) nothing is known.
+  const bool stamped_before = !record_.run_files.empty();
+  std::vector<std::pair<std::string, std::string>> files = RunFilesOf(run);
+  for (const auto& [name, first_stage] : kOptionalRunFiles) {
+    const auto listed = [&, n = name](const auto& f) { return f.first == n; };
+    if (std::none_of(files.begin(), files.end(), listed) && record_.run_files.erase(name) > 0)
+      NoteRunFileChange(run.folder / name, "removed", first_stage);
+  }
+  for (const auto& [name, first_stage] : files) {
     const std::filesystem::path file = run.folder / name;
     const auto recorded = record_.run_files.find(name);
     if (recorded != record_.run_files.end() && StillStamped(recorded->second, file)) continue;
@@ -306,16 +318,23 @@ void Workspace::CheckRunFiles(const CaptureRun& run) {
     } catch (const FileError&) {
       continue;  // LoadRun read it a moment ago; a file gone since fails where it is used
     }
-    const bool changed = recorded != record_.run_files.end();
+    const bool optional = std::any_of(std::begin(kOptionalRunFiles), std::end(kOptionalRunFiles),
+                                      [&, n = name](const auto& f) { return f.first == n; });
+    const bool was_recorded = recorded != record_.run_files.end();
     record_.run_files[name] = stamp;
-    if (!changed) continue;  // first stamped now: workspaces written before stamps existed
-    const std::vector<std::string> marked = MarkStaleFrom(first_stage);
-    if (marked.empty()) continue;
-    std::string stages;
-    for (const std::string& m : marked) stages += (stages.empty() ? "" : ", ") + m;
-    run_file_changes_.push_back(file.string() + ": changed since the workspace's stages used it: " +
-                                stages + " start afresh");
+    if (was_recorded || (optional && stamped_before))
+      NoteRunFileChange(file, was_recorded ? "changed" : "added", first_stage);
   }
+}
+
+void Workspace::NoteRunFileChange(const std::filesystem::path& file, const std::string& what,
+                                  const std::string& first_stage) {
+  const std::vector<std::string> marked = MarkStaleFrom(first_stage);
+  if (marked.empty()) return;
+  std::string stages;
+  for (const std::string& m : marked) stages += (stages.empty() ? "" : ", ") + m;
+  run_file_changes_.push_back(file.string() + ": " + what +
+                              " since the workspace's stages used it: " + stages + " start afresh");
 }
 
 void Workspace::RecordCommand(const std::string& name, const std::string& options_json, bool done,

@@ -130,6 +130,9 @@ class Workspace {
   /// names of those marked.
   std::vector<std::string> MarkStaleFrom(const std::string& stage);
   void CheckRunFiles(const CaptureRun& run);
+  /// Marks the stages from `first_stage` on stale and says so (run_file_changes).
+  void NoteRunFileChange(const std::filesystem::path& file, const std::string& what,
+                         const std::string& first_stage);
 
   std::filesystem::path folder_;
   FolderLock lock_;

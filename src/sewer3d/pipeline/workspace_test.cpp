@@ -158,6 +158,23 @@ TEST_F(WorkspaceTest, AChangedRunFileMakesTheStagesThatUseItStale) {
   }
   EXPECT_TRUE(Workspace(dir_ / "ws", run).run_file_changes().empty());
 
+  // An inclinometer added to the run after the stages ran, then removed: register afresh.
+  CaptureRun with = run;
+  WriteTextFile(run.folder / "inclinometer.csv", "time_s,down_x,down_y,down_z\n0,0,1,0\n");
+  with.inclinometer = {InclinometerReading{}};
+  for (const auto& [r, what] :
+       {std::pair{&std::as_const(with), "added"}, std::pair{&run, "removed"}}) {
+    Workspace ws(dir_ / "ws", *r);
+    ASSERT_EQ(ws.run_file_changes().size(), 1u) << what;
+    EXPECT_NE(ws.run_file_changes()[0].find(std::string("inclinometer.csv: ") + what),
+              std::string::npos)
+        << ws.run_file_changes()[0];
+    EXPECT_TRUE(ws.record().stages.at("register").stale);
+    EXPECT_TRUE(ws.record().stages.at("rgbd").done);
+    ws.BeginStage("register", "{}", false);
+  }
+  EXPECT_TRUE(Workspace(dir_ / "ws", run).run_file_changes().empty());
+
   WriteTextFile(run.folder / "pattern.png", "another matrix\n");  // feeds rgbd: all afresh
   Workspace ws(dir_ / "ws", run);
   ASSERT_EQ(ws.run_file_changes().size(), 1u);
