@@ -29,13 +29,15 @@ int RunEvaluateRegistration(const std::string& run_folder, const std::string& wo
     fmt::print("  {:<16} {:>4} nodes  RMS {:.3f} mm  max {:.3f} mm\n", name, f.nodes, f.rms_mm,
                f.max_mm);
   fmt::print("accepted edges against the true relative poses:\n");
-  fmt::print("  {:<14} {:>6} {:>12} {:>12} {:>12} {:>10} {:>10}\n", "type", "edges", "median mm",
+  fmt::print("  {:<18} {:>6} {:>12} {:>12} {:>12} {:>10} {:>10}\n", "type", "edges", "median mm",
              "median deg", "at wall mm", "mean NEES", "med NEES");
-  for (const auto& [type, f] : e.edges) {
-    fmt::print("  {:<14} {:>6} {:>12.4f} {:>12.4f} {:>12.4f} {:>10.2f} {:>10.2f}\n", type,
+  const auto row = [](const std::string& label, const EdgeErrorFigures& f) {
+    fmt::print("  {:<18} {:>6} {:>12.4f} {:>12.4f} {:>12.4f} {:>10.2f} {:>10.2f}\n", label,
                f.accepted, f.median_translation_mm, f.median_rotation_deg, f.median_wall_mm,
                f.mean_nees, f.median_nees);
-  }
+  };
+  for (const auto& [type, f] : e.edges) row(type, f);
+  for (const auto& [key, f] : e.edges_by_kind) row(key, f);
   fmt::print(
       "wrote {}, edges.csv (every accepted edge), nodes.csv (every camera) and "
       "trajectory_error.svg\n",

@@ -110,6 +110,15 @@ TEST_F(RegisterStageTiny, CameraCentresAgreeWithTheTruth) {
   // covariance floor set for full-size images (0.03 mm, 0.01°) the 648 px run measures 27.6
   // (without the floor 533: a few edges far overconfident); bound: 3 x 12.
   EXPECT_LT(e.edges.at("feature").mean_nees, 36.0);
+  // The pairwise edges split into pairs of one module and of two, every edge in one of them.
+  int split = 0;
+  for (const auto& [key, f] : e.edges_by_kind) {
+    EXPECT_TRUE(key.rfind("feature/", 0) == 0 || key.rfind("projection/", 0) == 0) << key;
+    if (key.rfind("feature/", 0) == 0) split += f.accepted;
+  }
+  EXPECT_EQ(split, e.edges.at("feature").accepted);
+  ASSERT_EQ(e.edges_by_kind.count("feature/along"), 1u);
+  EXPECT_LT(e.edges_by_kind.at("feature/along").median_translation_mm, 0.15);
 }
 
 // rig.json with m2's position on the carrier in metres (z 0.084 for 84 mm): the rig edges hold

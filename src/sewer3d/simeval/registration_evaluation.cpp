@@ -39,6 +39,24 @@ void Finish(AteFigures& f) {
   if (f.nodes > 0) f.rms_mm = std::sqrt(f.rms_mm / f.nodes);
 }
 
+EdgeErrorFigures Figures(const std::vector<EdgeError>& list) {
+  std::vector<double> dt, dr, wall, nees;
+  for (const EdgeError& x : list) {
+    dt.push_back(x.translation_mm);
+    dr.push_back(x.rotation_deg);
+    wall.push_back(x.wall_mm);
+    nees.push_back(x.nees);
+  }
+  EdgeErrorFigures f;
+  f.accepted = static_cast<int>(list.size());
+  f.median_translation_mm = Median(dt);
+  f.median_rotation_deg = Median(dr);
+  f.median_wall_mm = Median(wall);
+  for (double x : nees) f.mean_nees += x / static_cast<double>(nees.size());
+  f.median_nees = Median(nees);
+  return f;
+}
+
 }  // namespace
 
 RegistrationEvaluation EvaluateRegistration(const std::filesystem::path& run_folder,
@@ -67,7 +85,6 @@ RegistrationEvaluation EvaluateRegistration(const std::filesystem::path& run_fol
   // Accepted rows of edges.csv are graph.g2o's edges, in order.
   const std::vector<RegistrationEdgeRow> rows = ReadRegistrationEdges(folder / "edges.csv");
   const PoseGraph graph = ReadG2o(folder / "graph.g2o");
-  std::map<std::string, std::vector<double>> dt, dr, wall, nees;
   const Eigen::Vector3d on_wall(0.0, 0.0, 150.0);  // in the second camera's frame
   size_t k = 0;
   for (const RegistrationEdgeRow& row : rows) {
@@ -91,20 +108,15 @@ RegistrationEvaluation EvaluateRegistration(const std::filesystem::path& run_fol
         r.dot(edge.information * r),
         (Eigen::Matrix<double, 6, 1>() << r.head<3>(), r.tail<3>() * kRadToDeg).finished()};
     e.edge_errors.push_back(error);
-    dt[row.type].push_back(error.translation_mm);
-    dr[row.type].push_back(error.rotation_deg);
-    wall[row.type].push_back(error.wall_mm);
-    nees[row.type].push_back(error.nees);
   }
-  for (auto& [type, list] : nees) {
-    EdgeErrorFigures& f = e.edges[type];
-    f.accepted = static_cast<int>(list.size());
-    f.median_translation_mm = Median(dt[type]);
-    f.median_rotation_deg = Median(dr[type]);
-    f.median_wall_mm = Median(wall[type]);
-    for (double x : list) f.mean_nees += x / static_cast<double>(list.size());
-    f.median_nees = Median(list);
+  std::map<std::string, std::vector<EdgeError>> by_type, by_kind;
+  for (const EdgeError& x : e.edge_errors) {
+    by_type[x.type].push_back(x);
+    if (x.type == "feature" || x.type == "projection")
+      by_kind[x.type + (x.from_module == x.to_module ? "/along" : "/around")].push_back(x);
   }
+  for (const auto& [key, list] : by_type) e.edges[key] = Figures(list);
+  for (const auto& [key, list] : by_kind) e.edges_by_kind[key] = Figures(list);
   return e;
 }
 
@@ -114,15 +126,21 @@ std::string RegistrationEvaluationToJson(const RegistrationEvaluation& e) {
   };
   nlohmann::json materials = nlohmann::json::object(), edges = nlohmann::json::object();
   for (const auto& [name, f] : e.ate_by_material) materials[name] = ate(f);
-  for (const auto& [type, f] : e.edges) {
-    edges[type] = {{"accepted", f.accepted},
-                   {"median_translation_mm", f.median_translation_mm},
-                   {"median_rotation_deg", f.median_rotation_deg},
-                   {"median_wall_mm", f.median_wall_mm},
-                   {"mean_nees", f.mean_nees},
-                   {"median_nees", f.median_nees}};
-  }
-  const nlohmann::json j = {{"ate", ate(e.ate)}, {"ate_by_material", materials}, {"edges", edges}};
+  auto figures = [](const EdgeErrorFigures& f) {
+    return nlohmann::json{{"accepted", f.accepted},
+                          {"median_translation_mm", f.median_translation_mm},
+                          {"median_rotation_deg", f.median_rotation_deg},
+                          {"median_wall_mm", f.median_wall_mm},
+                          {"mean_nees", f.mean_nees},
+                          {"median_nees", f.median_nees}};
+  };
+  nlohmann::json by_kind = nlohmann::json::object();
+  for (const auto& [type, f] : e.edges) edges[type] = figures(f);
+  for (const auto& [key, f] : e.edges_by_kind) by_kind[key] = figures(f);
+  const nlohmann::json j = {{"ate", ate(e.ate)},
+                            {"ate_by_material", materials},
+                            {"edges", edges},
+                            {"edges_by_kind", by_kind}};
   return j.dump(2) + "\n";
 }
 

@@ -11,7 +11,8 @@
 ///   distance by which the edge misplaces the wall point 150 mm along the second camera's axis
 ///   (where the two views meet the wall: a rotation error about that point moves the camera
 ///   centre far more than the wall);
-/// - NEES of the accepted edges, rᵀΩr of the measurement at the true poses (χ²(6): mean 6).
+/// - NEES of the accepted edges, rᵀΩr of the measurement at the true poses (χ²(6): mean 6);
+///   the pairwise edges also split into pairs of one module and of two.
 
 #include <filesystem>
 #include <map>
@@ -61,7 +62,10 @@ struct RegistrationEvaluation {
   std::vector<EdgeError> edge_errors;                 ///< accepted edges, in edges.csv's order
   std::map<std::string, AteFigures> ate_by_material;  ///< by material name
   std::map<std::string, EdgeErrorFigures> edges;      ///< by edge type
-  Rigid3d truth_from_model;                           ///< the alignment
+  /// Pairwise edges by type and kind: "feature/along" (both acquisitions of one module),
+  /// "feature/around" (two modules), the same for "projection".
+  std::map<std::string, EdgeErrorFigures> edges_by_kind;
+  Rigid3d truth_from_model;  ///< the alignment
 };
 
 /// Reads the run (rig, truth/) and WS/registration/{poses.csv, edges.csv, graph.g2o}; FileError
