@@ -79,6 +79,10 @@ Matrix6d ModelFromCamera(const AcquisitionNode& a) {
   return m;
 }
 
+// Less counted travel than this over a module's odometry edges: no scale group (the mean
+// step would have no direction).
+constexpr double kMinScaleTravelMm = 1.0;
+
 // The prior of a module's odometry bias: along its steps σ = odometry_scale_sigma × the mean
 // step, nothing else (a counter errs in distance only).
 Matrix6d OdometryScalePrior(const std::vector<RegistrationEdge>& edges,
@@ -111,6 +115,10 @@ void AddOdometryGroups(const std::vector<AcquisitionNode>& nodes,
   }
   for (const auto& [module, list] : per_module) {
     if (static_cast<int>(list.size()) < options.min_bias_edges) continue;
+    // A carrier that stood still (no distance counted) has no direction for a scale error.
+    Eigen::Vector3d travel = Eigen::Vector3d::Zero();
+    for (size_t k : list) travel += edges[k].a_from_b.translation;
+    if (travel.norm() < kMinScaleTravelMm) continue;
     const int g = static_cast<int>(groups.keys.size());
     for (size_t k : list) groups.of_edge[k] = g;
     groups.keys.emplace_back(static_cast<int>(RegistrationEdgeType::kOdometry), module, module, 1);

@@ -291,6 +291,37 @@ TEST(Fusion, TheOdometrysScaleErrorIsTakenWhereTextureSeesTheDistance) {
   EXPECT_LT(odometry->bias.tail<3>().norm(), 1e-6);
 }
 
+// A carrier that stands (the counter reads no distance: a stop to look at a defect) gives
+// odometry edges of no length: they have no direction for a scale error, so they form no
+// scale group, and the fusion stays finite.
+TEST(Fusion, ACarrierThatStandsGivesNoScaleGroup) {
+  std::mt19937 rng(3);
+  std::vector<AcquisitionNode> nodes = StraightNodes(8);
+  std::vector<Rigid3d> truth;
+  for (AcquisitionNode& n : nodes) {
+    n.distance_mm = 0.0;
+    n.world_from_camera.translation.setZero();
+    truth.push_back(n.world_from_camera);
+  }
+  Vector6d sigma;
+  sigma << 0.02, 0.02, 0.02, 0.01 * kDeg, 0.01 * kDeg, 0.01 * kDeg;
+  std::vector<RegistrationEdge> edges;
+  for (int i = 0; i + 1 < 8; ++i)
+    edges.push_back(Measured(i, i + 1, truth, sigma, RegistrationEdgeType::kFeature, rng));
+  for (const RegistrationEdge& e : PriorEdges(nodes, OneModuleRig(), PriorEdgeOptions{}))
+    edges.push_back(e);
+  const FusionResult result = FuseRegistration(nodes, edges, FusionOptions{});
+  EXPECT_TRUE(result.report.usable);
+  for (const EdgeGroupBias& b : result.report.biases)
+    EXPECT_NE(b.type, RegistrationEdgeType::kOdometry);
+  // Seven chained edges of σ 0.02 mm per axis: the last pose within 3σ of the walk,
+  // 3 · 0.02 · √(7 · 3) ≈ 0.27 mm.
+  for (const Rigid3d& pose : result.world_from_camera) {
+    ASSERT_TRUE(pose.translation.allFinite());
+    EXPECT_LT(pose.translation.norm(), 0.27);
+  }
+}
+
 // Two modules of the rig over 15 instants; every registration between them (same counter) errs
 // by the same 0.3 mm along the pipe, as a module's calibration error makes it. The rig edges
 // know the two cameras' offset only to the carrier's motion between their firings (σ 0.7 mm
