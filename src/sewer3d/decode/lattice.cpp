@@ -53,7 +53,8 @@ void HalveDoubledSteps(const std::vector<Spot>& spots, const Eigen::Vector2d& p,
 // the wrong offset, two pitches out they do not).
 LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
                     std::pair<const int*, const int*> neighbours, LatticeSteps steps,
-                    const LatticeSteps& predicted, const LatticeOptions& options) {
+                    const LatticeSteps& predicted, bool from_neighbour,
+                    const LatticeOptions& options) {
   const Eigen::Vector2d& p = spots[spot].centre_px;
   const int near_rings = std::min(2, options.refine_ring_steps);
   constexpr double kGoodStartShare = 0.7;
@@ -65,7 +66,7 @@ LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
     // to all rings that the current steps place on the lattice.
     Eigen::Matrix2d normal = Eigen::Matrix2d::Zero(), rhs = Eigen::Matrix2d::Zero();
     Eigen::Matrix2d near_normal = Eigen::Matrix2d::Zero(), near_rhs = Eigen::Matrix2d::Zero();
-    int used = 0, near_used = 0, on = 0, within = 0;
+    int used = 0, near_used = 0, on = 0, within = 0, odd_used = 0, near_odd_used = 0;
     for (const int* it = neighbours.first; it != neighbours.second; ++it) {
       const Eigen::Vector2d d = spots[*it].centre_px - p;
       const Eigen::Vector2d q = inverse * d;
@@ -77,13 +78,16 @@ LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
         on += fits ? 1 : 0;
       }
       if (ij.isZero() || ring > options.refine_ring_steps || !fits) continue;
+      const bool odd_row = static_cast<int>(ij.x()) % 2 != 0;
       normal += ij * ij.transpose();
       rhs += ij * d.transpose();
       ++used;
+      odd_used += odd_row ? 1 : 0;
       if (ring > near_rings) continue;
       near_normal += ij * ij.transpose();
       near_rhs += ij * d.transpose();
       ++near_used;
+      near_odd_used += odd_row ? 1 : 0;
     }
     // A start that fits most neighbours out to all rings (a neighbour's steps, mostly) is
     // refined over all of them at once; a poor one (the module's prediction on a tilted
@@ -94,9 +98,25 @@ LatticeSteps Refine(const std::vector<Spot>& spots, int spot,
       normal = near_normal;
       rhs = near_rhs;
       used = near_used;
+      odd_used = near_odd_used;
     }
     if (used < 2 || std::abs(normal.determinant()) < 1e-9) break;
     Eigen::Matrix2d solution = normal.ldlt().solve(rhs);  // rows: row_step, column_step
+    // No neighbour on an odd row: the pattern leaves every other row dark over up to 15
+    // columns (rows 0, 2 and 4 of the default array between columns 145 and 159), and there a
+    // row step sheared by half a column fits as well as the true one, so the fit cannot tell
+    // how far the row step leans along the columns. Started from a labelled neighbour's steps
+    // (which bring the lean from where the rows are lit), the lean is kept. Refitted, it
+    // drifted with the spots' scatter from spot to spot across the dark rows until a third of a
+    // column was passed, and the labels slipped a column every other row: a Ø200 wall's lower
+    // corners decoded elements three to five columns off (points 1.5–2.8 mm deep, `paper` with
+    // 0.65 px of placement). A seed's start is the module's prediction, whose lean is not worth
+    // keeping (a tilted board's is far off).
+    if (odd_used == 0 && from_neighbour) {
+      const Eigen::Vector2d along = solution.row(1).transpose().normalized();
+      const Eigen::Vector2d fitted = solution.row(0).transpose();
+      solution.row(0) = (fitted - (fitted - steps.row_step).dot(along) * along).transpose();
+    }
     HalveDoubledSteps(spots, p, neighbours, rings, options.max_residual, solution);
     // The pattern lights no two adjacent elements, so every other column (or row) alone is
     // a lattice too: a fit whose step drifted to twice its length (or half) still matches
@@ -196,8 +216,9 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   // Steps change smoothly over the surface: a spot reached from a labelled neighbour starts
   // its refinement from that neighbour's steps, which follow oblique walls far better than
   // the module's fronto-parallel prediction.
-  auto refine = [&](int i, const LatticeSteps& start) {
-    labels.steps[i] = Refine(spots, i, neighbours.Of(i), start, predicted[i], options);
+  auto refine = [&](int i, const LatticeSteps& start, bool from_neighbour) {
+    labels.steps[i] =
+        Refine(spots, i, neighbours.Of(i), start, predicted[i], from_neighbour, options);
   };
   // An edge i -> j predicted with i's steps: the integer offset and how far from it.
   struct Edge {
@@ -256,7 +277,7 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
       if (labels.group[e.to] >= 0) continue;
       labels.group[e.to] = group;
       labels.node[e.to] = labels.node[e.from] + e.offset;
-      refine(e.to, labels.steps[e.from]);
+      refine(e.to, labels.steps[e.from], /*from_neighbour=*/true);
       label_edges(e.to);
     }
   };
@@ -267,7 +288,7 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   int sampled_good = 0, sampled_near = 0;
   for (int i = 0; i < n; i += std::max(1, n / kLeanSample)) {
     const LatticeSteps steps =
-        Refine(spots, i, neighbours.Of(i), predicted[i], predicted[i], options);
+        Refine(spots, i, neighbours.Of(i), predicted[i], predicted[i], false, options);
     if (!GoodSeed(LatticeSupport(spots, i, neighbours.Of(i), steps, options))) continue;
     ++sampled_good;
     sampled_near += NearPrediction(steps, predicted[i]) ? 1 : 0;
@@ -277,7 +298,7 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
   std::vector<std::pair<int, int>> waiting;  // (−neighbours on the lattice, spot)
   for (int seed = 0; seed < n; ++seed) {
     if (labels.group[seed] >= 0) continue;
-    refine(seed, predicted[seed]);
+    refine(seed, predicted[seed], /*from_neighbour=*/false);
     const Support support =
         LatticeSupport(spots, seed, neighbours.Of(seed), labels.steps[seed], options);
     if (GoodSeed(support) && (!check_lean || NearPrediction(labels.steps[seed], predicted[seed])))
