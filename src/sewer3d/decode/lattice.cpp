@@ -182,6 +182,12 @@ bool GoodSeed(const Support& s) { return s.on >= kSeedMinOn && s.on >= kSeedMinS
 // no seed near the prediction is left (an oblique wall's steps may lie 0.8–1.2 times it).
 constexpr double kSeedMaxLean = 0.15;
 constexpr int kLeanSample = 256;  // spots sampled to judge whether the prediction holds
+// Fewer well-supported spots than this in the sample say nothing about the prediction: a
+// close tilted board (few spots anywhere fit the prediction's lattice well) gave 0–4 of 256,
+// and four near the prediction once turned the check on and its seeds grew the wrong
+// lattices (12 % of the windows decoded; 0.65 px of placement, docs/decoder.md). Walls give
+// 9–56.
+constexpr int kLeanMinGood = 8;
 bool NearPrediction(const LatticeSteps& steps, const LatticeSteps& predicted) {
   return (steps.row_step - predicted.row_step).norm() < kSeedMaxLean * predicted.row_step.norm() &&
          (steps.column_step - predicted.column_step).norm() <
@@ -293,7 +299,7 @@ LatticeLabels LabelLatticeWithSteps(const std::vector<Spot>& spots,
     ++sampled_good;
     sampled_near += NearPrediction(steps, predicted[i]) ? 1 : 0;
   }
-  const bool check_lean = 2 * sampled_near >= sampled_good;
+  const bool check_lean = sampled_good >= kLeanMinGood && 2 * sampled_near >= sampled_good;
   // Well-supported seeds first (GoodSeed), in index order; then the rest, best supported first.
   std::vector<std::pair<int, int>> waiting;  // (−neighbours on the lattice, spot)
   for (int seed = 0; seed < n; ++seed) {

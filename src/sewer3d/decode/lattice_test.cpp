@@ -34,8 +34,8 @@ Layout PlaceElements(int rows, int col0, int cols, const LatticeSteps& steps, do
     for (int c = col0; c < col0 + cols; ++c) {
       if (!array.tiled(r, c)) continue;
       Spot spot;
-      spot.centre_px = row_origin + (c - col0) * steps.column_step +
-                       Eigen::Vector2d(scatter(rng), scatter(rng));
+      spot.centre_px =
+          row_origin + (c - col0) * steps.column_step + Eigen::Vector2d(scatter(rng), scatter(rng));
       spot.area_px = 12;
       spot.contrast = 100.0;
       layout.spots.push_back(spot);
