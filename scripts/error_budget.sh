@@ -15,11 +15,11 @@ module=$(realpath "$out/module/module.json")
 # label|render members added to the realistic renderer's (the paper profile's levels)
 configs=(
   "none (realistic renderer)|"
-  "spot placement 0.6 px|\"spot_placement_sigma_px\": 0.6"
+  "spot placement 0.65 px|\"spot_placement_sigma_px\": 0.65"
   "spot power 10 %|\"spot_gain_sigma\": 0.1"
   "speckle contrast 0.1|\"speckle_contrast\": 0.1"
   "lens residual 1e-4|\"lens_residual\": 1e-4"
-  "wall relief 0.04 mm|\"relief_mm\": 0.04"
+  "wall relief 0.055 mm|\"relief_mm\": 0.055"
   "subsurface scattering 0.02 mm|\"subsurface_mm\": 0.02"
   "calibration error|\"calibration_focal_px\": 0.3, \"calibration_centre_px\": 0.5, \"calibration_baseline_mm\": 0.015, \"calibration_rotation_deg\": 0.015"
   "all (realism paper)|\"realism\": \"paper\""
@@ -46,7 +46,8 @@ scene = json.load(open(sys.argv[1]))
 added = json.loads(sys.argv[3])
 if "realism" in added:  # the profile's own levels, not the base scene's zeros
     for key in ("spot_placement_sigma_px", "spot_gain_sigma", "speckle_contrast",
-                "lens_residual", "relief_mm", "subsurface_mm", "subsurface_plastic_mm",
+                "lens_residual", "relief_mm", "relief_plastic_mm", "subsurface_mm",
+                "subsurface_plastic_mm",
                 "calibration_focal_px", "calibration_centre_px", "calibration_baseline_mm",
                 "calibration_rotation_deg"):
         scene["render"].pop(key, None)

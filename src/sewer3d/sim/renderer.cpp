@@ -129,10 +129,11 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
   if (!hit) return out;
   out.hits = 1;
   const RenderOptions& o = s.o;
-  if (o.spot_errors.relief_mm > 0.0) {
+  if (ReliefMm(o.spot_errors, hit->material) > 0.0) {
     // The micro-relief as a height field over the smooth wall: the ray meets it h / cos θ
     // earlier along the ray (slopes of the relief are small).
-    const double h = WallRelief(o.spot_errors, s.surface.MaterialSeed(), hit->surface_mm);
+    const double h =
+        WallRelief(o.spot_errors, hit->material, s.surface.MaterialSeed(), hit->surface_mm);
     const Eigen::Vector3d d = direction.normalized();
     const double cos_theta = std::max(0.2, std::abs(hit->normal.dot(d)));
     hit->point -= d * (h / cos_theta);

@@ -35,6 +35,8 @@ void SpotErrors::Check() const {
                    "must be 0..0.05, got " << lens_residual);
   SEWER3D_VALIDATE(relief_mm >= 0.0 && relief_mm <= 1.0, "relief_mm",
                    "must be 0..1 mm, got " << relief_mm);
+  SEWER3D_VALIDATE(relief_plastic_mm >= 0.0 && relief_plastic_mm <= 1.0, "relief_plastic_mm",
+                   "must be 0..1 mm, got " << relief_plastic_mm);
   SEWER3D_VALIDATE(relief_scale_mm >= 0.05 && relief_scale_mm <= 50.0, "relief_scale_mm",
                    "must be 0.05..50 mm, got " << relief_scale_mm);
   SEWER3D_VALIDATE(subsurface_mm >= 0.0 && subsurface_mm <= 2.0, "subsurface_mm",
@@ -66,13 +68,17 @@ std::optional<SpotErrors> RealismProfile(const std::string& name) {
   // Tuned so that the five test scenes of the paper's tables land in (or within 30 % of) its
   // per-module ranges (docs/accuracy.md, "Realism"): the wall's relief gives the part
   // constant in millimetres, the spots' scatter on the image (placement, speckle) the part
-  // that grows with the square of the distance.
+  // that grows with the square of the distance. The relief is the paper's own constant part:
+  // its five RMS figures read as RMS² = R² + (c z²)² give R = 0.055 mm (its test surfaces
+  // are taken as mineral). Plastic pipe (PVC, PE) is smooth to micrometres: its hydraulic
+  // roughness is 0.0015–0.007 mm.
   SpotErrors e;
-  e.placement_sigma_px = 0.6;
+  e.placement_sigma_px = 0.65;
   e.gain_sigma = 0.1;
   e.speckle_contrast = 0.1;
   e.lens_residual = 1e-4;
-  e.relief_mm = 0.04;
+  e.relief_mm = 0.055;
+  e.relief_plastic_mm = 0.005;
   // Concrete's cement paste scatters within tens of micrometres; plastic pipe more.
   e.subsurface_mm = 0.02;
   e.subsurface_plastic_mm = 0.15;
@@ -101,7 +107,7 @@ SpotErrors AtCameraWidth(const SpotErrors& errors, int camera_width) {
 
 SpotErrors ModuleOwnErrors(const SpotErrors& errors) {
   SpotErrors own = errors;
-  own.relief_mm = 0.0;
+  own.relief_mm = own.relief_plastic_mm = 0.0;
   own.subsurface_mm = own.subsurface_plastic_mm = 0.0;
   own.calibration_focal_px = own.calibration_centre_px = 0.0;
   own.calibration_baseline_mm = own.calibration_rotation_deg = 0.0;
@@ -142,8 +148,14 @@ Eigen::Vector2d LensResidual::ShiftPx(const CameraIntrinsics& k,
   return {k.fx * dx, k.fy * dy};
 }
 
-double WallRelief(const SpotErrors& errors, std::uint64_t seed, const Eigen::Vector2d& p_mm) {
-  if (errors.relief_mm <= 0.0) return 0.0;
+double ReliefMm(const SpotErrors& errors, Material material) {
+  return material == Material::kPlastic ? errors.relief_plastic_mm : errors.relief_mm;
+}
+
+double WallRelief(const SpotErrors& errors, Material material, std::uint64_t seed,
+                  const Eigen::Vector2d& p_mm) {
+  const double rms = ReliefMm(errors, material);
+  if (rms <= 0.0) return 0.0;
   const Eigen::Vector2d q = p_mm / errors.relief_scale_mm;
   const double fx = std::floor(q.x()), fy = std::floor(q.y());
   const double tx = q.x() - fx, ty = q.y() - fy;
@@ -153,7 +165,7 @@ double WallRelief(const SpotErrors& errors, std::uint64_t seed, const Eigen::Vec
   const double h = (1 - tx) * (1 - ty) * node(fx, fy) + tx * (1 - ty) * node(fx + 1, fy) +
                    (1 - tx) * ty * node(fx, fy + 1) + tx * ty * node(fx + 1, fy + 1);
   // Bilinear weights average the lattice: E[Σ w²] = (2/3)², so the RMS is 2/3 before scaling.
-  return errors.relief_mm * 1.5 * h;
+  return rms * 1.5 * h;
 }
 
 double SubsurfaceMm(const SpotErrors& errors, Material material) {

@@ -40,8 +40,11 @@ struct SpotErrors {
   /// the default camera's image by about a pixel.
   double lens_residual = 0.0;
   /// Micro-relief of the wall below the spot scale (cement skin, sand grains, pores), RMS
-  /// height and correlation length: a plane of real concrete is not a plane to 0.05 mm.
+  /// height and correlation length: a plane of real concrete is not a plane to 0.05 mm. Of
+  /// mineral walls (concrete, vitrified clay, sediment) and of plastic (PVC, PE: smooth to
+  /// micrometres).
   double relief_mm = 0.0;
+  double relief_plastic_mm = 0.0;
   double relief_scale_mm = 0.5;
   /// Subsurface scattering length (Gaussian sigma on the wall, mm) of mineral walls (concrete,
   /// vitrified clay, sediment) and of plastic.
@@ -62,8 +65,8 @@ struct SpotErrors {
   void Check() const;
   bool Any() const {
     return placement_sigma_px > 0.0 || gain_sigma > 0.0 || speckle_contrast > 0.0 ||
-           lens_residual > 0.0 || relief_mm > 0.0 || subsurface_mm > 0.0 ||
-           subsurface_plastic_mm > 0.0 || CalibrationError();
+           lens_residual > 0.0 || relief_mm > 0.0 || relief_plastic_mm > 0.0 ||
+           subsurface_mm > 0.0 || subsurface_plastic_mm > 0.0 || CalibrationError();
   }
   bool CalibrationError() const {
     return calibration_focal_px > 0.0 || calibration_centre_px > 0.0 ||
@@ -108,8 +111,12 @@ LensResidual MakeLensResidual(const SpotErrors& errors, int lens);
 
 /// Height (mm, toward the viewer) of the wall's micro-relief at a surface point (mm in the
 /// surface's own coordinates): Gaussian lattice values at the correlation length, bilinear
-/// between them, scaled to the RMS asked for. Deterministic for the surface's seed.
-double WallRelief(const SpotErrors& errors, std::uint64_t seed, const Eigen::Vector2d& surface_mm);
+/// between them, scaled to the material's RMS (ReliefMm). Deterministic for the surface's seed.
+double WallRelief(const SpotErrors& errors, Material material, std::uint64_t seed,
+                  const Eigen::Vector2d& surface_mm);
+
+/// Micro-relief RMS (mm) of a material.
+double ReliefMm(const SpotErrors& errors, Material material);
 
 /// Subsurface scattering sigma (mm on the wall) of a material.
 double SubsurfaceMm(const SpotErrors& errors, Material material);

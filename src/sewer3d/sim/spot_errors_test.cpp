@@ -20,7 +20,7 @@ TEST(SpotErrors, IdealIsNoErrorAtAll) {
   EXPECT_FALSE(ideal.Any());
   EXPECT_EQ(ElementOffset(ideal, 3, 4), Eigen::Vector2d::Zero());
   EXPECT_EQ(ElementGain(ideal, 3, 4), 1.0);
-  EXPECT_EQ(WallRelief(ideal, 1, {2.0, 3.0}), 0.0);
+  EXPECT_EQ(WallRelief(ideal, Material::kConcrete, 1, {2.0, 3.0}), 0.0);
   const ModuleDescription m = testing::SmallDefaultModule(648);
   EXPECT_EQ(MakeLensResidual(ideal, 0).ShiftPx(m.camera, {10.0, 20.0}), Eigen::Vector2d::Zero());
   cv::Mat1f signal(20, 30, 0.5f);
@@ -84,11 +84,13 @@ TEST(SpotErrors, WallReliefHasTheRmsAndScaleAsked) {
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       const Eigen::Vector2d p(0.37 * i, 0.41 * j);
-      const double h = WallRelief(e, 9, p);
+      const double h = WallRelief(e, Material::kConcrete, 9, p);
       sum += h;
       sum2 += h * h;
-      near += h * WallRelief(e, 9, p + Eigen::Vector2d(0.05, 0.0));  // a tenth of the scale
-      far += h * WallRelief(e, 9, p + Eigen::Vector2d(5.0, 0.0));    // ten times the scale
+      near += h * WallRelief(e, Material::kConcrete, 9,
+                             p + Eigen::Vector2d(0.05, 0.0));  // a tenth of the scale
+      far += h * WallRelief(e, Material::kConcrete, 9,
+                            p + Eigen::Vector2d(5.0, 0.0));  // ten times the scale
     }
   }
   const double count = n * n;
@@ -185,6 +187,25 @@ TEST(SpotErrors, SubsurfaceScatteringIsTheMaterialsOwn) {
   EXPECT_EQ(SubsurfaceMm(e, Material::kPlastic), 0.2);
   EXPECT_TRUE(e.Any());
   EXPECT_FALSE(ModuleOwnErrors(e).Any());  // the wall's, not the module's
+}
+
+// Plastic pipe is smooth where a mineral wall has its cement skin and grains: the relief is
+// the material's, at the same places (one height field, scaled).
+TEST(SpotErrors, WallReliefIsTheMaterialsOwn) {
+  SpotErrors e;
+  e.relief_mm = 0.05;
+  e.relief_plastic_mm = 0.005;
+  EXPECT_EQ(ReliefMm(e, Material::kConcrete), 0.05);
+  EXPECT_EQ(ReliefMm(e, Material::kVitrifiedClay), 0.05);
+  EXPECT_EQ(ReliefMm(e, Material::kPlastic), 0.005);
+  const Eigen::Vector2d p(12.3, 4.5);
+  EXPECT_NEAR(WallRelief(e, Material::kPlastic, 3, p),
+              0.1 * WallRelief(e, Material::kConcrete, 3, p), 1e-15);
+  EXPECT_FALSE(ModuleOwnErrors(e).Any());  // the wall's, not the module's
+  e.relief_plastic_mm = 1.5;
+  EXPECT_THROW(e.Check(), std::invalid_argument);
+  const SpotErrors paper = *RealismProfile("paper");
+  EXPECT_LT(paper.relief_plastic_mm, 0.2 * paper.relief_mm);
 }
 
 TEST(SpotErrors, OutOfRangeValuesAreRefused) {

@@ -336,6 +336,7 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
           {"speckle_wavelength_nm", o.spot_errors.wavelength_nm},
           {"lens_residual", o.spot_errors.lens_residual},
           {"relief_mm", o.spot_errors.relief_mm},
+          {"relief_plastic_mm", o.spot_errors.relief_plastic_mm},
           {"relief_scale_mm", o.spot_errors.relief_scale_mm},
           {"subsurface_mm", o.spot_errors.subsurface_mm},
           {"subsurface_plastic_mm", o.spot_errors.subsurface_plastic_mm},
@@ -355,6 +356,7 @@ constexpr const char* kProfileMembers[] = {"spot_placement_sigma_px",
                                            "speckle_contrast",
                                            "lens_residual",
                                            "relief_mm",
+                                           "relief_plastic_mm",
                                            "subsurface_mm",
                                            "subsurface_plastic_mm",
                                            "calibration_focal_px",
@@ -398,6 +400,7 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
                 "speckle_wavelength_nm",
                 "lens_residual",
                 "relief_mm",
+                "relief_plastic_mm",
                 "relief_scale_mm",
                 "subsurface_mm",
                 "subsurface_plastic_mm",
@@ -455,6 +458,7 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
   e.wavelength_nm = in.Number(j, "speckle_wavelength_nm", p, e.wavelength_nm);
   e.lens_residual = in.Number(j, "lens_residual", p, e.lens_residual);
   e.relief_mm = in.Number(j, "relief_mm", p, e.relief_mm);
+  e.relief_plastic_mm = in.Number(j, "relief_plastic_mm", p, e.relief_plastic_mm);
   e.relief_scale_mm = in.Number(j, "relief_scale_mm", p, e.relief_scale_mm);
   e.subsurface_mm = in.Number(j, "subsurface_mm", p, e.subsurface_mm);
   e.subsurface_plastic_mm = in.Number(j, "subsurface_plastic_mm", p, e.subsurface_plastic_mm);
