@@ -177,30 +177,25 @@ TEST(SpotErrors, CalibrationErrorMovesTheModuleByTheSigmasAsked) {
   EXPECT_EQ(a.pattern.pitch_px, m.pattern.pitch_px);
 }
 
-TEST(SpotErrors, SubsurfaceScatteringIsTheMaterialsOwn) {
+// The wall's errors are the material's: plastic pipe is smooth where a mineral wall has its
+// cement skin and grains, and scatters light further into itself. One relief height field,
+// scaled per material.
+TEST(SpotErrors, WallErrorsAreTheMaterialsOwn) {
   SpotErrors e;
   e.subsurface_mm = 0.03;
   e.subsurface_plastic_mm = 0.2;
-  EXPECT_EQ(SubsurfaceMm(e, Material::kConcrete), 0.03);
-  EXPECT_EQ(SubsurfaceMm(e, Material::kVitrifiedClay), 0.03);
-  EXPECT_EQ(SubsurfaceMm(e, Material::kSediment), 0.03);
-  EXPECT_EQ(SubsurfaceMm(e, Material::kPlastic), 0.2);
-  EXPECT_TRUE(e.Any());
-  EXPECT_FALSE(ModuleOwnErrors(e).Any());  // the wall's, not the module's
-}
-
-// Plastic pipe is smooth where a mineral wall has its cement skin and grains: the relief is
-// the material's, at the same places (one height field, scaled).
-TEST(SpotErrors, WallReliefIsTheMaterialsOwn) {
-  SpotErrors e;
   e.relief_mm = 0.05;
   e.relief_plastic_mm = 0.005;
-  EXPECT_EQ(ReliefMm(e, Material::kConcrete), 0.05);
-  EXPECT_EQ(ReliefMm(e, Material::kVitrifiedClay), 0.05);
-  EXPECT_EQ(ReliefMm(e, Material::kPlastic), 0.005);
+  for (const Material m :
+       {Material::kConcrete, Material::kVitrifiedClay, Material::kSediment, Material::kPlastic}) {
+    const bool plastic = m == Material::kPlastic;
+    EXPECT_EQ(SubsurfaceMm(e, m), plastic ? 0.2 : 0.03);
+    EXPECT_EQ(ReliefMm(e, m), plastic ? 0.005 : 0.05);
+  }
   const Eigen::Vector2d p(12.3, 4.5);
   EXPECT_NEAR(WallRelief(e, Material::kPlastic, 3, p),
               0.1 * WallRelief(e, Material::kConcrete, 3, p), 1e-15);
+  EXPECT_TRUE(e.Any());
   EXPECT_FALSE(ModuleOwnErrors(e).Any());  // the wall's, not the module's
   e.relief_plastic_mm = 1.5;
   EXPECT_THROW(e.Check(), std::invalid_argument);
