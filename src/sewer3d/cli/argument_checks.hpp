@@ -25,6 +25,10 @@ std::string MissingArgument(const CLI::App& app, const std::string& message);
 
 /// A CLI11 check that a file name to write ends in `extension` (".png") and has a stem; its
 /// refusal says why (`why`: "the matrix is written losslessly as PNG").
+/// Adds `--faint-spots LEVELS` (NiblackOptions::min_contrast_3x3, 0: off) to a command that
+/// decodes pattern images.
+void AddFaintSpotsOption(CLI::App* command, double* levels);
+
 CLI::Validator FileNameEnding(const std::string& extension, const std::string& why);
 
 /// Throws InvalidValue naming `flag` when `folder` is a capture run's folder or a processing

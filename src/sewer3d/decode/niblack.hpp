@@ -18,6 +18,10 @@ struct NiblackOptions {
   /// bit depth, see LevelScale), which keeps flat dark background (where s is only noise) from
   /// turning into speckle.
   double min_contrast = 4.0;
+  /// Or the 3 x 3 mean of I − m ≥ min_contrast_3x3 (8-bit levels; 0: not used): a faint spot
+  /// (a black wall, a dark deposit) a few levels above its background over its whole disk,
+  /// where single pixels' noise keeps to a third of that mean's.
+  double min_contrast_3x3 = 0.0;
   void Check() const;
 };
 

@@ -46,10 +46,11 @@ const char* StatusName(Status status) {
 }
 
 json DecoderOptionsJson(const DecoderOptions& d) {
-  return {{"niblack",
-           {{"window", d.niblack.window},
-            {"k", d.niblack.k},
-            {"min_contrast", d.niblack.min_contrast}}},
+  json niblack = {
+      {"window", d.niblack.window}, {"k", d.niblack.k}, {"min_contrast", d.niblack.min_contrast}};
+  // Only when used (--faint-spots): workspaces from before the option stay resumable.
+  if (d.niblack.min_contrast_3x3 > 0.0) niblack["min_contrast_3x3"] = d.niblack.min_contrast_3x3;
+  return {{"niblack", niblack},
           {"spots",
            {{"min_area_px", d.spots.min_area_px},
             {"max_area_px", d.spots.max_area_px},
