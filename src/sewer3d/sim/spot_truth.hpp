@@ -10,6 +10,7 @@
 #include "sewer3d/camera/module.hpp"
 #include "sewer3d/pattern/binary_array.hpp"
 #include "sewer3d/sim/scene.hpp"
+#include "sewer3d/sim/surface.hpp"
 
 namespace sewer3d {
 
@@ -21,5 +22,20 @@ namespace sewer3d {
 std::vector<Eigen::Vector2d> ProjectedSpotCentres(const ModuleDescription& module,
                                                   const BinaryArray& pattern, const Scene& scene,
                                                   bool whole_spots_only = true);
+
+/// A lit element's spot as the camera sees it.
+struct VisibleSpot {
+  int row = 0, col = 0;   ///< projector element, absolute indices
+  Eigen::Vector2d pixel;  ///< camera pixel of the element centre's point
+  SurfaceHit hit;         ///< where the element centre's ray meets the surface
+};
+
+/// The whole spots (as ProjectedSpotCentres with whole_spots_only) whose centre's point the
+/// camera sees: inside the image by `margin_px` and not hidden behind nearer surface (the
+/// camera's ray to the pixel meets the surface within `occlusion_tolerance_mm` of the point).
+/// What a perfect decoder would triangulate: the oracle of the decoder's tests.
+std::vector<VisibleSpot> VisibleSpots(const ModuleDescription& module, const BinaryArray& pattern,
+                                      const Surface& surface, double margin_px = 2.0,
+                                      double occlusion_tolerance_mm = 0.5);
 
 }  // namespace sewer3d
