@@ -82,9 +82,11 @@ Command AddSimulateCommand(CLI::App& app) {
   frame->add_option("--seed", args->render.seed, "Noise / sampling seed")
       ->capture_default_str()
       ->check(Digits());
-  frame->add_option("--material", args->material, "concrete, vitrified_clay or plastic")
+  frame
+      ->add_option("--material", args->material,
+                   "concrete, vitrified_clay, plastic or polyethylene (black PE)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"concrete", "vitrified_clay", "plastic"}));
+      ->check(CLI::IsMember({"concrete", "vitrified_clay", "plastic", "polyethylene"}));
   frame->add_option("--distance-mm", args->distance, "plane: distance along the optical axis")
       ->capture_default_str()
       ->check(CLI::Range(10.0, 5000.0));

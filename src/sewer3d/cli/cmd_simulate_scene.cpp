@@ -62,6 +62,7 @@ Scene BuiltInScene(const FrameArgs& a, const CLI::App& frame) {
                : a.scene == "cylinder" ? Scene::Type::kCylinder
                                        : Scene::Type::kPipeWall;
   scene.material = a.material == "plastic"          ? Material::kPlastic
+                   : a.material == "polyethylene"   ? Material::kPolyethylene
                    : a.material == "vitrified_clay" ? Material::kVitrifiedClay
                                                     : Material::kConcrete;
   scene.distance_mm = a.distance;

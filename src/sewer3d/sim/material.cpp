@@ -40,7 +40,12 @@ double Fbm(std::uint64_t seed, double x, double y, int octaves) {
 
 }  // namespace
 
-Eigen::Vector3d PlasticAlbedo(std::uint64_t seed, const Eigen::Vector2d& p) {
+namespace {
+
+// Extruded pipe of a base colour: faint ridges along the pipe, low-frequency variation, sparse
+// light scratches.
+Eigen::Vector3d ExtrudedAlbedo(std::uint64_t seed, const Eigen::Vector2d& p,
+                               const Eigen::Vector3d& base) {
   namespace mn = material_noise;
   // Extrusion lines: the die leaves faint ridges along the pipe (constant round it), ~1 mm apart.
   const double x = p.x() + 0.5 * mn::ValueNoise(seed + 3, p.y() / 200.0, 0.5);
@@ -63,7 +68,17 @@ Eigen::Vector3d PlasticAlbedo(std::uint64_t seed, const Eigen::Vector2d& p) {
     const double t = std::clamp(d.dot(along), -half, half);
     k *= 1.0 + 0.05 * mn::Band((d - t * along).norm(), 0.06, 0.05);
   }
-  return Eigen::Vector3d(0.62, 0.50, 0.40) * k;
+  return base * k;
+}
+
+}  // namespace
+
+Eigen::Vector3d PlasticAlbedo(std::uint64_t seed, const Eigen::Vector2d& p) {
+  return ExtrudedAlbedo(seed, p, {0.62, 0.50, 0.40});
+}
+
+Eigen::Vector3d PolyethyleneAlbedo(std::uint64_t seed, const Eigen::Vector2d& p) {
+  return ExtrudedAlbedo(seed, p, {0.045, 0.045, 0.05});
 }
 
 double SmoothNoise(std::uint64_t seed, double x, double y, int octaves) {
@@ -89,6 +104,8 @@ Eigen::Vector3d MaterialAlbedo(Material material, std::uint64_t seed, const Eige
       return ClayAlbedo(seed, p);
     case Material::kPlastic:
       return PlasticAlbedo(seed, p);
+    case Material::kPolyethylene:
+      return PolyethyleneAlbedo(seed, p);
     case Material::kSediment: {
       const double grit = Fbm(seed + 5, p.x() / 2.0, p.y() / 2.0, 3) - 0.5;
       const double patch = Fbm(seed + 9, p.x() / 25.0, p.y() / 25.0, 2) - 0.5;

@@ -8,7 +8,14 @@
 
 namespace sewer3d {
 
-enum class Material { kConcrete, kVitrifiedClay, kPlastic, kSediment };
+/// Values are stable (files and figures index by them): new materials go at the end.
+enum class Material { kConcrete, kVitrifiedClay, kPlastic, kSediment, kPolyethylene };
+
+/// Plastic pipe (PVC, PP, PE): smooth to micrometres and translucent, whatever its colour
+/// (spot_errors: relief_plastic_mm, subsurface_plastic_mm).
+constexpr bool IsPlastic(Material m) {
+  return m == Material::kPlastic || m == Material::kPolyethylene;
+}
 
 /// Albedo at surface coordinates `p_mm` (x round the pipe, y along it), detailed down to the
 /// ~0.1 mm per pixel of the texture images (docs/simulator.md, "Materials"):
@@ -21,7 +28,9 @@ enum class Material { kConcrete, kVitrifiedClay, kPlastic, kSediment };
 ///   specks 0.1–0.7 mm;
 /// - plastic: orange-grey (0.62, 0.5, 0.4), 2 % low-frequency variation, extrusion lines along
 ///   the pipe (< 1 %), sparse light scratches; nearly featureless;
-/// - sediment: dark brown grit with patches (deposits at the invert).
+/// - sediment: dark brown grit with patches (deposits at the invert);
+/// - polyethylene: the plastic's structure in carbon black (~0.045, 0.045, 0.05): black PE-HD
+///   pipe, the decoder's faint-spot case (docs/decoder.md, "Hard surfaces").
 /// Pure function: the same (material, seed, point) always gives the same albedo.
 Eigen::Vector3d MaterialAlbedo(Material material, std::uint64_t seed, const Eigen::Vector2d& p_mm);
 

@@ -52,7 +52,8 @@ double EdgeDensity(const cv::Mat3f& image) {
 
 TEST(Material, IsDeterministicForASeed) {
   const Eigen::Vector2d p(123.456, -78.9);
-  for (const Material m : {Material::kConcrete, Material::kVitrifiedClay, Material::kPlastic}) {
+  for (const Material m : {Material::kConcrete, Material::kVitrifiedClay, Material::kPlastic,
+                           Material::kPolyethylene}) {
     EXPECT_EQ(MaterialAlbedo(m, 7, p), MaterialAlbedo(m, 7, p));
     // Some point of a small patch differs with the seed.
     double differs = 0.0;
@@ -78,6 +79,10 @@ TEST(Material, AlbedosArePlausible) {
   cv::meanStdDev(plastic.reshape(1, static_cast<int>(plastic.total())).col(0), mean, stddev);
   EXPECT_NEAR(mean[0], 0.62, 0.02);
   EXPECT_LT(stddev[0], 0.02 * 0.62);  // nearly uniform
+  // Black polyethylene: the same structure in carbon black, a twelfth as bright in the red.
+  const cv::Scalar black = Mean(Raster(Material::kPolyethylene, 3));
+  EXPECT_NEAR(black[0], 0.045, 0.003);
+  EXPECT_NEAR(black[2], 0.05, 0.003);
 }
 
 TEST(Material, ConcreteAndClayHaveFineStructurePlasticHardlyAny) {

@@ -18,4 +18,7 @@ Eigen::Vector3d ClayAlbedo(std::uint64_t seed, const Eigen::Vector2d& p_mm);
 /// (material.cpp).
 Eigen::Vector3d PlasticAlbedo(std::uint64_t seed, const Eigen::Vector2d& p_mm);
 
+/// Black polyethylene: the plastic's structure in carbon black.
+Eigen::Vector3d PolyethyleneAlbedo(std::uint64_t seed, const Eigen::Vector2d& p_mm);
+
 }  // namespace sewer3d

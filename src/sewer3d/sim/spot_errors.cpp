@@ -149,7 +149,7 @@ Eigen::Vector2d LensResidual::ShiftPx(const CameraIntrinsics& k,
 }
 
 double ReliefMm(const SpotErrors& errors, Material material) {
-  return material == Material::kPlastic ? errors.relief_plastic_mm : errors.relief_mm;
+  return IsPlastic(material) ? errors.relief_plastic_mm : errors.relief_mm;
 }
 
 double WallRelief(const SpotErrors& errors, Material material, std::uint64_t seed,
@@ -169,7 +169,7 @@ double WallRelief(const SpotErrors& errors, Material material, std::uint64_t see
 }
 
 double SubsurfaceMm(const SpotErrors& errors, Material material) {
-  return material == Material::kPlastic ? errors.subsurface_plastic_mm : errors.subsurface_mm;
+  return IsPlastic(material) ? errors.subsurface_plastic_mm : errors.subsurface_mm;
 }
 
 ModuleDescription ActualModule(const ModuleDescription& calibrated, const SpotErrors& errors) {

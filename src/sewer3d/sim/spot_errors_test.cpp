@@ -186,9 +186,9 @@ TEST(SpotErrors, WallErrorsAreTheMaterialsOwn) {
   e.subsurface_plastic_mm = 0.2;
   e.relief_mm = 0.05;
   e.relief_plastic_mm = 0.005;
-  for (const Material m :
-       {Material::kConcrete, Material::kVitrifiedClay, Material::kSediment, Material::kPlastic}) {
-    const bool plastic = m == Material::kPlastic;
+  for (const Material m : {Material::kConcrete, Material::kVitrifiedClay, Material::kSediment,
+                           Material::kPlastic, Material::kPolyethylene}) {
+    const bool plastic = m == Material::kPlastic || m == Material::kPolyethylene;
     EXPECT_EQ(SubsurfaceMm(e, m), plastic ? 0.2 : 0.03);
     EXPECT_EQ(ReliefMm(e, m), plastic ? 0.005 : 0.05);
   }

@@ -269,16 +269,19 @@ const char* MaterialName(Material m) {
       return "plastic";
     case Material::kSediment:
       return "sediment";
+    case Material::kPolyethylene:
+      return "polyethylene";
   }
   return "concrete";
 }
 
 Material ParseMaterial(const JsonReader& in, const std::string& name, const std::string& field) {
-  for (const Material m :
-       {Material::kConcrete, Material::kVitrifiedClay, Material::kPlastic, Material::kSediment}) {
+  for (const Material m : {Material::kConcrete, Material::kVitrifiedClay, Material::kPlastic,
+                           Material::kSediment, Material::kPolyethylene}) {
     if (name == MaterialName(m)) return m;
   }
-  in.Fail(field, "must be concrete, vitrified_clay, plastic or sediment, got '" + name + "'");
+  in.Fail(field, "must be concrete, vitrified_clay, plastic, polyethylene or sediment, got '" +
+                     name + "'");
 }
 
 namespace {
