@@ -15,6 +15,7 @@ struct ProcessArgs {
   double start_station_mm = ProcessOptions{}.start_station_mm;
   double resolution_mm = ProcessOptions{}.resolution_mm;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  double faint_spots = 0.0;  ///< the rgbd stage's NiblackOptions::min_contrast_3x3
   bool force = false, quiet = false;
 };
 
