@@ -38,10 +38,6 @@ double Fbm(std::uint64_t seed, double x, double y, int octaves) {
   return material_noise::FractalSum(ValueNoise, seed, x, y, octaves);
 }
 
-}  // namespace
-
-namespace {
-
 // Extruded pipe of a base colour: faint ridges along the pipe, low-frequency variation, sparse
 // light scratches.
 Eigen::Vector3d ExtrudedAlbedo(std::uint64_t seed, const Eigen::Vector2d& p,
