@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/triangulate/reconstruct_frame.hpp"
 
 namespace sewer3d::cli {
 namespace {
@@ -78,15 +79,24 @@ std::string MissingArgument(const CLI::App& app, const std::string& message) {
   return command + " needs its " + option->get_name() + " argument: " + option->get_description();
 }
 
-void AddFaintSpotsOption(CLI::App* command, double* levels) {
+void SpotFlags::ApplyTo(FrameReconstructionOptions& options) const {
+  options.decoder.niblack.min_contrast_3x3 = faint_spots;
+  options.lost_spots.enabled = !no_lost_spots;
+}
+
+void AddSpotFlags(CLI::App* command, SpotFlags* flags) {
   command
-      ->add_option("--faint-spots", *levels,
+      ->add_option("--faint-spots", flags->faint_spots,
                    "Also find spots whose 3x3 mean is LEVELS grey levels (8-bit) over the local "
                    "mean where the background is quiet: black walls (polyethylene), dark "
                    "deposits; 2 finds nine tenths of a black wall's spots, about 10 ms more per "
                    "5 MP frame. 0: off")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 255.0));
+  command->add_flag("--no-lost-spots", flags->no_lost_spots,
+                    "Do not look for the spots the binariser missed where the lattice of the "
+                    "frame's points puts them (dark patches, black walls; about 1 ms per 5 MP "
+                    "frame)");
 }
 
 CLI::Validator FileNameEnding(const std::string& extension, const std::string& why) {

@@ -7,6 +7,10 @@
 #include <string>
 #include <utility>
 
+namespace sewer3d {
+struct FrameReconstructionOptions;
+}  // namespace sewer3d
+
 namespace sewer3d::cli {
 
 /// The first option or argument of the chosen subcommands given as an empty string ("" names
@@ -25,9 +29,15 @@ std::string MissingArgument(const CLI::App& app, const std::string& message);
 
 /// A CLI11 check that a file name to write ends in `extension` (".png") and has a stem; its
 /// refusal says why (`why`: "the matrix is written losslessly as PNG").
-/// Adds `--faint-spots LEVELS` (NiblackOptions::min_contrast_3x3, 0: off) to a command that
-/// decodes pattern images.
-void AddFaintSpotsOption(CLI::App* command, double* levels);
+/// The spot-finding flags of the commands that decode pattern images.
+struct SpotFlags {
+  double faint_spots = 0.0;    ///< `--faint-spots LEVELS`: NiblackOptions::min_contrast_3x3
+  bool no_lost_spots = false;  ///< `--no-lost-spots`: LostSpotOptions::enabled off
+  void ApplyTo(FrameReconstructionOptions& options) const;
+};
+
+/// Adds `--faint-spots LEVELS` and `--no-lost-spots` to a command that decodes pattern images.
+void AddSpotFlags(CLI::App* command, SpotFlags* flags);
 
 CLI::Validator FileNameEnding(const std::string& extension, const std::string& why);
 

@@ -136,6 +136,11 @@ for f in cloud.ply depth.tiff depth.png report.json; do
   [ -s "$tmp/r/plane/$f" ] || fail "reconstruct did not write $f"
 done
 grep -q '"points"' "$tmp/r/plane/report.json" || fail "report lacks points"
+grep -q '"lost_spots_found"' "$tmp/r/plane/report.json" || fail "report lacks lost_spots_found"
+expect_ok "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/s/plane/pattern.png" \
+  --no-lost-spots --out "$tmp/r/plane_nolost"
+grep -q '"lost_spots_found": 0,' "$tmp/r/plane_nolost/report.json" ||
+  fail "--no-lost-spots still looked for lost spots"
 expect_ok "$bin" evaluate plane --cloud "$tmp/r/plane/cloud.ply" --truth "$tmp/s/plane/scene.json"
 grep -q "RMS" "$tmp/out" || fail "evaluate prints no RMS"
 grep -Eq "plane at (89\.9[5-9]|90\.0[0-4])" "$tmp/out" || fail "evaluate does not find the 90 mm plane: $(cat "$tmp/out")"

@@ -64,7 +64,7 @@ int RunProcessCommand(const ProcessArgs& args, ProcessReport* report_out) {
   options.start_station_mm = args.start_station_mm;
   options.resolution_mm = args.resolution_mm;
   options.threads = args.threads;
-  options.rgbd.reconstruction.decoder.niblack.min_contrast_3x3 = args.faint_spots;
+  args.spots.ApplyTo(options.rgbd.reconstruction);
   options.force = args.force;
   try {
     options.Check();
@@ -121,7 +121,7 @@ Command AddProcessCommand(CLI::App& app) {
   sub->add_option("--threads", args->threads, "Workers of every stage")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
-  AddFaintSpotsOption(sub, &args->faint_spots);
+  AddSpotFlags(sub, &args->spots);
   sub->add_flag("--force", args->force,
                 "Redo every stage from scratch, also those run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");

@@ -41,7 +41,7 @@ Command AddReconstructCommand(CLI::App& app) {
   struct Args {
     std::string module, image, texture, out;
     double max_edge_steps = FrameReconstructionOptions{}.max_edge_steps;
-    double faint_spots = NiblackOptions{}.min_contrast_3x3;
+    SpotFlags spots;
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -54,7 +54,7 @@ Command AddReconstructCommand(CLI::App& app) {
                   "Depth map: longest triangle edge, in pattern pitches")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 20.0));
-  AddFaintSpotsOption(sub, &args->faint_spots);
+  AddSpotFlags(sub, &args->spots);
   return {
       sub, [args] {
         const LoadedModule loaded = LoadModule(args->module);
@@ -94,7 +94,7 @@ Command AddReconstructCommand(CLI::App& app) {
         }
         FrameReconstructionOptions options;
         options.max_edge_steps = args->max_edge_steps;
-        options.decoder.niblack.min_contrast_3x3 = args->faint_spots;
+        args->spots.ApplyTo(options);
         const FrameReconstruction frame =
             ReconstructFrame(module, loaded.pattern, constraints, image,
                              texture.empty() ? nullptr : &texture, options);

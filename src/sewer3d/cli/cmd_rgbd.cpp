@@ -22,7 +22,7 @@ Command AddRgbdCommand(CLI::App& app) {
     std::string run, out;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     double max_edge_steps = FrameReconstructionOptions{}.max_edge_steps;
-    double faint_spots = NiblackOptions{}.min_contrast_3x3;
+    SpotFlags spots;
     bool quiet = false, force = false, debug_images = false, no_deblur = false;
     int reference_frames = RgbdColourOptions{}.reference_frames;
     std::string correction = "linear";
@@ -41,7 +41,7 @@ Command AddRgbdCommand(CLI::App& app) {
                   "Depth map: longest triangle edge, in pattern pitches")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 20.0));
-  AddFaintSpotsOption(sub, &args->faint_spots);
+  AddSpotFlags(sub, &args->spots);
   sub->add_option("--reference-frames", args->reference_frames,
                   "Acquisitions per module the reference light (shading correction) is estimated "
                   "from")
@@ -64,7 +64,7 @@ Command AddRgbdCommand(CLI::App& app) {
             const CaptureRun run = LoadRun(args->run);
             RgbdStageOptions options;
             options.reconstruction.max_edge_steps = args->max_edge_steps;
-            options.reconstruction.decoder.niblack.min_contrast_3x3 = args->faint_spots;
+            args->spots.ApplyTo(options.reconstruction);
             options.threads = args->threads;
             options.colour.reference_frames = args->reference_frames;
             options.colour.deblur = !args->no_deblur;

@@ -6,6 +6,7 @@
 #include <string>
 #include <thread>
 
+#include "sewer3d/cli/argument_checks.hpp"
 #include "sewer3d/pipeline/process_chain.hpp"
 
 namespace sewer3d::cli {
@@ -15,7 +16,7 @@ struct ProcessArgs {
   double start_station_mm = ProcessOptions{}.start_station_mm;
   double resolution_mm = ProcessOptions{}.resolution_mm;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  double faint_spots = 0.0;  ///< the rgbd stage's NiblackOptions::min_contrast_3x3
+  SpotFlags spots;  ///< the rgbd stage's --faint-spots, --no-lost-spots
   bool force = false, quiet = false;
 };
 

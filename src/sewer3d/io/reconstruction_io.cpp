@@ -39,6 +39,7 @@ void WriteFrameReport(const std::filesystem::path& path, const FrameReport& r,
   report["windows_decoded"] = r.windows_decoded;
   report["bits_corrected"] = r.bits_corrected;
   report["spots_decoded"] = r.spots_decoded;
+  report["lost_spots_found"] = r.lost_spots_found;
   report["rejected"] = {{"votes_split_or_too_few", r.rejected.votes_split_or_too_few},
                         {"beyond_lens_fold", r.rejected.beyond_lens_fold},
                         {"no_tile_on_epipolar_line", r.rejected.no_tile_on_epipolar_line},
@@ -52,7 +53,8 @@ void WriteFrameReport(const std::filesystem::path& path, const FrameReport& r,
   report["depth_pixels"] = r.depth_pixels;
   report["seconds"] = {{"binarise", r.seconds.binarise},       {"spots", r.seconds.spots},
                        {"lattice", r.seconds.lattice},         {"codewords", r.seconds.codewords},
-                       {"triangulate", r.seconds.triangulate}, {"depth_map", r.seconds.depth_map}};
+                       {"triangulate", r.seconds.triangulate}, {"lost_spots", r.seconds.lost_spots},
+                       {"depth_map", r.seconds.depth_map}};
   WriteTextFile(path, report.dump(2) + "\n");
 }
 

@@ -66,6 +66,18 @@ json DecoderOptionsJson(const DecoderOptions& d) {
           {"prediction_depth_mm", d.prediction_depth_mm}};
 }
 
+json LostSpotOptionsJson(const LostSpotOptions& o) {
+  if (!o.enabled) return {{"enabled", false}};
+  return {{"enabled", true},
+          {"min_neighbours", o.min_neighbours},
+          {"max_fit_px", o.max_fit_px},
+          {"max_offset", o.max_offset},
+          {"max_rounds", o.max_rounds},
+          {"min_sigmas", o.spot.min_sigmas},
+          {"min_levels", o.spot.min_levels},
+          {"min_noise_levels", o.spot.min_noise_levels}};
+}
+
 std::vector<PatternConstraints> RigConstraints(const CaptureRun& run) {
   std::vector<PatternConstraints> constraints;
   for (size_t k = 0; k < run.patterns.size(); ++k) {
@@ -176,6 +188,7 @@ std::string RgbdOptionsJson(const RgbdStageOptions& options) {
                    {{"radius_px", r.outliers.radius_px},
                     {"min_step_mm", r.outliers.min_step_mm},
                     {"fraction", r.outliers.fraction}}},
+                  {"lost_spots", LostSpotOptionsJson(r.lost_spots)},
                   {"color", RgbdColorSource(options.colour)},
                   {"colour", json::parse(RgbdColourOptionsJson(options.colour))}};
   return j.dump();

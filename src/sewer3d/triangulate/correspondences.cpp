@@ -60,6 +60,32 @@ const Eigen::Vector2d* Triangulator::Element(int r, int c) const {
   return std::isnan(xy.x()) ? nullptr : &xy;
 }
 
+std::optional<TriangulatedPoint> Triangulator::AtElement(int r, int c,
+                                                         const Eigen::Vector2d& camera_px,
+                                                         double gate_px, int observation) const {
+  const auto xy = camera_.Unproject(camera_px);
+  if (!xy) return std::nullopt;
+  return AtElement(r, c, camera_px, *xy, gate_px, observation);
+}
+
+std::optional<TriangulatedPoint> Triangulator::AtElement(int r, int c,
+                                                         const Eigen::Vector2d& camera_px,
+                                                         const Eigen::Vector2d& xy, double gate_px,
+                                                         int observation) const {
+  const Eigen::Vector2d* projector_xy = Element(r, c);
+  if (!projector_xy) return std::nullopt;
+  const auto x = TriangulateOnProjectorRay(xy, *projector_xy, p_projector_);
+  if (!x || x->z() < options_.z_min_mm || x->z() > options_.z_max_mm) return std::nullopt;
+  const auto back_camera = camera_.Project(*x);
+  const auto back_projector =
+      projector_.Project(p_projector_.leftCols<3>() * *x + p_projector_.col(3));
+  if (!back_camera || !back_projector) return std::nullopt;
+  const double error = std::max((*back_camera - camera_px).norm(),
+                                (*back_projector - module_.pattern.ElementCentre(r, c)).norm());
+  if (error > gate_px) return std::nullopt;
+  return TriangulatedPoint{observation, *x, r, c, error};
+}
+
 Triangulator::Candidates Triangulator::NearestTiles(int k, const CodedObservation& o,
                                                     double gate) const {
   Candidates found;
@@ -95,23 +121,13 @@ Triangulator::Candidates Triangulator::NearestTiles(int k, const CodedObservatio
   const int c_start = first(u_lo, layout.offset_px.x(), o.col_mod, array_cols_);
   for (int r = r_start; layout.ElementCentre(r, 0).y() <= v_hi + margin; r += array_rows_) {
     for (int c = c_start; layout.ElementCentre(0, c).x() <= u_hi + margin; c += array_cols_) {
-      const Eigen::Vector2d centre = layout.ElementCentre(r, c);
-      const Eigen::Vector2d* projector_xy = Element(r, c);
-      if (!projector_xy) continue;
-      const auto x = TriangulateOnProjectorRay(*xy, *projector_xy, p_projector_);
-      if (!x || x->z() < options.z_min_mm || x->z() > options.z_max_mm) continue;
-      const auto back_camera = camera_.Project(*x);
-      const auto back_projector =
-          projector_.Project(p_projector_.leftCols<3>() * *x + p_projector_.col(3));
-      if (!back_camera || !back_projector) continue;
-      const double error =
-          std::max((*back_camera - o.camera_px).norm(), (*back_projector - centre).norm());
-      if (error > gate) continue;
-      if (error < found.best.reprojection_px) {
+      const auto point = AtElement(r, c, o.camera_px, *xy, gate, k);
+      if (!point) continue;
+      if (point->reprojection_px < found.best.reprojection_px) {
         found.second_px = found.best.reprojection_px;
-        found.best = {k, *x, r, c, error};
+        found.best = *point;
       } else {
-        found.second_px = std::min(found.second_px, error);
+        found.second_px = std::min(found.second_px, point->reprojection_px);
       }
     }
   }

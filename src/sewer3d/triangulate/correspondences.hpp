@@ -4,6 +4,7 @@
 /// tile (paper §decode) and rejects wrong decodes; DLT triangulates (paper §triangulate).
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "sewer3d/camera/module.hpp"
@@ -52,9 +53,18 @@ class Triangulator {
                const TriangulationOptions& options);
   std::vector<TriangulatedPoint> Triangulate(const std::vector<CodedObservation>& observations,
                                              TriangulationStats* stats) const;
+  /// Camera pixel `camera_px` triangulated with projector element (r, c) (absolute): the point
+  /// when it lies within the depth range and both reprojections within `gate_px`, else none.
+  /// `observation` is copied into the result.
+  std::optional<TriangulatedPoint> AtElement(int r, int c, const Eigen::Vector2d& camera_px,
+                                             double gate_px, int observation) const;
 
  private:
   const Eigen::Vector2d* Element(int r, int c) const;
+  /// AtElement with the camera pixel's normalised coordinates `xy` already unprojected.
+  std::optional<TriangulatedPoint> AtElement(int r, int c, const Eigen::Vector2d& camera_px,
+                                             const Eigen::Vector2d& xy, double gate_px,
+                                             int observation) const;
   /// The tile of one observation nearest its epipolar line (within `gate` px) and the
   /// distance of the second nearest.
   struct Candidates {

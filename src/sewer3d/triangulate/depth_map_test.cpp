@@ -6,10 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <set>
 #include <string>
 
 #include "sewer3d/core/check.hpp"
@@ -170,6 +172,41 @@ TEST(ElementMesh, JoinsNeighbouringLitElementsOnly) {
   ModuleDescription far = meshed.module;
   far.pattern.offset_px.x() = 1e12;
   EXPECT_THROW(MeshLitElements(far, pattern), InvalidValue);
+}
+
+// The mesh's neighbour lists are its triangles' edges, both ways, once each; no two lit
+// elements are 8-adjacent, so every neighbour is two or more elements away.
+TEST(ElementMesh, NeighboursAreTheTrianglesEdges) {
+  const MeshedPattern meshed;
+  const ElementMesh& mesh = meshed.mesh;
+  const NeighbourLists neighbours = MeshNeighbours(mesh);
+  const auto has = [&](int from, int to) {
+    const auto [first, last] = neighbours.Of(from);
+    return std::count(first, last, to) == 1;
+  };
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_TRUE(has(t[k], t[(k + 1) % 3]));
+      EXPECT_TRUE(has(t[(k + 1) % 3], t[k]));
+    }
+  }
+  std::size_t edges = 0;
+  for (int i = 0; i < mesh.rows * mesh.cols; ++i) {
+    const auto [first, last] = neighbours.Of(i);
+    edges += last - first;
+    for (const int* j = first; j != last; ++j) {
+      ASSERT_TRUE(has(*j, i));
+      const int dr = std::abs(*j / mesh.cols - i / mesh.cols);
+      const int dc = std::abs(*j % mesh.cols - i % mesh.cols);
+      EXPECT_GE(std::max(dr, dc), 2);
+    }
+  }
+  std::set<std::pair<int, int>> unique;
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k)
+      unique.emplace(std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]));
+  }
+  EXPECT_EQ(edges, 2 * unique.size());
 }
 
 // The lit elements of the first 76 × 56 of the mesh's grid as points of `plane`, each at the

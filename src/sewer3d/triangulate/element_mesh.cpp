@@ -1,5 +1,6 @@
 #include "sewer3d/triangulate/element_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <utility>
@@ -67,6 +68,29 @@ ElementMesh MeshLitElements(const ModuleDescription& module, const BinaryArray& 
     mesh.triangles.push_back(ids);
   }
   return mesh;
+}
+
+NeighbourLists MeshNeighbours(const ElementMesh& mesh) {
+  const std::size_t cells = static_cast<std::size_t>(mesh.rows) * mesh.cols;
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(6 * mesh.triangles.size());
+  for (const std::array<int, 3>& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      edges.emplace_back(t[k], t[(k + 1) % 3]);
+      edges.emplace_back(t[(k + 1) % 3], t[k]);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  NeighbourLists out;
+  out.offsets.assign(cells + 1, 0);
+  out.indices.reserve(edges.size());
+  for (const auto& [from, to] : edges) {
+    ++out.offsets[from + 1];
+    out.indices.push_back(to);
+  }
+  for (std::size_t i = 1; i <= cells; ++i) out.offsets[i] += out.offsets[i - 1];
+  return out;
 }
 
 }  // namespace sewer3d

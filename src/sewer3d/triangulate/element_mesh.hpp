@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sewer3d/camera/module.hpp"
+#include "sewer3d/core/neighbours.hpp"
 #include "sewer3d/pattern/binary_array.hpp"
 
 namespace sewer3d {
@@ -32,5 +33,9 @@ struct ElementMesh {
 /// Throws InvalidValue ("pattern.pitch_px") where pitch and offset lay more than 2^26
 /// elements over the projector or start the grid beyond ±1e9 elements.
 ElementMesh MeshLitElements(const ModuleDescription& module, const BinaryArray& pattern);
+
+/// Each lit element's neighbours in the mesh (the elements it shares a triangle with), by grid
+/// index (ElementMesh::Index); elements of no triangle have none.
+NeighbourLists MeshNeighbours(const ElementMesh& mesh);
 
 }  // namespace sewer3d

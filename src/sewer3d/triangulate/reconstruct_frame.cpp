@@ -30,6 +30,7 @@ void FrameReconstructionOptions::Check() const {
   decoder.lattice.Check();
   triangulation.Check();
   outliers.Check();
+  lost_spots.Check();
   ValidatePositive("max_edge_steps", max_edge_steps);
   for (const auto& [field, value] :
        {std::pair{"mismatch_off_epipolar_fraction", mismatch_off_epipolar_fraction},
@@ -85,7 +86,8 @@ FrameReconstructor::FrameReconstructor(const ModuleDescription& module, const Bi
       options_(Checked(options)),
       decoder_(module, pattern, constraints, options.decoder),
       triangulator_(module, pattern.rows, pattern.cols, options.triangulation),
-      mesh_(MeshLitElements(module, pattern)) {}
+      mesh_(MeshLitElements(module, pattern)),
+      lost_spots_(mesh_, pattern.rows, pattern.cols, options.lost_spots) {}
 
 FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image,
                                                     const cv::Mat3b* texture_bgr) {
@@ -94,7 +96,7 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
   SEWER3D_VALIDATE(!texture_bgr || texture_bgr->size() == pattern_image.size(), "texture",
                    "size differs from the pattern image");
   const DecodeResult decoded = decoder_.Decode(pattern_image);
-  const std::vector<CodedObservation> observations = CodedObservations(decoded);
+  std::vector<CodedObservation> observations = CodedObservations(decoded);
   FrameReconstruction frame;
   FrameReport& report = frame.report;
   auto t = Clock::now();
@@ -114,6 +116,10 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
     points.clear();
   }
   report.seconds.triangulate = Since(t);
+  t = Clock::now();
+  report.lost_spots_found = lost_spots_.Find(pattern_image, decoded.spots, triangulator_,
+                                             stats.tolerance_px, observations, points);
+  report.seconds.lost_spots = Since(t);
   t = Clock::now();
   frame.coloured = texture_bgr != nullptr;
   frame.points.reserve(points.size());

@@ -17,6 +17,7 @@
 #include "sewer3d/pattern/constraints.hpp"
 #include "sewer3d/triangulate/correspondences.hpp"
 #include "sewer3d/triangulate/element_mesh.hpp"
+#include "sewer3d/triangulate/lost_spots.hpp"
 
 namespace sewer3d {
 
@@ -25,6 +26,7 @@ struct FrameReconstructionOptions {
   DecoderOptions decoder;              ///< binarisation, spots, lattice, codewords
   TriangulationOptions triangulation;  ///< depth range searched, reprojection limit
   DepthOutlierOptions outliers;        ///< RejectDepthOutliers
+  LostSpotOptions lost_spots;          ///< spots the binariser missed (LostSpotFinder)
   /// Depth map: longest triangle edge, in pattern pitches (module.pattern.pitch_px each, taken
   /// as camera pixels). Longer edges span holes, depth steps or the border of the lit area.
   double max_edge_steps = 5.5;
@@ -68,6 +70,9 @@ struct FrameReport {
   int windows_decoded = 0;    ///< of those, found in the codebook
   int bits_corrected = 0;     ///< single-bit corrections among them
   int spots_decoded = 0;      ///< spots with an array position
+  /// Points from spots the binariser missed, found where the lattice put their elements
+  /// (LostSpotFinder; counted in `points`).
+  int lost_spots_found = 0;
   /// Spots found but not turned into points, by reason.
   struct Rejected {
     int votes_split_or_too_few = 0;     ///< decode: no position enough windows agree on
@@ -89,6 +94,7 @@ struct FrameReport {
   struct Seconds {
     double binarise = 0, spots = 0, lattice = 0, codewords = 0;
     double triangulate = 0;  ///< triangulation and outlier rejection
+    double lost_spots = 0;   ///< LostSpotFinder
     double depth_map = 0;    ///< colours and depth interpolation
   } seconds;
 };
@@ -143,6 +149,7 @@ class FrameReconstructor {
   Decoder decoder_;
   Triangulator triangulator_;
   ElementMesh mesh_;
+  LostSpotFinder lost_spots_;
   std::vector<Eigen::Vector2d> pixels_;  // depth-map buffers, reused between frames
   std::vector<double> depths_;
   std::vector<Eigen::Vector2i> elements_;
