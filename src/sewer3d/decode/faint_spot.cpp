@@ -36,7 +36,7 @@ std::optional<FaintSpot> Find(const cv::Mat_<T>& image, const Eigen::Vector2d& a
     return (x - c.x()) * (x - c.x()) + (y - c.y()) * (y - c.y());
   };
   std::vector<double> ring;
-  ring.reserve(static_cast<std::size_t>((x1 - x0 + 1) * (y1 - y0 + 1)));
+  ring.reserve(static_cast<std::size_t>(x1 - x0 + 1) * static_cast<std::size_t>(y1 - y0 + 1));
   const double in2 = inner_px * inner_px, out2 = outer_px * outer_px;
   double peak = -1e300;
   Eigen::Vector2d peak_at = at;
