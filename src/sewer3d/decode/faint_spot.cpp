@@ -26,6 +26,8 @@ constexpr int kCentroidIterations = 3;
 template <typename T>
 std::optional<FaintSpot> Find(const cv::Mat_<T>& image, const Eigen::Vector2d& at, double inner_px,
                               double outer_px, double level, const FaintSpotOptions& options) {
+  // Beyond any image (or NaN): nothing to convert to pixel indices.
+  if (!(std::abs(at.x()) < 1e7 && std::abs(at.y()) < 1e7 && outer_px < 1e4)) return std::nullopt;
   const int x0 = static_cast<int>(std::floor(at.x() - outer_px));
   const int y0 = static_cast<int>(std::floor(at.y() - outer_px));
   const int x1 = static_cast<int>(std::ceil(at.x() + outer_px));

@@ -10,7 +10,8 @@
 namespace sewer3d {
 namespace {
 
-constexpr double kSpotCell = 16.0;  // px, the bucket size of the binariser's spots
+constexpr double kSpotCell = 16.0;     // px, the bucket size of the binariser's spots
+constexpr double kMinSpacingPx = 4.0;  // px, the least distance between neighbouring spots
 
 }  // namespace
 
@@ -92,6 +93,8 @@ std::optional<LostSpotFinder::Found> LostSpotFinder::Look(
     const int rj = mesh_->row0 + *j / mesh_->cols, cj = mesh_->col0 + *j % mesh_->cols;
     spacing = std::min(spacing, ((Eigen::RowVector3d(cj, rj, 1.0) * map).transpose() - at).norm());
   }
+  // Spots closer than a few pixels are not told apart (nor is a map that folds its grid).
+  if (!(spacing >= kMinSpacingPx) || !at.allFinite()) return std::nullopt;
   if (NearDetectedSpot(at, 0.5 * spacing)) return std::nullopt;
   const auto spot =
       FaintSpotAt(image, level_scale, at, 0.3 * spacing, 0.5 * spacing, options_.spot);
