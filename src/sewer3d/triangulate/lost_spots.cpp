@@ -27,12 +27,15 @@ void LostSpotOptions::Check() const {
 
 LostSpotFinder::LostSpotFinder(const ElementMesh& mesh, int array_rows, int array_cols,
                                const LostSpotOptions& options)
-    : mesh_(&mesh),
-      neighbours_(MeshNeighbours(mesh)),
+    : neighbours_(MeshNeighbours(mesh)),
       array_rows_(array_rows),
       array_cols_(array_cols),
       options_(options) {
   options_.Check();
+  grid_.row0 = mesh.row0;
+  grid_.col0 = mesh.col0;
+  grid_.rows = mesh.rows;
+  grid_.cols = mesh.cols;
 }
 
 bool LostSpotFinder::NearDetectedSpot(const Eigen::Vector2d& px, double radius) const {
@@ -85,12 +88,12 @@ std::optional<LostSpotFinder::Found> LostSpotFinder::Look(
   const Eigen::Matrix<double, 3, 2> map = lu.solve(elements.transpose() * pixels);
   if ((elements * map - pixels).rowwise().norm().maxCoeff() > options_.max_fit_px)
     return std::nullopt;
-  const int r = mesh_->row0 + cell / mesh_->cols, c = mesh_->col0 + cell % mesh_->cols;
+  const int r = grid_.row0 + cell / grid_.cols, c = grid_.col0 + cell % grid_.cols;
   const Eigen::Vector2d at = (Eigen::RowVector3d(c, r, 1.0) * map).transpose();
   // Distance to the nearest neighbour's spot, as the map puts it (lost or not).
   double spacing = 1e300;
   for (const int* j = first; j != last; ++j) {
-    const int rj = mesh_->row0 + *j / mesh_->cols, cj = mesh_->col0 + *j % mesh_->cols;
+    const int rj = grid_.row0 + *j / grid_.cols, cj = grid_.col0 + *j % grid_.cols;
     spacing = std::min(spacing, ((Eigen::RowVector3d(cj, rj, 1.0) * map).transpose() - at).norm());
   }
   // Spots closer than a few pixels are not told apart (nor is a map that folds its grid).
@@ -118,9 +121,9 @@ int LostSpotFinder::Find(const cv::Mat& image, const std::vector<Spot>& spots,
                          std::vector<CodedObservation>& observations,
                          std::vector<TriangulatedPoint>& points) {
   if (!options_.enabled || points.empty()) return 0;
-  point_of_.assign(static_cast<std::size_t>(mesh_->rows) * mesh_->cols, -1);
+  point_of_.assign(static_cast<std::size_t>(grid_.rows) * grid_.cols, -1);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const int cell = mesh_->Index(points[i].row, points[i].col);
+    const int cell = grid_.Index(points[i].row, points[i].col);
     if (cell >= 0) point_of_[cell] = static_cast<int>(i);
   }
   spot_grid_cols_ = static_cast<int>(image.cols / kSpotCell) + 1;
@@ -140,7 +143,7 @@ int LostSpotFinder::Find(const cv::Mat& image, const std::vector<Spot>& spots,
   // Candidates: lit cells without a point next to cells with one.
   std::vector<int> frontier;
   for (const TriangulatedPoint& p : points) {
-    const int cell = mesh_->Index(p.row, p.col);
+    const int cell = grid_.Index(p.row, p.col);
     if (cell < 0) continue;
     const auto [first, last] = neighbours_.Of(cell);
     for (const int* j = first; j != last; ++j)

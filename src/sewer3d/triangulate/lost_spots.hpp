@@ -43,7 +43,7 @@ struct LostSpotOptions {
 /// neighbour lists) is built once.
 class LostSpotFinder {
  public:
-  /// `mesh` must outlive the finder.
+  /// `mesh`: the module's lit elements (MeshLitElements); its grid and neighbours are copied.
   LostSpotFinder(const ElementMesh& mesh, int array_rows, int array_cols,
                  const LostSpotOptions& options);
 
@@ -69,7 +69,7 @@ class LostSpotFinder {
                             const std::vector<TriangulatedPoint>& points) const;
   bool NearDetectedSpot(const Eigen::Vector2d& px, double radius) const;
 
-  const ElementMesh* mesh_;
+  ElementMesh grid_;  ///< the mesh's element grid (no triangles: its neighbours are below)
   NeighbourLists neighbours_;
   int array_rows_, array_cols_;
   LostSpotOptions options_;
