@@ -71,6 +71,8 @@ json LostSpotOptionsJson(const LostSpotOptions& o) {
   return {{"enabled", true},
           {"min_neighbours", o.min_neighbours},
           {"max_fit_px", o.max_fit_px},
+          {"max_fit_tolerance", o.max_fit_tolerance},
+          {"step_fits", o.step_fits},
           {"max_offset", o.max_offset},
           {"max_rounds", o.max_rounds},
           {"min_sigmas", o.spot.min_sigmas},

@@ -19,6 +19,8 @@ void LostSpotOptions::Check() const {
   SEWER3D_VALIDATE(min_neighbours >= 3, "lost_spots.min_neighbours",
                    "must be >= 3, got " << min_neighbours);
   ValidatePositive("lost_spots.max_fit_px", max_fit_px);
+  ValidateNotNegative("lost_spots.max_fit_tolerance", max_fit_tolerance);
+  ValidatePositive("lost_spots.step_fits", step_fits);
   SEWER3D_VALIDATE(max_offset > 0.0 && max_offset <= 0.3, "lost_spots.max_offset",
                    "must be in (0, 0.3], got " << max_offset);
   ValidateNotNegative("lost_spots.max_rounds", max_rounds);
@@ -36,6 +38,25 @@ LostSpotFinder::LostSpotFinder(const ElementMesh& mesh, int array_rows, int arra
   grid_.col0 = mesh.col0;
   grid_.rows = mesh.rows;
   grid_.cols = mesh.cols;
+}
+
+bool LostSpotFinder::StepNearby(const Eigen::Matrix<double, 3, 2>& map, double limit_px,
+                                const std::vector<CodedObservation>& observations,
+                                const std::vector<TriangulatedPoint>& points) const {
+  outer_.clear();
+  for (const int j : ring_) {
+    const auto [first, last] = neighbours_.Of(j);
+    outer_.insert(outer_.end(), first, last);
+  }
+  std::sort(outer_.begin(), outer_.end());
+  outer_.erase(std::unique(outer_.begin(), outer_.end()), outer_.end());
+  for (const int j : outer_) {
+    if (point_of_[j] < 0) continue;
+    const TriangulatedPoint& p = points[point_of_[j]];
+    const Eigen::Vector2d at = (Eigen::RowVector3d(p.col, p.row, 1.0) * map).transpose();
+    if ((at - observations[p.observation].camera_px).norm() > limit_px) return true;
+  }
+  return false;
 }
 
 bool LostSpotFinder::NearDetectedSpot(const Eigen::Vector2d& px, double radius) const {
@@ -86,8 +107,9 @@ std::optional<LostSpotFinder::Found> LostSpotFinder::Look(
   const Eigen::FullPivLU<Eigen::Matrix3d> lu(normal);
   if (lu.rank() < 3) return std::nullopt;  // neighbours on one line
   const Eigen::Matrix<double, 3, 2> map = lu.solve(elements.transpose() * pixels);
-  if ((elements * map - pixels).rowwise().norm().maxCoeff() > options_.max_fit_px)
-    return std::nullopt;
+  const double max_fit = std::max(options_.max_fit_px, options_.max_fit_tolerance * tolerance_px);
+  if ((elements * map - pixels).rowwise().norm().maxCoeff() > max_fit) return std::nullopt;
+  if (StepNearby(map, options_.step_fits * max_fit, observations, points)) return std::nullopt;
   const int r = grid_.row0 + cell / grid_.cols, c = grid_.col0 + cell % grid_.cols;
   const Eigen::Vector2d at = (Eigen::RowVector3d(c, r, 1.0) * map).transpose();
   // Distance to the nearest neighbour's spot, as the map puts it (lost or not).

@@ -27,8 +27,17 @@ struct LostSpotOptions {
   /// pixel (the affine map has three unknowns per coordinate; more check them).
   int min_neighbours = 5;
   /// The map's largest residual at those neighbours: beyond it they do not lie on one smooth
-  /// surface (a depth step between them: no spot is predicted across it).
+  /// surface (a depth step between them: no spot is predicted across it). This fraction of
+  /// the frame's epipolar tolerance (its spots' scatter), at least max_fit_px: at 2592 px the
+  /// `paper` profile scatters spots twice as far in pixels as at 1296, and a fixed 1 px
+  /// stopped the growth into a black wall at 60 % of its spots (87 % with this).
+  double max_fit_tolerance = 0.7;
   double max_fit_px = 1.0;
+  /// A step nearby: a point of the next ring out (the neighbours' neighbours' neighbours) off
+  /// the map by more than this many times that limit, and nothing is predicted. Without it
+  /// the map of neighbours that all lie on one wall carries the wall past its edge over a
+  /// joint's gap, and faint light there became a point 8 mm off (2592 px).
+  double step_fits = 3.0;
   /// The spot's centre within the frame's epipolar tolerance of the prediction, and within
   /// this fraction of the nearest neighbour's distance; the search disk is 0.3 of that
   /// distance and the background ring reaches 0.5 of it, short of the next spot.
@@ -68,13 +77,18 @@ class LostSpotFinder {
                             const std::vector<CodedObservation>& observations,
                             const std::vector<TriangulatedPoint>& points) const;
   bool NearDetectedSpot(const Eigen::Vector2d& px, double radius) const;
+  /// Whether a point of the cells one ring beyond ring_ lies farther than `limit_px` from
+  /// where `map` puts it.
+  bool StepNearby(const Eigen::Matrix<double, 3, 2>& map, double limit_px,
+                  const std::vector<CodedObservation>& observations,
+                  const std::vector<TriangulatedPoint>& points) const;
 
   ElementMesh grid_;  ///< the mesh's element grid (no triangles: its neighbours are below)
   NeighbourLists neighbours_;
   int array_rows_, array_cols_;
   LostSpotOptions options_;
-  std::vector<int> point_of_;      ///< per grid cell: index into the points, −1 none
-  mutable std::vector<int> ring_;  ///< Look's buffer
+  std::vector<int> point_of_;              ///< per grid cell: index into the points, −1 none
+  mutable std::vector<int> ring_, outer_;  ///< Look's buffers
   // The binariser's spots bucketed by kSpotCell px squares (CSR), rebuilt per frame.
   std::vector<int> spot_start_;
   std::vector<Eigen::Vector2d> spot_px_;
