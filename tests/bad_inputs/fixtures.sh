@@ -141,6 +141,7 @@ scenario_with incl_noise.json 'inclinometer={"noise_deg": 5}'
 printf 'VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\nVERTEX_SE3:QUAT 1 1 0 0 0 0 0 1\nVERTEX_SE3:QUAT 2 2 0 0 0 0 0 1\nEDGE_SE3:QUAT 0 1 1 0 0 1 0.001 0 0 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\nEDGE_SE3:QUAT 1 2 1 0 0 0.9999 0.01 0 0 1 0 0 0 0 0 1 0 0 0 0 1 0 0 0 1 0 0 1 0 1\n' >wxyz.g2o
 scenario_with crack_long.json 'pipe.features.0={"id": "K1", "type": "crack", "station_mm": 600, "clock_h": 3, "length_mm": 5000, "width_mm": 1, "depth_mm": 2}'
 scenario_with deposit_crown.json 'pipe.features.0={"id": "D1", "type": "deposit", "station_mm": 300, "clock_h": 12, "length_mm": 100, "height_mm": 10}'
+scenario_with wet_no_width.json 'pipe.features.0={"id": "W1", "type": "wet", "station_mm": 300, "clock_h": 6, "length_mm": 100}'
 # Scene files: a frame's scene.json with its render options or features broken.
 scene_with() { json_with frame8/scene.json "$@"; }
 "$S" simulate frame --module m/module.json --scene pipe-wall --supersampling 1 --out fpw >/dev/null

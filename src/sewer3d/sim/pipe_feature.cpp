@@ -1,5 +1,6 @@
 #include "sewer3d/sim/pipe_feature.hpp"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,6 +8,18 @@
 #include "sewer3d/core/check.hpp"
 
 namespace sewer3d {
+namespace {
+
+// How far a wet patch's film reaches from its centre along and around the pipe: its ragged
+// margin moves the rounded rectangle's edge out by kWetRaggedMm at the shorter side, scaled
+// with the side.
+Eigen::Vector2d WetReachMm(const PipeFeature& f) {
+  const double shorter = 0.5 * std::min(f.length_mm, f.width_mm);
+  return 0.5 * Eigen::Vector2d(f.length_mm, f.width_mm) * (1.0 + kWetRaggedMm / shorter);
+}
+
+}  // namespace
+
 const char* PipeFeatureTypeName(PipeFeature::Type type) {
   switch (type) {
     case PipeFeature::Type::kConnection:
@@ -23,14 +36,16 @@ const char* PipeFeatureTypeName(PipeFeature::Type type) {
       return "pit";
     case PipeFeature::Type::kJointStep:
       return "joint";
+    case PipeFeature::Type::kWet:
+      return "wet";
   }
   return "connection";
 }
 
 std::optional<PipeFeature::Type> PipeFeatureTypeFromName(const std::string& name) {
   using T = PipeFeature::Type;
-  for (const T t :
-       {T::kConnection, T::kSpalling, T::kCrack, T::kDeposit, T::kBump, T::kPit, T::kJointStep}) {
+  for (const T t : {T::kConnection, T::kSpalling, T::kCrack, T::kDeposit, T::kBump, T::kPit,
+                    T::kJointStep, T::kWet}) {
     if (name == PipeFeatureTypeName(t)) return t;
   }
   return std::nullopt;
@@ -69,6 +84,10 @@ void PipeFeature::Check() const {
     case Type::kPit:
       ValidatePositive("radius_mm", radius_mm);
       break;
+    case Type::kWet:
+      ValidatePositive("length_mm", length_mm);
+      ValidatePositive("width_mm", width_mm);
+      break;
     case Type::kJointStep:
       break;
   }
@@ -100,6 +119,8 @@ double PipeFeatureReachMm(const PipeFeature& f) {
     case PipeFeature::Type::kSpalling:
     case PipeFeature::Type::kCrack:
       return 0.5 * f.length_mm + f.width_mm + kFeatureEdgeMm;
+    case PipeFeature::Type::kWet:
+      return WetReachMm(f).x();
     case PipeFeature::Type::kPit:
       return f.radius_mm;
     case PipeFeature::Type::kBump:
@@ -172,8 +193,29 @@ double PipeFeatureDisplacementMm(const PipeFeature& f, double ds, double dclock,
       if (std::abs(ds) <= 0.5 * f.gap_mm) d -= f.depth_mm;
       return d;
     }
+    case PipeFeature::Type::kWet:
+      return 0.0;  // a film has no thickness that counts here
   }
   return 0.0;
+}
+
+double PipeFeatureWetCover(const PipeFeature& f, double ds, double dclock, double radius,
+                           std::uint64_t noise_seed) {
+  if (f.type != PipeFeature::Type::kWet) return 0.0;
+  const double arc = dclock * radius;
+  const Eigen::Vector2d reach = WetReachMm(f);
+  if (std::abs(ds) >= reach.x() || std::abs(arc) >= reach.y()) return 0.0;
+  // Distance outside the rounded rectangle (superellipse, as spalling) in mm at its shorter
+  // side, its line moved by up to ±kWetRaggedMm (a seeping patch's margin is ragged); the
+  // film thins out over the last 2 mm inside it.
+  const double half_l = 0.5 * f.length_mm, half_w = 0.5 * f.width_mm;
+  const double u = ds / half_l, v = arc / half_w;
+  const double q = std::pow(std::pow(u, 4) + std::pow(v, 4), 0.25);
+  const double noise = SmoothNoise(noise_seed + 41, ds / 8.0, arc / 8.0, 2);  // mostly 0.25–0.75
+  const double ragged = kWetRaggedMm * std::clamp(4.0 * (noise - 0.5), -1.0, 1.0);
+  const double outside = (q - 1.0) * std::min(half_l, half_w) + ragged;
+  constexpr double kThinningMm = 2.0;
+  return 1.0 - SmoothStep(outside / kThinningMm + 0.5);
 }
 
 }  // namespace sewer3d

@@ -33,6 +33,10 @@ struct PipeFeature {
     /// offset · cos(clock − clock₀)); pipe-wall scenes. A pipe world's joints are PipeJoint,
     /// between its sections.
     kJointStep,
+    /// A water film on the wall (infiltration seeping through it, EN 13508-2 BBF A; a wetted
+    /// invert): no displacement; the renderer adds its gloss (wet_film.hpp). Pipe worlds and
+    /// pipe-wall scenes.
+    kWet,
   };
   Type type = Type::kConnection;
   std::string id = {};        ///< name in truth files (scenario features: F1, F2, … unless given)
@@ -41,8 +45,8 @@ struct PipeFeature {
   double diameter_mm = 0.0;   ///< connection: inner diameter of the lateral pipe
   double wall_mm = 0.0;       ///< connection: wall thickness of the lateral pipe
   double intrusion_mm = 0.0;  ///< connection: how far the lateral's end protrudes (BAG)
-  double length_mm = 0.0;     ///< spalling / crack / deposit: extent along the pipe
-  double width_mm = 0.0;      ///< spalling: extent around the pipe; crack: opening
+  double length_mm = 0.0;     ///< spalling / crack / deposit / wet: extent along the pipe
+  double width_mm = 0.0;      ///< spalling / wet: extent around the pipe; crack: opening
   double depth_mm = 0.0;      ///< spalling / crack / pit: depth into the wall; joint step: gap
   double height_mm = 0.0;     ///< deposit: height above the invert (BBC); bump: height
   double angle_deg = 0.0;     ///< crack: direction on the unrolled wall (0 = along the pipe)
@@ -61,7 +65,7 @@ struct PipeFeature {
 };
 
 /// The feature kind's name in scene and scenario files: "connection", "spalling", "crack",
-/// "deposit", "bump", "pit", "joint".
+/// "deposit", "bump", "pit", "joint", "wet".
 const char* PipeFeatureTypeName(PipeFeature::Type type);
 
 /// The kind a scene or scenario file names `name`; nullopt for an unknown name.
@@ -83,8 +87,17 @@ double PipeFeatureDisplacementMm(const PipeFeature& f, double ds_mm, double dclo
                                  double radius_mm, std::uint64_t noise_seed,
                                  std::optional<Material>* own_material);
 
+/// Cover (0 dry … 1) of a wet feature's film at a wall point `ds_mm` along the pipe from its
+/// station and `dclock_rad` around from its clock: a rounded rectangle whose margin thins out
+/// over 2 mm along an irregular line (`noise_seed`); 0 for the other kinds.
+double PipeFeatureWetCover(const PipeFeature& f, double ds_mm, double dclock_rad, double radius_mm,
+                           std::uint64_t noise_seed);
+
 /// Width (mm) of the smoothed edges of the pipe world's features and joint gaps.
 inline constexpr double kFeatureEdgeMm = 0.4;
+
+/// A wet patch's ragged margin: its line wanders ±this (mm) about the rounded rectangle.
+inline constexpr double kWetRaggedMm = 3.0;
 
 /// 0 below −½, 1 above ½, smooth (cubic) in between: the edge profile of features.
 inline double SmoothStep(double x) {
@@ -128,6 +141,23 @@ double AddPipeFeatures(double displacement_mm, std::span<const PipeFeature> feat
     }
   }
   return displacement_mm;
+}
+
+/// The water film's cover (0 dry … 1, the most of any wet feature's) at the wall point
+/// (station_mm, clock_rad()) of a wall of nominal radius `radius_mm`; clock_rad() as for
+/// AddPipeFeatures.
+template <typename ClockRad>
+double WetCover(std::span<const PipeFeature> features, std::uint64_t material_seed,
+                double radius_mm, double station_mm, ClockRad&& clock_rad) {
+  double cover = 0.0;
+  for (std::size_t k = 0; k < features.size(); ++k) {
+    const PipeFeature& f = features[k];
+    const double ds = station_mm - f.station_mm;
+    if (f.type != PipeFeature::Type::kWet || std::abs(ds) > PipeFeatureReachMm(f)) continue;
+    const double dclock = WrapAngle(clock_rad() - ClockHoursToRad(f.clock_h));
+    cover = std::max(cover, PipeFeatureWetCover(f, ds, dclock, radius_mm, material_seed + k));
+  }
+  return cover;
 }
 
 }  // namespace sewer3d

@@ -36,6 +36,40 @@ TEST(PipeFeature, ProfilesAtTheirCentreAndEdges) {
   EXPECT_NEAR(At(joint, 10.0, std::numbers::pi / 2), 0.0, 1e-12);  // a quarter turn away
 }
 
+// A wet patch: a film without shape, full inside its rounded rectangle, none beyond its
+// ragged margin (±3 mm at the shorter side, ±4.5 mm at the 1.5× longer one), thinning in
+// between.
+TEST(PipeFeature, AWetPatchIsAFilmWithoutShape) {
+  const PipeFeature wet{
+      .type = Type::kWet, .station_mm = 100.0, .length_mm = 40.0, .width_mm = 60.0};
+  const double r = 150.0;
+  const auto cover = [&](double ds, double arc) {
+    return PipeFeatureWetCover(wet, ds, arc / r, r, 7);
+  };
+  EXPECT_EQ(At(wet, 0.0), 0.0);
+  EXPECT_DOUBLE_EQ(cover(0.0, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(cover(14.0, 20.0), 1.0);  // 5 mm in from both sides: beyond the margin
+  for (const auto& [ds, arc] : {std::pair{23.0, 0.0}, {-23.0, 0.0}, {0.0, 34.5}, {0.0, -34.5}}) {
+    EXPECT_EQ(cover(ds, arc), 0.0) << ds << ", " << arc;  // beyond the margin
+  }
+  EXPECT_EQ(PipeFeatureReachMm(wet), 20.0 * (1.0 + 3.0 / 20.0));
+  // Along the side the margin wanders: the cover at the nominal edge takes many values.
+  double low = 1.0, high = 0.0;
+  for (double arc = -25.0; arc <= 25.0; arc += 0.5) {
+    low = std::min(low, cover(20.0, arc));
+    high = std::max(high, cover(20.0, arc));
+  }
+  EXPECT_LT(low, 0.2);
+  EXPECT_GT(high, 0.8);
+  // Only wet features make a film, the most of any that covers the point.
+  const PipeFeature pit{.type = Type::kPit, .depth_mm = 4.0, .radius_mm = 10.0};
+  const std::vector<PipeFeature> features = {pit, wet};
+  EXPECT_DOUBLE_EQ(WetCover(features, 7, r, 100.0, [] { return 0.0; }), 1.0);
+  EXPECT_EQ(WetCover(features, 7, r, 200.0, [] { return 0.0; }), 0.0);
+  EXPECT_EQ(PipeFeatureTypeFromName("wet"), Type::kWet);
+  EXPECT_THROW((PipeFeature{.type = Type::kWet, .length_mm = 10.0}.Check()), InvalidValue);
+}
+
 TEST(PipeFeature, ConnectionAndDepositBringTheirMaterial) {
   const std::vector<PipeFeature> features{{.type = Type::kConnection,
                                            .station_mm = 0.0,

@@ -100,9 +100,9 @@ void PipeWorld::Check() const {
     const std::string field = "features[" + std::to_string(i) + "].";
     using T = PipeFeature::Type;
     SEWER3D_VALIDATE(f.type == T::kConnection || f.type == T::kSpalling || f.type == T::kCrack ||
-                         f.type == T::kDeposit,
+                         f.type == T::kDeposit || f.type == T::kWet,
                      field + "type",
-                     "must be connection, spalling, crack or deposit, got "
+                     "must be connection, spalling, crack, deposit or wet, got "
                          << PipeFeatureTypeName(f.type)
                          << " (bump, pit and joint belong to pipe-wall scenes; a pipe's joints "
                             "go in \"joints\")");
@@ -152,6 +152,7 @@ void PipeWorld::CheckFeatureOnPipe(const PipeFeature& f, const std::string& fiel
       break;
     }
     case PipeFeature::Type::kSpalling:
+    case PipeFeature::Type::kWet:
       from -= 0.5 * f.length_mm;
       to += 0.5 * f.length_mm;
       break;
@@ -164,7 +165,7 @@ void PipeWorld::CheckFeatureOnPipe(const PipeFeature& f, const std::string& fiel
   if (f.type == PipeFeature::Type::kCrack) {
     around = f.length_mm * std::abs(std::sin(DegToRad(f.angle_deg))) +
              f.width_mm * std::abs(std::cos(DegToRad(f.angle_deg)));
-  } else if (f.type == PipeFeature::Type::kSpalling) {
+  } else if (f.type == PipeFeature::Type::kSpalling || f.type == PipeFeature::Type::kWet) {
     around = f.width_mm;
   }
   SEWER3D_VALIDATE(around <= circumference,
@@ -408,7 +409,10 @@ std::optional<SurfaceHit> PipeGeometry::Intersect(const Eigen::Vector3d& origin,
   Eigen::Vector3d normal = -gradient.normalized();
   if (!normal.allFinite()) normal = -d;
   hit.normal = normal.dot(d) < 0.0 ? normal : -normal;
-  hit.surface_mm = {at.clock_rad * 0.5 * world_.sections[at.section].diameter_mm, at.station_mm};
+  const double radius_at = 0.5 * world_.sections[at.section].diameter_mm;
+  hit.surface_mm = {at.clock_rad * radius_at, at.station_mm};
+  hit.film = WetCover(world_.features, world_.material_seed, radius_at, at.station_mm,
+                      [&at] { return at.clock_rad; });
   return hit;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
 
 namespace sewer3d {
@@ -148,6 +149,35 @@ TEST(PipeWorld, FeaturesDisplaceTheWall) {
   const double spall = WallDistance(pipe, 1700.0, 12.0);
   EXPECT_GT(spall, 150.0 + 0.6 * 5.0 - 1e-6);
   EXPECT_LT(spall, 150.0 + 1.4 * 5.0 + 1e-6);
+}
+
+// A wet patch wets the wall where it lies and leaves its shape alone.
+TEST(PipeWorld, AWetPatchWetsTheWallOnly) {
+  PipeWorld w;
+  w.sections = {{.length_mm = 2000.0, .diameter_mm = 300.0}};
+  w.features = {{.type = PipeFeature::Type::kWet,
+                 .id = "W1",
+                 .station_mm = 800.0,
+                 .clock_h = 9.0,
+                 .length_mm = 200.0,
+                 .width_mm = 150.0}};
+  const PipeGeometry pipe(w);
+  const auto film = [&](double station, double clock_h) {
+    const auto hit = pipe.Intersect({0.0, 0.0, station}, ClockDirection(ClockHoursToRad(clock_h)));
+    return hit ? hit->film : -1.0;
+  };
+  EXPECT_EQ(film(800.0, 9.0), 1.0);
+  EXPECT_EQ(film(880.0, 9.5), 1.0);  // 80 of 100 mm along, 39 of 75 mm around
+  EXPECT_EQ(film(800.0, 3.0), 0.0);
+  EXPECT_EQ(film(1000.0, 9.0), 0.0);
+  EXPECT_NEAR(WallDistance(pipe, 800.0, 9.0), 150.0, 1e-6);
+  w.features[0].width_mm = 0.0;
+  try {
+    w.Check();
+    FAIL() << "a wet patch without width passed";
+  } catch (const InvalidValue& e) {
+    EXPECT_EQ(e.field(), "features[0].width_mm");
+  }
 }
 
 TEST(PipeWorld, PathFrameIsContinuousAcrossJoints) {

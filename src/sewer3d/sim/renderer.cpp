@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/core/units.hpp"
@@ -106,6 +107,26 @@ bool InProjectorShadow(const Surface& surface, const Eigen::Vector3d& projector_
   return blocker && blocker->t < 1.0 - kShadowToleranceMm / ray.norm();
 }
 
+// The water film at a hit seen from `to_eye` (unit): dry, it changes nothing.
+struct Film {
+  const WetFilmOptions& options;
+  const SurfaceHit& hit;
+  Eigen::Vector3d to_eye;
+  double diffuse_gain = 1.0;  // of the albedo
+  double ambient = 0.0;       // signal per ambient level
+  Film(const WetFilmOptions& o, const SurfaceHit& h, const Eigen::Vector3d& eye)
+      : options(o), hit(h), to_eye(eye) {
+    if (h.film <= 0.0) return;
+    diffuse_gain = 1.0 - o.darkening * h.film;
+    ambient = 2.0 * h.film * FilmAmbientReflectance(o, std::max(0.0, h.normal.dot(eye)));
+  }
+  // Signal per unit of a light's level arriving from `to_light` (unit).
+  [[nodiscard]] double Specular(const Eigen::Vector3d& to_light) const {
+    if (hit.film <= 0.0) return 0.0;
+    return 2.0 * std::numbers::pi * hit.film * FilmBrdf(options, hit.normal, to_light, to_eye);
+  }
+};
+
 struct Sample {
   double pattern = 0.0;
   Eigen::Vector3d texture = Eigen::Vector3d::Zero();
@@ -143,7 +164,11 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
           ? hit->albedo
           : MaterialAlbedo(hit->material, s.surface.MaterialSeed(), hit->surface_mm);
   out.albedo = albedo;
-  const double grey = albedo.mean();
+  // A water film darkens the wall and adds its specular lobe; in signal units a diffuse
+  // albedo a gives a / 0.5 of a light's level, a BRDF f gives 2π f of it.
+  const Film film(o.wet_film, *hit, (origin - hit->point).normalized());
+  const Eigen::Vector3d diffuse = albedo * film.diffuse_gain / 0.5;
+  const double grey = albedo.mean() * film.diffuse_gain;
   const double vignetting = o.vignetting ? std::pow(cos_alpha, 4) : 1.0;
   if (o.images != RenderImages::kPattern) {
     // Texture light: a ring around the camera pupil, treated as a point source there whose
@@ -153,7 +178,9 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
     const double cos_light = std::max(0.0, hit->normal.dot(to_light) / d_light);
     const double falloff = std::pow(kReferenceDistanceMm / d_light, 2) * cos_light;
     const Eigen::Vector3d light = o.texture_level * falloff * RingLight(o, -to_light.z() / d_light);
-    out.texture = (albedo / 0.5).cwiseProduct(light + Eigen::Vector3d::Constant(o.ambient_level));
+    out.texture = diffuse.cwiseProduct(light + Eigen::Vector3d::Constant(o.ambient_level)) +
+                  film.Specular(to_light / d_light) * light +
+                  Eigen::Vector3d::Constant(film.ambient * o.ambient_level);
     if (o.vignetting) {
       const Eigen::Vector3d shading(std::pow(cos_alpha, 4 + o.color_shading.x()),
                                     std::pow(cos_alpha, 4 + o.color_shading.y()),
@@ -167,7 +194,7 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
   const Eigen::Vector3d p_rig = hit->point - rig_shift;
   const Eigen::Vector3d p_projector =
       s.projector_rotation * p_rig + s.module.projector_from_camera.translation;
-  double pattern = o.ambient_level;
+  double pattern = o.ambient_level, specular = o.ambient_level * film.ambient;
   const auto uv = s.projector.Project(p_projector);
   const auto& pi = s.module.projector;
   if (uv && uv->x() >= -0.5 && uv->y() >= -0.5 && uv->x() <= pi.width - 0.5 &&
@@ -191,11 +218,13 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
     const Eigen::Vector2d element_uv = *uv + s.projector_residual.ShiftPx(pi, *uv);
     const double spot = s.SpotProfile(element_uv, sigma);
     if (spot > 0.0 && !InProjectorShadow(s.surface, projector_centre, hit->point)) {
-      pattern +=
+      const double irradiance =
           o.pattern_level * spot * lens * std::pow(kReferenceDistanceMm / d_projector, 2) * cos_in;
+      pattern += irradiance;
+      specular += film.Specular(to_projector / d_projector) * irradiance;
     }
   }
-  out.pattern = (grey / 0.5) * pattern * vignetting;
+  out.pattern = ((grey / 0.5) * pattern + specular) * vignetting;
   return out;
 }
 
@@ -299,6 +328,7 @@ void RenderOptions::Check() const {
                        std::isfinite(motion_direction.norm()),
                    "motion_direction", "must be a finite, non-zero direction");
   spot_errors.Check();
+  wet_film.Check();
   SEWER3D_VALIDATE(sensor.bits >= 8 && sensor.bits <= 12, "bits",
                    "must be 8..12, got " << sensor.bits);
   SEWER3D_VALIDATE(sensor.full_well_e > 0.0 && sensor.full_well_e <= 1e7, "full_well_e",

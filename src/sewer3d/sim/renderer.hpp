@@ -20,6 +20,7 @@
 #include "sewer3d/sim/sensor.hpp"
 #include "sewer3d/sim/spot_errors.hpp"
 #include "sewer3d/sim/surface.hpp"
+#include "sewer3d/sim/wet_film.hpp"
 
 namespace sewer3d {
 
@@ -66,6 +67,8 @@ struct RenderOptions {
   /// The projector's and the wall's errors beyond ideal optics (none by default; the `paper`
   /// realism profile sets them, docs/simulator.md "Error sources").
   SpotErrors spot_errors;
+  /// The water film where a surface is wet (SurfaceHit::film; dry surfaces ignore it).
+  WetFilmOptions wet_film;
   std::uint64_t seed = 1;
 
   void Check() const;

@@ -109,9 +109,9 @@ void Scene::Check() const {
     const std::string field = "features[" + std::to_string(i) + "].";
     SEWER3D_VALIDATE(
         ft.type == T::kJointStep || ft.type == T::kBump || ft.type == T::kPit ||
-            ft.type == T::kCrack,
+            ft.type == T::kCrack || ft.type == T::kWet,
         field + "type",
-        "must be joint, bump, pit or crack, got "
+        "must be joint, bump, pit, crack or wet, got "
             << PipeFeatureTypeName(ft.type)
             << " (connections, spalling and deposits need a pipe world: simulate run)");
     CheckWithin(field, [&] { ft.CheckInPipe(diameter_mm); });
@@ -221,6 +221,8 @@ std::optional<SurfaceHit> Intersect(const Scene& scene, const Eigen::Vector3d& o
   hit.normal = normal.dot(d) < 0 ? normal : -normal;
   hit.surface_mm = {clock * f.radius, station};
   hit.material = scene.material;
+  hit.film =
+      WetCover(scene.features, scene.material_seed, f.radius, station, [clock] { return clock; });
   return hit;
 }
 

@@ -47,6 +47,8 @@ struct SurfaceHit {
   Material material = Material::kConcrete;  ///< what the surface is made of there
   /// Albedo given by the surface itself (a printed target); NaN: from the material.
   Eigen::Vector3d albedo = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  /// Cover of a water film there, 0 (dry) … 1: a specular layer over the wall (wet_film.hpp).
+  double film = 0.0;
 };
 
 /// First intersection with t > 0 of origin + t * direction; nullopt when the ray misses.

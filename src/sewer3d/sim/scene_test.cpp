@@ -89,6 +89,17 @@ TEST(Scene, TakesTheWallFeaturesItCanRender) {
   }
   s.features[0].depth_mm = 1.0;
   EXPECT_NO_THROW(s.Check());
+  // A wet patch: the same wall, wetted where it lies.
+  s.diameter_mm = 300.0;
+  s.features.push_back({.type = PipeFeature::Type::kWet, .length_mm = 40.0, .width_mm = 40.0});
+  EXPECT_NO_THROW(s.Check());
+  const auto wet = Intersect(s, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.05, 0.0, 1.0));
+  const auto dry = Intersect(s, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, 0.5, 1.0));
+  ASSERT_TRUE(wet && dry);
+  EXPECT_EQ(wet->film, 1.0);
+  EXPECT_EQ(dry->film, 0.0);
+  EXPECT_NEAR(wet->point.norm(), 150.0, 1e-6);  // beside the crack: no shape of its own
+  s.features.pop_back();
   s.features.push_back({.type = PipeFeature::Type::kDeposit, .length_mm = 50.0, .height_mm = 5.0});
   try {
     s.Check();

@@ -127,6 +127,7 @@ std::vector<TrueItem> TrueItems(const PipeGeometry& g) {
                      100.0 * (theta - std::sin(theta)) / (2.0 * std::numbers::pi), 0.0}};
         break;
       }
+      case PipeFeature::Type::kWet:  // no shape to measure: infiltration shows in the texture
       default:
         continue;
     }

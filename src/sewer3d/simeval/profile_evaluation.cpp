@@ -59,6 +59,7 @@ bool IsCleanStation(const PipeGeometry& truth, double true_station_mm, double ma
     if (std::abs(true_station_mm - joint) <= half_gap + margin_mm) return false;
   }
   for (const PipeFeature& f : world.features) {
+    if (f.type == PipeFeature::Type::kWet) continue;  // a film leaves the wall's shape alone
     // A deposit runs from its station over its length; the others reach both ways.
     const bool deposit = f.type == PipeFeature::Type::kDeposit;
     const double from = deposit ? f.station_mm : f.station_mm - PipeFeatureReachMm(f);

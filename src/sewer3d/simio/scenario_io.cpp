@@ -77,6 +77,9 @@ json WorldJson(const PipeWorld& w) {
       case PipeFeature::Type::kSpalling:
         o.update({{"length_mm", f.length_mm}, {"width_mm", f.width_mm}, {"depth_mm", f.depth_mm}});
         break;
+      case PipeFeature::Type::kWet:
+        o.update({{"length_mm", f.length_mm}, {"width_mm", f.width_mm}});
+        break;
       case PipeFeature::Type::kCrack:
         o.update({{"length_mm", f.length_mm},
                   {"width_mm", f.width_mm},
@@ -149,7 +152,8 @@ PipeWorld ReadWorld(const JsonReader& in, const json& j) {
     const std::string type = in.Text(o, "type", p, "");
     const auto kind = PipeFeatureTypeFromName(type);
     if (!kind)
-      in.Fail(p + "type", "must be connection, spalling, crack or deposit, got '" + type + "'");
+      in.Fail(p + "type",
+              "must be connection, spalling, crack, deposit or wet, got '" + type + "'");
     f.type = *kind;  // PipeWorld::Check rejects the kinds only a pipe-wall scene takes
     f.id = in.Text(o, "id", p, fmt::format("F{}", i + 1));
     if (f.id.empty()) in.Fail(p + "id", "must not be empty (truth files name features by id)");

@@ -56,7 +56,7 @@ PipeFeature ParseSceneFeature(const JsonReader& in, const json& f, const std::st
   PipeFeature ft;
   const std::string kind = in.Text(f, "type", prefix, "");
   const auto type = PipeFeatureTypeFromName(kind);
-  if (!type) in.Fail(prefix + "type", "must be joint, bump, pit or crack, got '" + kind + "'");
+  if (!type) in.Fail(prefix + "type", "must be joint, bump, pit, crack or wet, got '" + kind + "'");
   ft.type = *type;  // Scene::Check rejects the kinds only a pipe world takes
   ft.station_mm = in.Number(f, "station_mm", prefix, 0.0);
   // The file's angle, in the file's unit: Scene::Check's ±12 h would name clock_h.
@@ -333,6 +333,9 @@ nlohmann::json RenderOptionsToJson(const RenderOptions& o) {
           {"bits", o.sensor.bits},
           {"noise", o.sensor.noise},
           {"color_filter", ColorFilterName(o.sensor.color_filter)},
+          {"wet_film_roughness", o.wet_film.roughness},
+          {"wet_film_refractive_index", o.wet_film.refractive_index},
+          {"wet_film_darkening", o.wet_film.darkening},
           {"spot_placement_sigma_px", o.spot_errors.placement_sigma_px},
           {"spot_gain_sigma", o.spot_errors.gain_sigma},
           {"speckle_contrast", o.spot_errors.speckle_contrast},
@@ -396,6 +399,9 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
                 "bits",
                 "noise",
                 "color_filter",
+                "wet_film_roughness",
+                "wet_film_refractive_index",
+                "wet_film_darkening",
                 "realism",
                 "spot_placement_sigma_px",
                 "spot_gain_sigma",
@@ -440,6 +446,10 @@ void ReadRenderOptions(const JsonReader& in, const nlohmann::json& j, const std:
   const auto parsed = ParseColorFilter(filter);
   if (!parsed) in.Fail(p + "color_filter", "must be none or RGGB, got '" + filter + "'");
   o.sensor.color_filter = *parsed;
+  WetFilmOptions& film = o.wet_film;
+  film.roughness = in.Number(j, "wet_film_roughness", p, film.roughness);
+  film.refractive_index = in.Number(j, "wet_film_refractive_index", p, film.refractive_index);
+  film.darkening = in.Number(j, "wet_film_darkening", p, film.darkening);
   // A realism profile first, then any of its values given beside it (in any order) over it.
   if (j.contains("realism")) {
     const std::string name = in.Text(j, "realism", p, "ideal");

@@ -196,6 +196,9 @@ void WriteFeatureTruth(const std::filesystem::path& path, const PipeGeometry& pi
       case PipeFeature::Type::kCrack:
         o["code"] = "BAB";
         break;
+      case PipeFeature::Type::kWet:
+        o["code"] = "BBF";  // infiltration; a wet patch is its first grade, seeping (A)
+        break;
       case PipeFeature::Type::kDeposit: {
         // Share of the cross-section the deposit fills: the circular segment of height h.
         const double r = 0.5 * dn, h = f.height_mm, theta = 2.0 * std::acos((r - h) / r);
