@@ -75,13 +75,15 @@ BENCHMARK(BM_ConnectedComponentsOpenCV)->Unit(benchmark::kMillisecond);
 // Argument 0: over the module's element mesh with holes drawn to the midpoints (the default);
 // 1: the Delaunay triangles of the points (bridge_lost_spots), as before session 43; 2: the
 // element mesh, holes from the last spots seen (session 43); 3: as 0 without the search for
-// lost spots (LostSpotOptions::enabled, session 57).
+// lost spots (LostSpotOptions::enabled, session 57); 4: as 0 without dropping the spots a step
+// cut (CutSpotOptions::enabled, session 58).
 void BM_ReconstructFrame(benchmark::State& state) {
   const cv::Mat1b& image = PatternImage();
   FrameReconstructionOptions options;
   options.bridge_lost_spots = state.range(0) == 1;
   options.holes_to_midpoints = state.range(0) != 2;
   options.lost_spots.enabled = state.range(0) != 3;
+  options.cut_spots.enabled = state.range(0) != 4;
   FrameReconstructor reconstructor(MakeDefaultModule({}), DefaultPatternArray(),
                                    PatternConstraints{}, options);
   FrameReport last;
@@ -95,9 +97,16 @@ void BM_ReconstructFrame(benchmark::State& state) {
   state.counters["triangulate_ms"] = last.seconds.triangulate * 1e3;  // with outlier rejection
   state.counters["lost_spots_ms"] = last.seconds.lost_spots * 1e3;
   state.counters["lost_spots"] = last.lost_spots_found;
+  state.counters["cut_by_step"] = last.rejected.cut_by_step;
   state.counters["depth_map_ms"] = last.seconds.depth_map * 1e3;
 }
-BENCHMARK(BM_ReconstructFrame)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReconstructFrame)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(3)
+    ->Arg(4)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace sewer3d

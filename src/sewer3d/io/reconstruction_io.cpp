@@ -45,6 +45,7 @@ void WriteFrameReport(const std::filesystem::path& path, const FrameReport& r,
                         {"no_tile_on_epipolar_line", r.rejected.no_tile_on_epipolar_line},
                         {"several_tiles_fit", r.rejected.several_tiles_fit},
                         {"element_claimed_twice", r.rejected.element_claimed_twice},
+                        {"cut_by_step", r.rejected.cut_by_step},
                         {"depth_outlier_or_isolated", r.rejected.depth_outlier_or_isolated},
                         {"not_of_module", r.rejected.not_of_module}};
   report["epipolar_tolerance_px"] = r.epipolar_tolerance_px;

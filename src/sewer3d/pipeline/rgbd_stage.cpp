@@ -66,6 +66,15 @@ json DecoderOptionsJson(const DecoderOptions& d) {
           {"prediction_depth_mm", d.prediction_depth_mm}};
 }
 
+json CutSpotOptionsJson(const CutSpotOptions& o) {
+  if (!o.enabled) return {{"enabled", false}};
+  return {{"enabled", true},
+          {"max_fit_px", o.max_fit_px},
+          {"max_fit_tolerance", o.max_fit_tolerance},
+          {"min_neighbours", o.min_neighbours},
+          {"area_fraction", o.area_fraction}};
+}
+
 json LostSpotOptionsJson(const LostSpotOptions& o) {
   if (!o.enabled) return {{"enabled", false}};
   return {{"enabled", true},
@@ -190,6 +199,7 @@ std::string RgbdOptionsJson(const RgbdStageOptions& options) {
                    {{"radius_px", r.outliers.radius_px},
                     {"min_step_mm", r.outliers.min_step_mm},
                     {"fraction", r.outliers.fraction}}},
+                  {"cut_spots", CutSpotOptionsJson(r.cut_spots)},
                   {"lost_spots", LostSpotOptionsJson(r.lost_spots)},
                   {"color", RgbdColorSource(options.colour)},
                   {"colour", json::parse(RgbdColourOptionsJson(options.colour))}};

@@ -6,6 +6,7 @@
 
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/decode/niblack.hpp"
+#include "sewer3d/triangulate/element_pixel_map.hpp"
 
 namespace sewer3d {
 namespace {
@@ -80,35 +81,13 @@ std::optional<LostSpotFinder::Found> LostSpotFinder::Look(
     const std::vector<TriangulatedPoint>& points) const {
   // The points among the element's mesh neighbours and theirs: a patch's edge has points on
   // one side only, three or so among the neighbours.
-  ring_.clear();
+  TwoRing(neighbours_, cell, ring_);
   const auto [first, last] = neighbours_.Of(cell);
-  for (const int* j = first; j != last; ++j) {
-    ring_.push_back(*j);
-    const auto [first2, last2] = neighbours_.Of(*j);
-    ring_.insert(ring_.end(), first2, last2);
-  }
-  std::sort(ring_.begin(), ring_.end());
-  ring_.erase(std::unique(ring_.begin(), ring_.end()), ring_.end());
-  const auto count = static_cast<Eigen::Index>(ring_.size());
-  Eigen::Matrix<double, Eigen::Dynamic, 3> elements(count, 3);
-  Eigen::Matrix<double, Eigen::Dynamic, 2> pixels(count, 2);
-  int n = 0;
-  for (const int j : ring_) {
-    if (j == cell || point_of_[j] < 0) continue;
-    const TriangulatedPoint& p = points[point_of_[j]];
-    elements.row(n) << p.col, p.row, 1.0;
-    pixels.row(n) = observations[p.observation].camera_px.transpose();
-    ++n;
-  }
-  elements.conservativeResize(n, 3);
-  pixels.conservativeResize(n, 2);
-  // Affine map from element (column, row) to camera pixel, least squares.
-  const Eigen::Matrix3d normal = elements.transpose() * elements;
-  const Eigen::FullPivLU<Eigen::Matrix3d> lu(normal);
-  if (lu.rank() < 3) return std::nullopt;  // neighbours on one line
-  const Eigen::Matrix<double, 3, 2> map = lu.solve(elements.transpose() * pixels);
+  const auto fit = FitElementPixelMap(ring_, point_of_, points, observations);
+  if (!fit) return std::nullopt;
+  const Eigen::Matrix<double, 3, 2>& map = fit->map;
   const double max_fit = std::max(options_.max_fit_px, options_.max_fit_tolerance * tolerance_px);
-  if ((elements * map - pixels).rowwise().norm().maxCoeff() > max_fit) return std::nullopt;
+  if (fit->max_residual_px > max_fit) return std::nullopt;
   if (StepNearby(map, options_.step_fits * max_fit, observations, points)) return std::nullopt;
   const int r = grid_.row0 + cell / grid_.cols, c = grid_.col0 + cell % grid_.cols;
   const Eigen::Vector2d at = (Eigen::RowVector3d(c, r, 1.0) * map).transpose();

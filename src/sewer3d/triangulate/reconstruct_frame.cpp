@@ -30,6 +30,7 @@ void FrameReconstructionOptions::Check() const {
   decoder.lattice.Check();
   triangulation.Check();
   outliers.Check();
+  cut_spots.Check();
   lost_spots.Check();
   ValidatePositive("max_edge_steps", max_edge_steps);
   for (const auto& [field, value] :
@@ -87,6 +88,7 @@ FrameReconstructor::FrameReconstructor(const ModuleDescription& module, const Bi
       decoder_(module, pattern, constraints, options.decoder),
       triangulator_(module, pattern.rows, pattern.cols, options.triangulation),
       mesh_(MeshLitElements(module, pattern)),
+      mesh_neighbours_(MeshNeighbours(mesh_)),
       lost_spots_(mesh_, pattern.rows, pattern.cols, options.lost_spots) {}
 
 FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image,
@@ -106,6 +108,11 @@ FrameReconstruction FrameReconstructor::Reconstruct(const cv::Mat& pattern_image
       RejectInconsistentPoints(points, observations, options_.outliers);
   report.rejected.depth_outlier_or_isolated = removed.depth_outliers;
   report.rejected.element_claimed_twice = removed.shared_elements;
+  spot_areas_.clear();
+  for (const SpotCode& c : decoded.codes) spot_areas_.push_back(decoded.spots[c.spot].area_px);
+  report.rejected.cut_by_step =
+      RejectCutSpots(points, observations, spot_areas_, mesh_, mesh_neighbours_, stats.tolerance_px,
+                     options_.cut_spots);
   const auto decoded_spots = static_cast<double>(decoded.codes.size());
   if (decoded_spots >= options_.mismatch_min_decoded &&
       stats.no_element > options_.mismatch_off_epipolar_fraction * decoded_spots &&

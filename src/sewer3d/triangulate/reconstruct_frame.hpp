@@ -16,6 +16,7 @@
 #include "sewer3d/pattern/binary_array.hpp"
 #include "sewer3d/pattern/constraints.hpp"
 #include "sewer3d/triangulate/correspondences.hpp"
+#include "sewer3d/triangulate/cut_spots.hpp"
 #include "sewer3d/triangulate/element_mesh.hpp"
 #include "sewer3d/triangulate/lost_spots.hpp"
 
@@ -26,6 +27,7 @@ struct FrameReconstructionOptions {
   DecoderOptions decoder;              ///< binarisation, spots, lattice, codewords
   TriangulationOptions triangulation;  ///< depth range searched, reprojection limit
   DepthOutlierOptions outliers;        ///< RejectDepthOutliers
+  CutSpotOptions cut_spots;            ///< spots a depth step cut (RejectCutSpots)
   LostSpotOptions lost_spots;          ///< spots the binariser missed (LostSpotFinder)
   /// Depth map: longest triangle edge, in pattern pitches (module.pattern.pitch_px each, taken
   /// as camera pixels). Longer edges span holes, depth steps or the border of the lit area.
@@ -80,6 +82,7 @@ struct FrameReport {
     int no_tile_on_epipolar_line = 0;   ///< no tile of the decoded position fits
     int several_tiles_fit = 0;          ///< more than one tile fits
     int element_claimed_twice = 0;      ///< RejectSharedElements
+    int cut_by_step = 0;                ///< RejectCutSpots
     int depth_outlier_or_isolated = 0;  ///< RejectDepthOutliers
     int not_of_module = 0;              ///< dropped with the whole frame (not_of_module)
   } rejected;
@@ -149,7 +152,9 @@ class FrameReconstructor {
   Decoder decoder_;
   Triangulator triangulator_;
   ElementMesh mesh_;
+  NeighbourLists mesh_neighbours_;  // for RejectCutSpots
   LostSpotFinder lost_spots_;
+  std::vector<int> spot_areas_;          // per observation, reused between frames
   std::vector<Eigen::Vector2d> pixels_;  // depth-map buffers, reused between frames
   std::vector<double> depths_;
   std::vector<Eigen::Vector2i> elements_;
