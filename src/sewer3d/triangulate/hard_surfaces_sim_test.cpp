@@ -188,8 +188,8 @@ TEST(HardSurfaces, AJointStepKeepsThePointsOnBothSides) {
 // them; the 3 x 3 test (NiblackOptions::min_contrast_3x3) nine tenths; the search for lost
 // spots where the lattice puts them (LostSpotFinder, on by default) grows from the spots found
 // into the rest, as accurate as the decoded ones. On the plastic's own albedo neither changes
-// anything. Measured at 1296 px (found / oracle): neither 74.5 %, 3 x 3 test 92.3 %, lost
-// spots 95.2 %, both 98.0 %; plain wall 99.4 %; RMS lost / decoded 0.149 / 0.150 mm.
+// anything. Measured at 1296 px (found / oracle): neither 74.1 %, 3 x 3 test 92.1 %, lost
+// spots 94.9 %, both 97.2 %; plain wall 99.4 %; RMS lost / decoded 0.147 / 0.150 mm.
 TEST(HardSurfaces, FaintSpotsOnABlackWallBecomePoints) {
   const ModuleDescription module = testing::SmallDefaultModule(kWidth);
   const Scene plastic = Dn300(Material::kPlastic);
@@ -203,7 +203,7 @@ TEST(HardSurfaces, FaintSpotsOnABlackWallBecomePoints) {
   EXPECT_LT(plain.Fraction(0), 0.85);
   EXPECT_GT(faint.Fraction(0), 0.9);
   EXPECT_GT(lost.Fraction(0), 0.94);
-  EXPECT_GT(both.Fraction(0), 0.97);
+  EXPECT_GT(both.Fraction(0), 0.965);
   for (const Outcome* o : {&faint, &lost, &both}) EXPECT_EQ(o->off_oracle, 0);
   EXPECT_GT(lost.lost, 400);
   EXPECT_LT(lost.rms_lost_mm, 1.2 * lost.rms_decoded_mm);
@@ -217,8 +217,10 @@ TEST(HardSurfaces, FaintSpotsOnABlackWallBecomePoints) {
 // dark squares' spots are a few levels at the image's centre and under one at its edges.
 // The light squares keep their spots; the lattice bridges the dark ones: the search for lost
 // spots finds 30 more of every 100, the 3 x 3 test a few more. Points off the oracle:
-// spots cut by the plate's edge (0.4–1.4 mm). Measured at 1296 px, dark squares: 45.7 %
-// without either, 76.3 % with the lost spots (default), 78.0 % with both; light 93 %.
+// spots cut by the plate's edge (0.4–1.4 mm). Measured at 1296 px, dark squares: 43.1 %
+// without either, 74.3 % with the lost spots (default), 74.9 % with both; light 93 %. (Before
+// RejectCutSpots, which drops 26 of 2 283 points here, spots across the squares' edges:
+// 45.7, 76.2, 78.0 %.)
 TEST(HardSurfaces, TheDarkSquaresOfABoard) {
   const ModuleDescription module = testing::SmallDefaultModule(kWidth);
   Checkerboard board;
