@@ -163,10 +163,11 @@ Sample Shade(const Setup& s, const Eigen::Vector3d& origin, const Eigen::Vector3
       hit->albedo.allFinite()
           ? hit->albedo
           : MaterialAlbedo(hit->material, s.surface.MaterialSeed(), hit->surface_mm);
-  out.albedo = albedo;
   // A water film darkens the wall and adds its specular lobe; in signal units a diffuse
-  // albedo a gives a / 0.5 of a light's level, a BRDF f gives 2π f of it.
+  // albedo a gives a / 0.5 of a light's level, a BRDF f gives 2π f of it. The truth albedo
+  // is the wall's as it is, wet or dry (the gloss is light, not colour).
   const Film film(o.wet_film, *hit, (origin - hit->point).normalized());
+  out.albedo = albedo * film.diffuse_gain;
   const Eigen::Vector3d diffuse = albedo * film.diffuse_gain / 0.5;
   const double grey = albedo.mean() * film.diffuse_gain;
   const double vignetting = o.vignetting ? std::pow(cos_alpha, 4) : 1.0;

@@ -92,6 +92,7 @@ TEST(WetFilm, TheRingLightsHighlightSitsOnTheAxis) {
   o.images = RenderImages::kTexture;
   o.supersampling = 2;
   o.wet_film.roughness = 0.3;
+  o.truth_albedo = true;
   const RenderedFrame dry = RenderFrame(module, DefaultPatternArray(), WetPlane(0.0), o);
   const RenderedFrame wet = RenderFrame(module, DefaultPatternArray(), WetPlane(1.0), o);
   const int u = static_cast<int>(std::round(module.camera.cx)),
@@ -100,6 +101,9 @@ TEST(WetFilm, TheRingLightsHighlightSitsOnTheAxis) {
   EXPECT_NEAR(dry_centre, 0.4 / 0.5 * o.texture_level, 0.002);
   const double peak = 2.0 * std::numbers::pi * F0() / (4.0 * std::numbers::pi * 0.09);
   EXPECT_NEAR(wet.texture_signal(v, u)[1], 0.65 * dry_centre + peak * o.texture_level, 0.002);
+  // The truth albedo is the wet wall's (the gloss is light, not colour).
+  EXPECT_NEAR(wet.truth_albedo(v, u)[1], 0.65 * 0.4, 1e-6);
+  EXPECT_NEAR(dry.truth_albedo(v, u)[1], 0.4, 1e-6);
   // In a corner, far out on the lobe, it adds about 1 % to the darkened wall.
   const double dry_corner = dry.texture_signal(5, 5)[1], wet_corner = wet.texture_signal(5, 5)[1];
   EXPECT_GT(wet_corner, 0.65 * dry_corner);
