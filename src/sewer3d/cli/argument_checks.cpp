@@ -82,6 +82,7 @@ std::string MissingArgument(const CLI::App& app, const std::string& message) {
 void SpotFlags::ApplyTo(FrameReconstructionOptions& options) const {
   options.decoder.niblack.min_contrast_3x3 = faint_spots;
   options.lost_spots.enabled = !no_lost_spots;
+  options.cut_spots.enabled = !no_cut_spots;
 }
 
 void AddSpotFlags(CLI::App* command, SpotFlags* flags) {
@@ -97,6 +98,10 @@ void AddSpotFlags(CLI::App* command, SpotFlags* flags) {
                     "Do not look for the spots the binariser missed where the lattice of the "
                     "frame's points puts them (dark patches, black walls; about 1 ms per 5 MP "
                     "frame)");
+  command->add_flag("--no-cut-spots", flags->no_cut_spots,
+                    "Keep the spots a depth step cut (smaller than their neighbours where these "
+                    "straddle a step: their centre lies off the element's, at a joint's edge up "
+                    "to millimetres)");
 }
 
 CLI::Validator FileNameEnding(const std::string& extension, const std::string& why) {

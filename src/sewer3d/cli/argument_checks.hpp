@@ -33,6 +33,7 @@ std::string MissingArgument(const CLI::App& app, const std::string& message);
 struct SpotFlags {
   double faint_spots = 0.0;    ///< `--faint-spots LEVELS`: NiblackOptions::min_contrast_3x3
   bool no_lost_spots = false;  ///< `--no-lost-spots`: LostSpotOptions::enabled off
+  bool no_cut_spots = false;   ///< `--no-cut-spots`: CutSpotOptions::enabled off
   void ApplyTo(FrameReconstructionOptions& options) const;
 };
 

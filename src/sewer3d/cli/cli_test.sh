@@ -141,6 +141,11 @@ expect_ok "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/s/plane
   --no-lost-spots --out "$tmp/r/plane_nolost"
 grep -q '"lost_spots_found": 0,' "$tmp/r/plane_nolost/report.json" ||
   fail "--no-lost-spots still looked for lost spots"
+grep -q '"cut_by_step"' "$tmp/r/plane/report.json" || fail "report lacks rejected.cut_by_step"
+expect_ok "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/s/plane/pattern.png" \
+  --no-cut-spots --out "$tmp/r/plane_nocut"
+grep -q '"cut_by_step": 0,' "$tmp/r/plane_nocut/report.json" ||
+  fail "--no-cut-spots still dropped spots"
 expect_ok "$bin" evaluate plane --cloud "$tmp/r/plane/cloud.ply" --truth "$tmp/s/plane/scene.json"
 grep -q "RMS" "$tmp/out" || fail "evaluate prints no RMS"
 grep -Eq "plane at (89\.9[5-9]|90\.0[0-4])" "$tmp/out" || fail "evaluate does not find the 90 mm plane: $(cat "$tmp/out")"
