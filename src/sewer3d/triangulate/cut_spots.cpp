@@ -50,11 +50,8 @@ int RejectCutSpots(std::vector<TriangulatedPoint>& points,
     // The point itself left out of its neighbours' map: it may be the one off.
     TwoRing(neighbours, cell, ring);
     std::erase(ring, cell);
-    const auto with_points =
-        std::count_if(ring.begin(), ring.end(), [&](int j) { return point_of[j] >= 0; });
-    if (with_points < options.min_neighbours) continue;
     const auto fit = FitElementPixelMap(ring, point_of, points, observations);
-    cut[i] = fit && fit->max_residual_px > max_fit;
+    cut[i] = fit && fit->points >= options.min_neighbours && fit->max_residual_px > max_fit;
   }
   int kept = 0;
   for (std::size_t i = 0; i < points.size(); ++i)

@@ -29,6 +29,7 @@ std::optional<ElementPixelMap> FitElementPixelMap(
   ElementPixelMap fit;
   fit.map = lu.solve(elements.transpose() * pixels);
   fit.max_residual_px = (elements * fit.map - pixels).rowwise().norm().maxCoeff();
+  fit.points = static_cast<int>(n);
   return fit;
 }
 

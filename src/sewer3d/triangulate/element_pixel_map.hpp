@@ -18,6 +18,7 @@ namespace sewer3d {
 struct ElementPixelMap {
   Eigen::Matrix<double, 3, 2> map;  ///< pixel = (column, row, 1) · map
   double max_residual_px = 0.0;     ///< at the points it was fitted to
+  int points = 0;                   ///< how many it was fitted to
 
   [[nodiscard]] Eigen::Vector2d At(double col, double row) const {
     return (Eigen::RowVector3d(col, row, 1.0) * map).transpose();

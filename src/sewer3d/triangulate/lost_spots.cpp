@@ -83,11 +83,8 @@ std::optional<LostSpotFinder::Found> LostSpotFinder::Look(
   // one side only, three or so among the neighbours.
   TwoRing(neighbours_, cell, ring_);
   const auto [first, last] = neighbours_.Of(cell);
-  const auto with_points =
-      std::count_if(ring_.begin(), ring_.end(), [&](int j) { return point_of_[j] >= 0; });
-  if (with_points < options_.min_neighbours) return std::nullopt;
   const auto fit = FitElementPixelMap(ring_, point_of_, points, observations);
-  if (!fit) return std::nullopt;
+  if (!fit || fit->points < options_.min_neighbours) return std::nullopt;
   const Eigen::Matrix<double, 3, 2>& map = fit->map;
   const double max_fit = std::max(options_.max_fit_px, options_.max_fit_tolerance * tolerance_px);
   if (fit->max_residual_px > max_fit) return std::nullopt;
