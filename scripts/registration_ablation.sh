@@ -20,6 +20,7 @@ rows=(
   "+bias feature,projection,texture,rig,odometry,straightness,bias"
   "+gravity feature,projection,texture,rig,odometry,straightness,bias,gravity"
   "+scale feature,projection,texture,rig,odometry,straightness,bias,gravity,scale"
+  "+centreline feature,projection,texture,rig,odometry,straightness,bias,gravity,scale,centreline"
 )
 printf '| evidence | ATE RMS (mm) | max (mm) | per material (RMS mm) | edges accepted / rejected |\n'
 printf '|---|---|---|---|---|\n'

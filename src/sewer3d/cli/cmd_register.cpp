@@ -28,8 +28,9 @@ Command AddRegisterCommand(CLI::App& app) {
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     bool quiet = false, force = false;
     double inclinometer_sigma_deg = FusionOptions{}.gravity_sigma_deg;
-    std::vector<std::string> edges{"feature", "projection",   "texture", "rig",    "odometry",
-                                   "scale",   "straightness", "bias",    "gravity"};
+    double featureless_bend_radius_m = CentrelineOptions{}.featureless_bend_radius_mm / 1000.0;
+    std::vector<std::string> edges{"feature", "projection",   "texture", "rig",     "odometry",
+                                   "scale",   "straightness", "bias",    "gravity", "centreline"};
   };
   auto args = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand(
@@ -46,17 +47,25 @@ Command AddRegisterCommand(CLI::App& app) {
                   "projection edges' photometric term), rig, odometry, straightness, bias (the "
                   "bias shared by the registrations between the same two modules, estimated), "
                   "gravity (the run's inclinometer.csv, where it has one), scale (the odometry's "
-                  "scale error, estimated); "
+                  "scale error, estimated), centreline (each instant's pipe axis from its walls, "
+                  "tied to a curve whose bending costs); "
                   "`none` keeps the odometry + rig poses")
       ->delimiter(',')
       ->check(CLI::IsMember({"feature", "projection", "texture", "rig", "odometry", "scale",
-                             "straightness", "bias", "gravity", "none"}))
+                             "straightness", "bias", "gravity", "centreline", "none"}))
       ->capture_default_str();
   sub->add_option("--inclinometer-sigma-deg", args->inclinometer_sigma_deg,
                   "σ of one inclinometer reading across gravity, the carrier's own accelerations "
                   "included (the gravity edges' weight)")
       ->capture_default_str()
       ->check(CLI::Range(1e-4, 10.0));
+  sub->add_option("--featureless-bend-radius-m", args->featureless_bend_radius_m,
+                  "Where no feature edge sees the pipe's turn (plastic), a bend of this radius "
+                  "costs χ² 1 per metre of the centreline: the larger, the straighter the pipe is "
+                  "held there (a sewer is laid straight between manholes; lower it for a pipe "
+                  "laid in a curve)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 1e9));
   sub->add_flag("--force", args->force,
                 "Redo the stage from scratch, also when it was run with other options");
   sub->add_flag("--quiet", args->quiet, "No progress bar");
@@ -82,6 +91,9 @@ Command AddRegisterCommand(CLI::App& app) {
             options.fusion.gravity = use("gravity");
             options.fusion.odometry_scale = use("scale");
             options.fusion.gravity_sigma_deg = args->inclinometer_sigma_deg;
+            options.fusion.centreline.enabled = use("centreline");
+            options.fusion.centreline.featureless_bend_radius_mm =
+                1000.0 * args->featureless_bend_radius_m;
             ProgressBar bar(args->quiet);
             auto progress = [&](const std::string& pass, int done, int total) {
               bar.Update("register " + pass, done, total, pass == "pairs" ? "pairs" : "steps");

@@ -1,5 +1,8 @@
 #include "sewer3d/pipeline/register_outputs.hpp"
 
+#include <fmt/core.h>
+
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/io/atomic_file.hpp"
@@ -53,46 +56,79 @@ json GravityJson(const GravityReport& g) {
           {"pipe_gradient_percent", 100.0 * d.z() / std::hypot(d.x(), d.y())}};
 }
 
+json CentrelineJson(const std::optional<CentrelineReport>& c) {
+  if (!c) return {{"observations", 0}};
+  const bool straight = !std::isfinite(c->bend_radius_mm);
+  return {{"observations", c->observations},
+          {"points", c->points},
+          {"featureless_points", c->featureless_points},
+          {"length_mm", c->length_mm},
+          {"across_rms_mm", c->across_rms_mm},
+          {"across_max_mm", c->across_max_mm},
+          {"bend_radius_m", straight ? json(nullptr) : json(c->bend_radius_mm / 1000.0)},
+          {"max_sagitta_mm", c->max_sagitta_mm}};
+}
+
+// The fused centreline's control points: station (the odometry's distance) and model frame.
+std::string CentrelineCsv(const AxisCurve& curve) {
+  std::string text = "station_mm,x_mm,y_mm,z_mm\n";
+  for (size_t k = 0; k < curve.points.size(); ++k) {
+    const Eigen::Vector3d& p = curve.points[k];
+    text += fmt::format("{:.3f},{:.4f},{:.4f},{:.4f}\n",
+                        curve.start_station_mm + static_cast<double>(k) * curve.spacing_mm, p.x(),
+                        p.y(), p.z());
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string RegisterOptionsJson(const RegisterStageOptions& o) {
   const FeatureRegistrationOptions& f = o.pairs.features;
   const ProjectionRegistrationOptions& p = o.pairs.projection;
   const PriorEdgeOptions& r = o.priors;
-  const json j = {{"neighbours",
-                   {{"nominal_diameter_mm", o.neighbours.nominal_diameter_mm},
-                    {"grid_step_px", o.neighbours.grid_step_px},
-                    {"min_overlap", o.neighbours.min_overlap},
-                    {"max_counter_gap", o.neighbours.max_counter_gap}}},
-                  {"features",
-                   {{"contrast_threshold", f.contrast_threshold},
-                    {"ratio", f.ratio},
-                    {"max_keypoints", f.max_keypoints},
-                    {"min_inliers", f.points.min_inliers}}},
-                  {"feature_registration", o.pairs.feature_registration},
-                  {"between_modules_floor",
-                   {o.pairs.between_modules_floor_mm, o.pairs.between_modules_floor_deg}},
-                  {"projection",
-                   {{"enabled", o.pairs.projection_fallback},
-                    {"sample_step_px", p.sample_step_px},
-                    {"photometric", p.photometric.enabled},
-                    {"max_distance_mm", p.max_distance_mm}}},
-                  {"priors",
-                   {{"rig", r.rig},
-                    {"odometry", r.odometry},
-                    {"straightness", r.straightness},
-                    {"rig_sigma_mm", r.rig_sigma_mm},
-                    {"rig_sigma_deg", r.rig_sigma_deg},
-                    {"odometry_noise_mm", r.odometry_noise_mm},
-                    {"min_bend_radius_mm", r.min_bend_radius_mm}}},
-                  {"fusion",
-                   {{"huber_delta", o.fusion.huber_delta},
-                    {"gate_chi2", o.fusion.gate_chi2},
-                    {"group_biases", o.fusion.group_biases},
-                    {"gravity", o.fusion.gravity},
-                    {"odometry_scale", o.fusion.odometry_scale},
-                    {"gravity_sigma_deg", o.fusion.gravity_sigma_deg}}},
-                  {"min_depth_points", o.min_depth_points}};
+  const json j = {
+      {"neighbours",
+       {{"nominal_diameter_mm", o.neighbours.nominal_diameter_mm},
+        {"grid_step_px", o.neighbours.grid_step_px},
+        {"min_overlap", o.neighbours.min_overlap},
+        {"max_counter_gap", o.neighbours.max_counter_gap}}},
+      {"features",
+       {{"contrast_threshold", f.contrast_threshold},
+        {"ratio", f.ratio},
+        {"max_keypoints", f.max_keypoints},
+        {"min_inliers", f.points.min_inliers}}},
+      {"feature_registration", o.pairs.feature_registration},
+      {"between_modules_floor",
+       {o.pairs.between_modules_floor_mm, o.pairs.between_modules_floor_deg}},
+      {"projection",
+       {{"enabled", o.pairs.projection_fallback},
+        {"sample_step_px", p.sample_step_px},
+        {"photometric", p.photometric.enabled},
+        {"max_distance_mm", p.max_distance_mm}}},
+      {"priors",
+       {{"rig", r.rig},
+        {"odometry", r.odometry},
+        {"straightness", r.straightness},
+        {"rig_sigma_mm", r.rig_sigma_mm},
+        {"rig_sigma_deg", r.rig_sigma_deg},
+        {"odometry_noise_mm", r.odometry_noise_mm},
+        {"min_bend_radius_mm", r.min_bend_radius_mm}}},
+      {"fusion",
+       {{"huber_delta", o.fusion.huber_delta},
+        {"gate_chi2", o.fusion.gate_chi2},
+        {"group_biases", o.fusion.group_biases},
+        {"gravity", o.fusion.gravity},
+        {"odometry_scale", o.fusion.odometry_scale},
+        {"gravity_sigma_deg", o.fusion.gravity_sigma_deg},
+        {"centreline",
+         {{"enabled", o.fusion.centreline.enabled},
+          {"spacing_mm", o.fusion.centreline.spacing_mm},
+          {"bend_radius_mm", o.fusion.centreline.bend_radius_mm},
+          {"featureless_bend_radius_mm", o.fusion.centreline.featureless_bend_radius_mm},
+          {"axis_sigma_mm", o.fusion.centreline.axis_sigma_mm},
+          {"axis_max_rms_mm", o.axis_max_rms_mm}}}}},
+      {"min_depth_points", o.min_depth_points}};
   return j.dump();
 }
 
@@ -147,7 +183,8 @@ std::string RegisterStageReportToJson(const RegisterStageReport& report) {
         {"axis_in_carrier_mm", {c.axis_in_carrier_mm.x(), c.axis_in_carrier_mm.y()}},
         {"diameter_mm", c.diameter_mm},
         {"rms_mm", c.rms_mm},
-        {"modules", c.modules}}},
+        {"modules", c.modules},
+        {"nodes_with_axis", report.nodes_with_axis}}},
       {"neighbours",
        {{"candidates", report.neighbours.candidates}, {"kept", report.neighbours.kept}}},
       {"pairs",
@@ -170,6 +207,7 @@ std::string RegisterStageReportToJson(const RegisterStageReport& report) {
         {"module_pairs", module_pairs},
         {"group_biases", biases},
         {"gravity", GravityJson(report.fusion.gravity)},
+        {"centreline", CentrelineJson(report.fusion.centreline)},
         {"rig_warnings", report.rig_warnings},
         {"graph_warnings", report.graph_warnings}}},
       {"seconds",
@@ -216,6 +254,8 @@ void WriteRegistrationOutputs(const std::filesystem::path& folder, const Rig& ri
     WriteG2o(temporary, ExportGraph(nodes, fused));
   });
   WriteRegistrationGraphPicture(folder / "graph.png", picture_nodes, picture_edges);
+  if (fused.centreline)
+    WriteTextFileAtomically(folder / "centreline.csv", CentrelineCsv(*fused.centreline));
   WriteTextFileAtomically(folder / "report.json", report_json);
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "sewer3d/camera/camera_model.hpp"
@@ -53,21 +54,38 @@ std::vector<AcquisitionNode> UsableNodes(const std::vector<AcquisitionNode>& all
   return usable;
 }
 
-/// The carrier's offset from the pipe axis, from the depth maps of the first counter.
-CarrierOffsetEstimate FirstInstantOffset(const std::vector<AcquisitionNode>& nodes,
-                                         const CaptureRun& run,
-                                         const std::filesystem::path& rgbd_folder,
-                                         const RegisterStageOptions& options) {
-  int first = nodes.front().counter;
-  for (const AcquisitionNode& n : nodes) first = std::min(first, n.counter);
-  std::vector<ModuleWallPoints> walls;
-  for (const AcquisitionNode& n : nodes) {
-    if (n.counter != first) continue;
-    const RgbdPairInput in = ReadRgbdForRegistration(rgbd_folder, n.module, n.counter);
-    const CameraModel camera(run.rig.modules[n.module].module.camera);
-    walls.push_back({n.module, SampleDepthPoints(in.depth_mm, camera, options.wall_step_px)});
+/// The pipe's axis at every counter from the walls of its nodes (EstimateCarrierOffset); each
+/// node whose instant gave one, with a fit within `axis_max_rms_mm`, gets the axis point in its
+/// camera frame. Returns the first counter's estimate.
+CarrierOffsetEstimate InstantAxes(std::vector<AcquisitionNode>& nodes, const CaptureRun& run,
+                                  const std::filesystem::path& rgbd_folder,
+                                  const RegisterStageOptions& options,
+                                  const RegisterProgress& progress) {
+  std::map<int, std::vector<size_t>> per_counter;
+  for (size_t i = 0; i < nodes.size(); ++i) per_counter[nodes[i].counter].push_back(i);
+  CarrierOffsetEstimate first;
+  int done = 0;
+  for (const auto& [counter, members] : per_counter) {
+    std::vector<ModuleWallPoints> walls;
+    for (size_t i : members) {
+      const AcquisitionNode& n = nodes[i];
+      const RgbdPairInput in = ReadRgbdForRegistration(rgbd_folder, n.module, n.counter);
+      const CameraModel camera(run.rig.modules[n.module].module.camera);
+      walls.push_back({n.module, SampleDepthPoints(in.depth_mm, camera, options.wall_step_px)});
+    }
+    const CarrierOffsetEstimate axis =
+        EstimateCarrierOffset(run.rig, walls, options.carrier_offset);
+    if (done == 0) first = axis;
+    if (progress) progress("walls", ++done, static_cast<int>(per_counter.size()));
+    if (!axis.valid || axis.rms_mm > options.axis_max_rms_mm) continue;
+    const Eigen::Vector3d in_carrier(axis.axis_in_carrier_mm.x(), axis.axis_in_carrier_mm.y(),
+                                     axis.mean_z_mm);
+    for (size_t i : members) {
+      nodes[i].axis_in_camera =
+          run.rig.modules[nodes[i].module].carrier_from_camera.Inverse() * in_carrier;
+    }
   }
-  return EstimateCarrierOffset(run.rig, walls, options.carrier_offset);
+  return first;
 }
 
 }  // namespace
@@ -81,6 +99,7 @@ void RegisterStageOptions::Check() const {
   carrier_offset.Check();
   SEWER3D_VALIDATE(min_depth_points >= 0, "min_depth_points", "must not be negative");
   SEWER3D_VALIDATE(wall_step_px >= 1, "wall_step_px", "must be at least 1");
+  ValidatePositive("axis_max_rms_mm", axis_max_rms_mm);
   ValidatePositive("length_scale_mm", length_scale_mm);
   SEWER3D_VALIDATE(threads >= 1, "threads", "must be at least 1, got " << threads);
 }
@@ -101,7 +120,7 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   report.initial = initial.report;
   report.acquisitions = static_cast<int>(initial.nodes.size());
   report.odometry_warnings = OdometryWarnings(run, initial.nodes);
-  const std::vector<AcquisitionNode> nodes =
+  std::vector<AcquisitionNode> nodes =
       UsableNodes(initial.nodes, rgbd_folder, options.min_depth_points, report);
   report.nodes = static_cast<int>(nodes.size());
   if (nodes.empty()) {  // nothing to register: the outcome says why, nothing is written
@@ -112,8 +131,8 @@ RegisterStageReport RunRegisterStage(const CaptureRun& run, Workspace& workspace
   }
 
   NeighbourOptions neighbours = options.neighbours;
-  report.carrier_offset = FirstInstantOffset(nodes, run, rgbd_folder, options);
-  if (progress) progress("walls", 1, 1);
+  report.carrier_offset = InstantAxes(nodes, run, rgbd_folder, options, progress);
+  for (const AcquisitionNode& n : nodes) report.nodes_with_axis += n.axis_in_camera ? 1 : 0;
   if (report.carrier_offset.valid)
     neighbours.axis_in_model_mm = report.carrier_offset.axis_in_carrier_mm;
   // Without feature and projection registration (`--edges` naming neither) no pair is

@@ -29,8 +29,11 @@ struct RegisterStageOptions {
   PriorEdgeOptions priors;
   FusionOptions fusion;
   CarrierOffsetOptions carrier_offset;
-  int min_depth_points = 200;    ///< fewer points in an acquisition's depth: left out
-  int wall_step_px = 16;         ///< sampling of the first instant's depth maps for the offset
+  int min_depth_points = 200;  ///< fewer points in an acquisition's depth: left out
+  int wall_step_px = 16;       ///< sampling of each instant's depth maps for the pipe's axis
+  /// An instant's axis (its walls' circle) with a larger radial RMS is not used: walls that are
+  /// no circle (a joint's step, an intrusion, a deformed pipe) do not say where the axis is.
+  double axis_max_rms_mm = 1.0;
   double length_scale_mm = 150;  ///< L of the information eigenvalues in edges.csv
   int threads = 1;               ///< pairs registered at once; does not change the outputs
   bool force = false;            ///< redo from scratch (Workspace::BeginStage)
@@ -54,7 +57,8 @@ struct RegisterStageReport {
   /// One line per problem of odometry.csv that LoadRun found (readings dropped because the
   /// distance went backwards; gaps longer than the bound, with the acquisitions in them).
   std::vector<std::string> odometry_warnings;
-  CarrierOffsetEstimate carrier_offset;
+  CarrierOffsetEstimate carrier_offset;  ///< at the first counter
+  int nodes_with_axis = 0;               ///< nodes whose instant's walls gave the pipe's axis
   NeighbourReport neighbours;
   int pairs = 0, pairs_done = 0, pairs_skipped = 0, pairs_failed = 0;
   int feature_edges = 0, projection_edges = 0, degenerate_edges = 0;

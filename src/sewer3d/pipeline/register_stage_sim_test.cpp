@@ -69,6 +69,11 @@ TEST_F(RegisterStageTiny, EveryAcquisitionWithDepthGetsAPoseAndTheFilesAreWritte
   EXPECT_EQ(report_.pairs, 9);
   EXPECT_GE(report_.feature_edges, 3);  // measured: 4 of the 5 along pairs
   EXPECT_EQ(report_.fusion.rejected, 0);
+  // Each instant's walls are fitted with a circle for the pipe's axis. The first instant's are
+  // no circle (radial RMS over 1 mm: joint J1's 4 mm step and connection C1 are in view): no
+  // axis there, and one instant makes no curve.
+  EXPECT_EQ(report_.nodes_with_axis, 5);
+  EXPECT_FALSE(report_.fusion.centreline.has_value());
 
   const fs::path folder = dir_ / "ws" / "registration";
   const std::vector<RegistrationPoseRow> poses = ReadRegistrationPoses(folder / "poses.csv");

@@ -88,6 +88,33 @@ void PoseGraph::SetWorldDirection(const Eigen::Vector3d& direction) {
   world_direction_set_ = true;
 }
 
+void PoseGraph::SetAxisCurve(const AxisCurve& centreline) {
+  SEWER3D_VALIDATE(centreline.points.size() >= 3, "",
+                   "a centreline needs 3 points, got " << centreline.points.size());
+  SEWER3D_VALIDATE(centreline.spacing_mm > 0.0 && std::isfinite(centreline.start_station_mm), "",
+                   "centreline spacing " << centreline.spacing_mm << " mm");
+  SEWER3D_VALIDATE(centreline.curvature_sigma_mm.size() + 2 == centreline.points.size(), "",
+                   "a centreline of " << centreline.points.size() << " points with "
+                                      << centreline.curvature_sigma_mm.size() << " curvature σ");
+  SEWER3D_VALIDATE(centreline.along_sigma_mm > 0.0, "", "centreline σ must be > 0");
+  for (double sigma : centreline.curvature_sigma_mm)
+    SEWER3D_VALIDATE(sigma > 0.0 && std::isfinite(sigma), "", "centreline σ must be > 0");
+  for (const Eigen::Vector3d& p : centreline.points)
+    SEWER3D_VALIDATE(p.allFinite(), "", "centreline point is not finite");
+  axis_curve_ = centreline;
+}
+
+void PoseGraph::AddAxisObservation(const AxisObservation& observation) {
+  SEWER3D_VALIDATE(axis_curve_.has_value(), "", "axis observation without a centreline");
+  SEWER3D_VALIDATE(HasNode(observation.node), "",
+                   "axis observation names missing node " << observation.node);
+  SEWER3D_VALIDATE(observation.in_node.allFinite() && std::isfinite(observation.station_mm), "",
+                   "axis observation of node " << observation.node << " is not finite");
+  SEWER3D_VALIDATE(observation.sigma_mm > 0.0 && observation.along_sigma_mm > 0.0, "",
+                   "axis observation of node " << observation.node << " has σ ≤ 0");
+  axis_observations_.push_back(observation);
+}
+
 Eigen::Vector3d DirectionResidual(const DirectionObservation& observation,
                                   const Rigid3d& world_from_node,
                                   const Eigen::Vector3d& world_direction) {
@@ -123,6 +150,12 @@ double GraphCost(const PoseGraph& graph) {
   }
   for (const DirectionObservation& d : graph.directions())
     cost += 0.5 * DirectionResidual(d, graph.node(d.node), graph.world_direction()).squaredNorm();
+  if (const std::optional<AxisCurve>& c = graph.axis_curve()) {
+    for (const AxisObservation& o : graph.axis_observations())
+      cost += 0.5 * AxisResidual(o, graph.node(o.node), *c).squaredNorm();
+    for (int k = 0; k + 2 < static_cast<int>(c->points.size()); ++k)
+      cost += 0.5 * CurvatureResidual(*c, k).squaredNorm();
+  }
   return cost;
 }
 

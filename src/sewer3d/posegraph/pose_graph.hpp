@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sewer3d/core/rigid3.hpp"
+#include "sewer3d/posegraph/axis_curve.hpp"
 
 namespace sewer3d {
 
@@ -104,6 +105,17 @@ class PoseGraph {
   const Eigen::Vector3d& world_direction() const { return world_direction_; }
   void SetWorldDirection(const Eigen::Vector3d& direction);
 
+  /// The pipe's centreline, estimated with the poses (axis_curve.hpp). std::invalid_argument:
+  /// fewer than 3 points, a spacing or a σ not > 0, or values that are not finite.
+  void SetAxisCurve(const AxisCurve& centreline);
+  const std::optional<AxisCurve>& axis_curve() const { return axis_curve_; }
+  AxisCurve& mutable_axis_curve() { return *axis_curve_; }
+  /// Adds an axis observation (std::invalid_argument: no centreline set, unknown node, values
+  /// not finite, σ not > 0).
+  void AddAxisObservation(const AxisObservation& observation);
+  const std::vector<AxisObservation>& axis_observations() const { return axis_observations_; }
+  std::vector<AxisObservation>& mutable_axis_observations() { return axis_observations_; }
+
   /// Nodes held fixed by the file or the caller (gauge); the solver also fixes the first node
   /// when this is empty.
   std::vector<int>& fixed_nodes() { return fixed_; }
@@ -118,6 +130,8 @@ class PoseGraph {
   std::vector<DirectionObservation> directions_;
   Eigen::Vector3d world_direction_ = Eigen::Vector3d::UnitY();
   bool world_direction_set_ = false;
+  std::optional<AxisCurve> axis_curve_;
+  std::vector<AxisObservation> axis_observations_;
 };
 
 /// (R_world_from_node · in_node − g) / sigma_rad of one observation at the given pose.
@@ -133,7 +147,8 @@ Eigen::Matrix<double, 6, 1> EdgeResidual(const PoseEdge& edge, const Rigid3d& wo
 /// ½ Σ rᵀ Ω r over all edges (no robust loss): the cost convention of Ceres' example and of
 /// the published benchmark values.
 /// ½ Σ rᵀΩr, with r − b for edges of a bias group, plus ½ Σ bᵀ P b of the biases' priors, the
-/// zero sums' terms and ½ Σ |r|² of the direction observations.
+/// zero sums' terms, ½ Σ |r|² of the direction and axis observations and of the centreline's
+/// curvature terms.
 double GraphCost(const PoseGraph& graph);
 
 /// GraphCost with every edge's measurement inverted (b_from_a in place of a_from_b): far below

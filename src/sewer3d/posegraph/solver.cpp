@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "sewer3d/core/check.hpp"
+#include "sewer3d/posegraph/axis_curve_cost.hpp"
 #include "sewer3d/posegraph/block_algebra.hpp"
 #include "sewer3d/posegraph/certificate.hpp"
 #include "sewer3d/posegraph/edge_cost.hpp"
@@ -174,6 +175,27 @@ struct LmResult {
   bool usable = false;
 };
 
+/// The centreline's terms (centreline.hpp) on the poses' blocks and the curve's, a copy of its
+/// points in `curve`.
+void AddCentreline(const PoseGraph& graph, const Indexing& ix, std::vector<Eigen::Vector3d>& p,
+                   std::vector<Eigen::Quaterniond>& q, std::vector<Eigen::Vector3d>& curve,
+                   ceres::Problem& problem) {
+  const std::optional<AxisCurve>& c = graph.axis_curve();
+  if (!c) return;
+  curve = c->points;
+  for (const AxisObservation& o : graph.axis_observations()) {
+    const int i = ix.index_of_id.at(o.node);
+    const int k = c->Segment(o.station_mm);
+    problem.AddResidualBlock(AxisCost::Create(o, c->Fraction(k, o.station_mm)), nullptr,
+                             p[i].data(), q[i].coeffs().data(), curve[k].data(),
+                             curve[k + 1].data());
+  }
+  for (size_t k = 0; k + 2 < curve.size(); ++k) {
+    problem.AddResidualBlock(CurvatureCost::Create(c->curvature_sigma_mm[k], c->along_sigma_mm),
+                             nullptr, curve[k].data(), curve[k + 1].data(), curve[k + 2].data());
+  }
+}
+
 /// Levenberg–Marquardt on the graph's poses, in place (left unchanged if the solve diverges).
 LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
   // Parameter blocks: contiguous copies of each node's position and quaternion (x y z w).
@@ -231,6 +253,8 @@ LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
   }
   if (!graph.directions().empty())
     problem.SetManifold(direction.data(), new ceres::SphereManifold<3>);
+  std::vector<Eigen::Vector3d> curve;
+  AddCentreline(graph, ix, p, q, curve, problem);
   for (size_t i = 0; i < count; ++i) {
     if (!problem.HasParameterBlock(q[i].coeffs().data())) continue;
     problem.SetManifold(q[i].coeffs().data(), new ceres::EigenQuaternionManifold);
@@ -256,10 +280,12 @@ LmResult SolveLm(PoseGraph& graph, const PoseGraphOptions& options) {
     finite = finite && p[i].allFinite() && q[i].coeffs().allFinite();
   for (const auto& [id, b] : bias) finite = finite && b.allFinite();
   finite = finite && direction.allFinite();
+  for (const Eigen::Vector3d& c : curve) finite = finite && c.allFinite();
   if (finite) {  // a diverged solve leaves the initial poses and biases in place
     for (size_t i = 0; i < count; ++i) graph.mutable_node(ix.id_of_index[i]) = Rigid3d(q[i], p[i]);
     for (const auto& [id, b] : bias) graph.mutable_biases().at(id).value = b;
     if (!graph.directions().empty()) graph.SetWorldDirection(direction);
+    if (graph.axis_curve()) graph.mutable_axis_curve().points = curve;
   }
   // Ceres reports -1 steps when it did not iterate.
   result.iterations =
@@ -286,6 +312,10 @@ void Certify(PoseGraph& graph, const PoseGraphOptions& options, PoseGraphReport&
   }
   if (!graph.directions().empty()) {
     report.certificate_reason = "direction observations (not a pose graph)";
+    return;
+  }
+  if (graph.axis_curve()) {
+    report.certificate_reason = "a centreline (estimated with the poses: not a pose graph)";
     return;
   }
   PoseGraph rounded;

@@ -188,17 +188,27 @@ Gravity GravityObservations(const std::vector<AcquisitionNode>& nodes,
   return gravity;
 }
 
+/// What the graph holds besides its edges: the gravity observations and the centreline.
+struct Observations {
+  Gravity gravity;
+  std::optional<CentrelineSetup> centreline;
+};
+
 /// The graph of the accepted edges at the given poses (node 0 fixed), each group's edges
-/// sharing its bias (starting at `bias`, under its group's prior), with the gravity
-/// observations.
+/// sharing its bias (starting at `bias`, under its group's prior), with the observations.
 PoseGraph BuildGraph(const std::vector<Rigid3d>& poses, const std::vector<RegistrationEdge>& edges,
                      const std::vector<bool>& accepted, double huber_delta,
                      const BiasGroups& groups, const std::vector<Vector6d>& bias,
-                     const Gravity& gravity) {
+                     const Observations& seen) {
   PoseGraph graph;
   for (int i = 0; i < static_cast<int>(poses.size()); ++i) graph.SetNode(i, poses[i]);
+  const Gravity& gravity = seen.gravity;
   if (!gravity.observations.empty()) graph.SetWorldDirection(gravity.world);
   for (const DirectionObservation& d : gravity.observations) graph.AddDirection(d);
+  if (seen.centreline) {
+    graph.SetAxisCurve(seen.centreline->curve);
+    for (const AxisObservation& o : seen.centreline->observations) graph.AddAxisObservation(o);
+  }
   for (size_t g = 0; g < groups.keys.size(); ++g)
     graph.SetBias(static_cast<int>(g), EdgeBias{bias[g], groups.priors[g]});
   for (const BiasSum& family : groups.zero_sums) graph.AddZeroSum(family);
@@ -246,6 +256,26 @@ std::vector<Rigid3d> Poses(const PoseGraph& graph, size_t count) {
   std::vector<Rigid3d> poses(count);
   for (size_t i = 0; i < count; ++i) poses[i] = graph.node(static_cast<int>(i));
   return poses;
+}
+
+// The stations the feature edges span: there the texture sees the pipe's turn.
+std::vector<StationSpan> TexturedSpans(const std::vector<AcquisitionNode>& nodes,
+                                       const std::vector<RegistrationEdge>& edges) {
+  std::vector<StationSpan> spans;
+  for (const RegistrationEdge& e : edges) {
+    if (e.type != RegistrationEdgeType::kFeature) continue;
+    const double a = nodes[e.a].distance_mm, b = nodes[e.b].distance_mm;
+    spans.push_back({std::min(a, b), std::max(a, b)});
+  }
+  return spans;
+}
+
+// After a solve: the world direction and the curve as solved, the stations re-associated.
+void Update(const PoseGraph& graph, const std::vector<Rigid3d>& poses, Observations& seen) {
+  seen.gravity.world = graph.world_direction();
+  if (!seen.centreline) return;
+  seen.centreline->curve = *graph.axis_curve();
+  ReassociateStations(*seen.centreline, poses);
 }
 
 Vector6d Residual(const RegistrationEdge& e, const std::vector<Rigid3d>& poses) {
@@ -311,6 +341,7 @@ void FusionOptions::Check() const {
   ValidatePositive("bias_sigma_deg", bias_sigma_deg);
   ValidatePositive("gravity_sigma_deg", gravity_sigma_deg);
   ValidatePositive("odometry_scale_sigma", odometry_scale_sigma);
+  centreline.Check();
 }
 
 FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
@@ -338,13 +369,14 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
   solve.init = PoseGraphInit::kGiven;
   solve.max_iterations = options.max_iterations;
   solve.num_threads = options.threads;
-  Gravity gravity = GravityObservations(nodes, options);
+  Observations seen{GravityObservations(nodes, options),
+                    MakeCentreline(nodes, TexturedSpans(nodes, edges), options.centreline)};
   PoseGraph graph =
-      BuildGraph(poses, edges, result.accepted, options.huber_delta, groups, bias, gravity);
+      BuildGraph(poses, edges, result.accepted, options.huber_delta, groups, bias, seen);
   result.report.first_solve = OptimisePoseGraph(graph, solve);
   poses = Poses(graph, nodes.size());
   bias = Biases(graph, bias.size());
-  gravity.world = graph.world_direction();
+  Update(graph, poses, seen);
 
   // Gate, then least squares on what is left, until the gate rejects nothing more.
   for (int round = 0; round < options.max_gate_rounds; ++round) {
@@ -361,20 +393,21 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
     if (round > 0 && rejected_now == 0) break;
     result.report.rejected += rejected_now;
     ++result.report.gate_rounds;
-    graph = BuildGraph(poses, edges, result.accepted, 0.0, groups, bias, gravity);
+    graph = BuildGraph(poses, edges, result.accepted, 0.0, groups, bias, seen);
     result.report.final_solve = OptimisePoseGraph(graph, solve);
     poses = Poses(graph, nodes.size());
     bias = Biases(graph, bias.size());
-    gravity.world = graph.world_direction();
+    Update(graph, poses, seen);
   }
   // The biases go into the measurements: what is left is a pose graph (written as graph.g2o),
   // and the certificate applies to it.
   result.edges = Corrected(edges, groups, bias);
-  graph = BuildGraph(poses, result.edges, result.accepted, 0.0, BiasGroups{}, {}, gravity);
+  graph = BuildGraph(poses, result.edges, result.accepted, 0.0, BiasGroups{}, {}, seen);
   if (options.certify && n <= options.max_certify_nodes && n > 1) {
     solve.certify = true;
     result.report.final_solve = OptimisePoseGraph(graph, solve);
     poses = Poses(graph, nodes.size());
+    Update(graph, poses, seen);
   }
   for (size_t k = 0; k < edges.size(); ++k) {
     const Vector6d r = Residual(result.edges[k], poses);
@@ -393,6 +426,10 @@ FusionResult FuseRegistration(const std::vector<AcquisitionNode>& nodes,
       b.edges += groups.of_edge[k] == static_cast<int>(g) && result.accepted[k];
     b.bias = bias[g];
     result.report.biases.push_back(b);
+  }
+  if (seen.centreline) {
+    result.report.centreline = ReportCentreline(*seen.centreline, poses);
+    result.centreline = seen.centreline->curve;
   }
   result.world_from_camera = std::move(poses);
   result.graph = std::move(graph);

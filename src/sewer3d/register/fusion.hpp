@@ -27,6 +27,10 @@
 /// a bias must not take. The biases are then taken out of the measurements (`edges` of the
 /// result, graph.g2o) and the certificate, where enabled, judges that pose graph.
 ///
+/// The pipe's centreline (fusion_centreline.hpp, `centreline`): each node's axis point tied to
+/// one curve whose bend costs, weakly where feature edges see the pipe's turn and strongly
+/// where none do.
+///
 /// What the zero sum keeps, a turn every module's along edges share (a common part of the
 /// modules' calibration errors), bends the model, and only an absolute reference can tell it
 /// from a bent pipe: the inclinometer's direction of gravity at every acquisition
@@ -38,6 +42,7 @@
 #include <vector>
 
 #include "sewer3d/posegraph/solver.hpp"
+#include "sewer3d/register/fusion_centreline.hpp"
 #include "sewer3d/register/prior_edges.hpp"
 
 namespace sewer3d {
@@ -65,6 +70,8 @@ struct FusionOptions {
   /// distance and carried to where nothing else does (plastic).
   bool odometry_scale = true;
   double odometry_scale_sigma = 0.01;
+  /// The pipe's centreline (fusion_centreline.hpp) from the nodes' axis points.
+  CentrelineOptions centreline;
 
   void Check() const;
 };
@@ -107,6 +114,7 @@ struct FusionReport {
   bool usable = false;                ///< both solves usable
   std::vector<EdgeGroupBias> biases;  ///< groups whose measurements were corrected
   GravityReport gravity;
+  std::optional<CentrelineReport> centreline;  ///< where the graph had one
 };
 
 struct FusionResult {
@@ -116,6 +124,7 @@ struct FusionResult {
   std::vector<double> chi2;    ///< per edge, rᵀΩr at the final poses
   std::vector<bool> accepted;  ///< per edge
   PoseGraph graph;             ///< as optimised: node id = node index, the accepted edges in order
+  std::optional<AxisCurve> centreline;  ///< as estimated (model frame), where there was one
   FusionReport report;
 };
 

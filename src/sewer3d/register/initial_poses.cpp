@@ -127,6 +127,7 @@ CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
                                             const CarrierOffsetOptions& options) {
   options.Check();
   std::vector<Eigen::Vector2d> points;
+  std::vector<double> z;
   std::set<int> modules;
   for (const ModuleWallPoints& wall : walls) {
     SEWER3D_VALIDATE(wall.module >= 0 && wall.module < static_cast<int>(rig.modules.size()),
@@ -134,7 +135,9 @@ CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
     const Rigid3d& carrier_from_camera = rig.modules[wall.module].carrier_from_camera;
     for (const Eigen::Vector3d& p : wall.points_in_camera) {
       if (!p.allFinite()) continue;
-      points.push_back((carrier_from_camera * p).head<2>());
+      const Eigen::Vector3d in_carrier = carrier_from_camera * p;
+      points.push_back(in_carrier.head<2>());
+      z.push_back(in_carrier.z());
       modules.insert(wall.module);
     }
   }
@@ -145,9 +148,12 @@ CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
   const auto first = AlgebraicCircle(points);
   if (!first) return out;
   std::vector<Eigen::Vector2d> kept;
-  for (const Eigen::Vector2d& p : points)
-    if (std::abs((p - first->centre).norm() - first->radius) <= options.outlier_mm)
-      kept.push_back(p);
+  double z_sum = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (std::abs((points[i] - first->centre).norm() - first->radius) > options.outlier_mm) continue;
+    kept.push_back(points[i]);
+    z_sum += z[i];
+  }
   if (static_cast<int>(kept.size()) < options.min_points) return out;
   const Circle c = GeometricCircle(kept, *first, options.iterations);
   double sum2 = 0.0;
@@ -155,6 +161,7 @@ CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
   out.valid = std::isfinite(c.radius) && c.radius > 0.0;
   out.axis_in_carrier_mm = c.centre;
   out.diameter_mm = 2.0 * c.radius;
+  out.mean_z_mm = z_sum / static_cast<double>(kept.size());
   out.rms_mm = std::sqrt(sum2 / static_cast<double>(kept.size()));
   out.points = static_cast<int>(kept.size());
   return out;

@@ -33,6 +33,9 @@ struct AcquisitionNode {
   /// Gravity's direction in the camera frame at time_s from the run's inclinometer (unit);
   /// nullopt where the run has none (or no reading around time_s).
   std::optional<Eigen::Vector3d> down_in_camera;
+  /// A point of the pipe's axis in the camera frame (mm), from the walls of the node's instant
+  /// (EstimateCarrierOffset); nullopt where they gave none. Set by the registration stage.
+  std::optional<Eigen::Vector3d> axis_in_camera;
 };
 
 struct InitialPosesReport {
@@ -78,6 +81,9 @@ struct CarrierOffsetEstimate {
   /// centre's offset from the pipe axis is its negative.
   Eigen::Vector2d axis_in_carrier_mm = Eigen::Vector2d::Zero();
   double diameter_mm = 0.0;
+  /// The mean carrier z of the points used (mm): (axis_in_carrier_mm, mean_z_mm) is a point of
+  /// the axis where the walls were seen, whatever the carrier's tilt.
+  double mean_z_mm = 0.0;
   double rms_mm = 0.0;  ///< radial residual of the points used
   int points = 0;       ///< used
   int modules = 0;      ///< contributing
