@@ -67,6 +67,26 @@ void SeeTheAxis(const std::vector<Rigid3d>& truth, std::vector<AcquisitionNode>&
   }
 }
 
+// A chain of edges between consecutive nodes (Measured), the odometry and straightness edges,
+// fused with the given centreline options: the fused poses.
+std::vector<Rigid3d> FusedChain(const std::vector<AcquisitionNode>& nodes,
+                                const std::vector<Rigid3d>& truth, const Vector6d& sigma,
+                                RegistrationEdgeType type, double bias,
+                                const CentrelineOptions& centreline, std::mt19937& rng) {
+  std::vector<RegistrationEdge> edges;
+  for (int i = 0; i + 1 < static_cast<int>(nodes.size()); ++i)
+    edges.push_back(Measured(i, i + 1, truth, sigma, type, bias, rng));
+  PriorEdgeOptions priors;
+  priors.rig = false;
+  for (const RegistrationEdge& e : PriorEdges(nodes, OneModuleRig(), priors)) edges.push_back(e);
+  FusionOptions options;
+  options.certify = false;
+  options.centreline = centreline;
+  const FusionResult result = FuseRegistration(nodes, edges, options);
+  EXPECT_TRUE(result.report.usable);
+  return result.world_from_camera;
+}
+
 // The largest lateral error of the fused camera centres once a straight line (a rigid turn and
 // shift, as the evaluation's alignment takes out) is fitted to the errors along the pipe.
 double LateralError(const std::vector<Rigid3d>& fused, const std::vector<Rigid3d>& truth) {
@@ -100,20 +120,9 @@ double StraightPipe(const CentrelineOptions& centreline, std::uint32_t seed) {
   SeeTheAxis(truth, nodes, rng);
   Vector6d sigma;
   sigma << 0.02, 0.02, 5.0, 0.01 * kDeg, 0.01 * kDeg, 5.0 * kDeg;
-  std::vector<RegistrationEdge> edges;
-  for (int i = 0; i + 1 < kNodes; ++i) {
-    edges.push_back(
-        Measured(i, i + 1, truth, sigma, RegistrationEdgeType::kProjection, 0.008 * kDeg, rng));
-  }
-  PriorEdgeOptions priors;
-  priors.rig = false;
-  for (const RegistrationEdge& e : PriorEdges(nodes, OneModuleRig(), priors)) edges.push_back(e);
-  FusionOptions options;
-  options.certify = false;
-  options.centreline = centreline;
-  const FusionResult result = FuseRegistration(nodes, edges, options);
-  EXPECT_TRUE(result.report.usable);
-  return LateralError(result.world_from_camera, truth);
+  const std::vector<Rigid3d> fused = FusedChain(
+      nodes, truth, sigma, RegistrationEdgeType::kProjection, 0.008 * kDeg, centreline, rng);
+  return LateralError(fused, truth);
 }
 
 TEST(FusionCentreline, HoldsAStraightPipeWhereEveryRegistrationTurnsAlike) {
@@ -153,19 +162,9 @@ double BendRadius(const CentrelineOptions& centreline, std::uint32_t seed) {
   for (size_t i = 0; i < nodes.size(); ++i) nodes[i].axis_in_camera = Eigen::Vector3d::Zero();
   Vector6d sigma;
   sigma << 0.15, 0.15, 0.15, 0.04 * kDeg, 0.04 * kDeg, 0.04 * kDeg;
-  std::vector<RegistrationEdge> edges;
-  for (int i = 0; i + 1 < kNodes; ++i)
-    edges.push_back(Measured(i, i + 1, truth, sigma, RegistrationEdgeType::kFeature, 0.0, rng));
-  PriorEdgeOptions priors;
-  priors.rig = false;
-  for (const RegistrationEdge& e : PriorEdges(nodes, OneModuleRig(), priors)) edges.push_back(e);
-  FusionOptions options;
-  options.certify = false;
-  options.centreline = centreline;
-  const FusionResult result = FuseRegistration(nodes, edges, options);
-  EXPECT_TRUE(result.report.usable);
-  const double turn = result.world_from_camera.front().rotation.angularDistance(
-      result.world_from_camera.back().rotation);
+  const std::vector<Rigid3d> fused =
+      FusedChain(nodes, truth, sigma, RegistrationEdgeType::kFeature, 0.0, centreline, rng);
+  const double turn = fused.front().rotation.angularDistance(fused.back().rotation);
   return kStep * (kNodes - 1) / turn;
 }
 
