@@ -127,7 +127,8 @@ std::string RegisterOptionsJson(const RegisterStageOptions& o) {
           {"bend_radius_mm", o.fusion.centreline.bend_radius_mm},
           {"featureless_bend_radius_mm", o.fusion.centreline.featureless_bend_radius_mm},
           {"axis_sigma_mm", o.fusion.centreline.axis_sigma_mm},
-          {"axis_max_rms_mm", o.axis_max_rms_mm}}}}},
+          {"axis_max_rms_mm", o.axis_max_rms_mm},
+          {"axis_min_inliers", o.axis_min_inliers}}}}},
       {"min_depth_points", o.min_depth_points}};
   return j.dump();
 }
@@ -183,6 +184,7 @@ std::string RegisterStageReportToJson(const RegisterStageReport& report) {
         {"axis_in_carrier_mm", {c.axis_in_carrier_mm.x(), c.axis_in_carrier_mm.y()}},
         {"diameter_mm", c.diameter_mm},
         {"rms_mm", c.rms_mm},
+        {"inlier_fraction", c.inlier_fraction},
         {"modules", c.modules},
         {"nodes_with_axis", report.nodes_with_axis}}},
       {"neighbours",

@@ -55,8 +55,9 @@ std::vector<AcquisitionNode> UsableNodes(const std::vector<AcquisitionNode>& all
 }
 
 /// The pipe's axis at every counter from the walls of its nodes (EstimateCarrierOffset); each
-/// node whose instant gave one, with a fit within `axis_max_rms_mm`, gets the axis point in its
-/// camera frame. Returns the first counter's estimate.
+/// node whose instant gave one, with a fit within `axis_max_rms_mm` that kept at least
+/// `axis_min_inliers` of its points, gets the axis point in its camera frame. Returns the first
+/// counter's estimate.
 CarrierOffsetEstimate InstantAxes(std::vector<AcquisitionNode>& nodes, const CaptureRun& run,
                                   const std::filesystem::path& rgbd_folder,
                                   const RegisterStageOptions& options,
@@ -77,7 +78,9 @@ CarrierOffsetEstimate InstantAxes(std::vector<AcquisitionNode>& nodes, const Cap
         EstimateCarrierOffset(run.rig, walls, options.carrier_offset);
     if (done == 0) first = axis;
     if (progress) progress("walls", ++done, static_cast<int>(per_counter.size()));
-    if (!axis.valid || axis.rms_mm > options.axis_max_rms_mm) continue;
+    if (!axis.valid || axis.rms_mm > options.axis_max_rms_mm ||
+        axis.inlier_fraction < options.axis_min_inliers)
+      continue;
     const Eigen::Vector3d in_carrier(axis.axis_in_carrier_mm.x(), axis.axis_in_carrier_mm.y(),
                                      axis.mean_z_mm);
     for (size_t i : members) {
@@ -100,6 +103,8 @@ void RegisterStageOptions::Check() const {
   SEWER3D_VALIDATE(min_depth_points >= 0, "min_depth_points", "must not be negative");
   SEWER3D_VALIDATE(wall_step_px >= 1, "wall_step_px", "must be at least 1");
   ValidatePositive("axis_max_rms_mm", axis_max_rms_mm);
+  SEWER3D_VALIDATE(axis_min_inliers >= 0.0 && axis_min_inliers <= 1.0, "axis_min_inliers",
+                   "must be within [0, 1], got " << axis_min_inliers);
   ValidatePositive("length_scale_mm", length_scale_mm);
   SEWER3D_VALIDATE(threads >= 1, "threads", "must be at least 1, got " << threads);
 }

@@ -3,8 +3,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <optional>
 #include <set>
+#include <vector>
 
 #include "sewer3d/core/check.hpp"
 
@@ -59,6 +61,37 @@ Circle GeometricCircle(const std::vector<Eigen::Vector2d>& p, Circle c, int iter
     if (step.norm() < 1e-9) break;
   }
   return c;
+}
+
+double Residual(const Eigen::Vector2d& p, const Circle& c) {
+  return std::abs((p - c.centre).norm() - c.radius);
+}
+
+// Indices of the points within `band` of the circle.
+std::vector<size_t> Within(const std::vector<Eigen::Vector2d>& p, const Circle& c, double band) {
+  std::vector<size_t> out;
+  for (size_t i = 0; i < p.size(); ++i)
+    if (Residual(p[i], c) <= band) out.push_back(i);
+  return out;
+}
+
+std::vector<Eigen::Vector2d> Select(const std::vector<Eigen::Vector2d>& p,
+                                    const std::vector<size_t>& indices) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(indices.size());
+  for (size_t i : indices) out.push_back(p[i]);
+  return out;
+}
+
+// σ of the residuals of the indexed points from their median absolute value (1.4826 MAD).
+double RobustSigma(const std::vector<Eigen::Vector2d>& p, const std::vector<size_t>& indices,
+                   const Circle& c) {
+  std::vector<double> r;
+  r.reserve(indices.size());
+  for (size_t i : indices) r.push_back(Residual(p[i], c));
+  const auto middle = r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2);
+  std::nth_element(r.begin(), middle, r.end());
+  return 1.4826 * *middle;
 }
 
 }  // namespace
@@ -120,6 +153,8 @@ void CarrierOffsetOptions::Check() const {
   SEWER3D_VALIDATE(min_modules >= 1, "min_modules", "must be >= 1, got " << min_modules);
   SEWER3D_VALIDATE(iterations >= 0, "iterations", "must be >= 0, got " << iterations);
   ValidatePositive("outlier_mm", outlier_mm);
+  SEWER3D_VALIDATE(trim_rounds >= 0, "trim_rounds", "must be >= 0, got " << trim_rounds);
+  ValidatePositive("trim_band_mm", trim_band_mm);
 }
 
 CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
@@ -147,23 +182,34 @@ CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
     return out;
   const auto first = AlgebraicCircle(points);
   if (!first) return out;
-  std::vector<Eigen::Vector2d> kept;
-  double z_sum = 0.0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    if (std::abs((points[i] - first->centre).norm() - first->radius) > options.outlier_mm) continue;
-    kept.push_back(points[i]);
+  // The points within outlier_mm of the first circle; then, trim_rounds times, those within
+  // max(trim_band_mm, 3 σ) of the last fit (σ from the median absolute residual): what is not
+  // the wall's circle (an intrusion, the far side of a joint's step) leaves the fit.
+  std::vector<size_t> near = Within(points, *first, options.outlier_mm);
+  if (static_cast<int>(near.size()) < options.min_points) return out;
+  std::vector<size_t> kept = near;
+  Circle c = GeometricCircle(Select(points, kept), *first, options.iterations);
+  for (int round = 0; round < options.trim_rounds; ++round) {
+    const double band = std::max(options.trim_band_mm, 3.0 * RobustSigma(points, near, c));
+    std::vector<size_t> trimmed;
+    for (size_t i : near)
+      if (Residual(points[i], c) <= band) trimmed.push_back(i);
+    if (static_cast<int>(trimmed.size()) < options.min_points) break;
+    kept = std::move(trimmed);
+    c = GeometricCircle(Select(points, kept), c, options.iterations);
+  }
+  double sum2 = 0.0, z_sum = 0.0;
+  for (size_t i : kept) {
+    sum2 += std::pow(Residual(points[i], c), 2);
     z_sum += z[i];
   }
-  if (static_cast<int>(kept.size()) < options.min_points) return out;
-  const Circle c = GeometricCircle(kept, *first, options.iterations);
-  double sum2 = 0.0;
-  for (const Eigen::Vector2d& p : kept) sum2 += std::pow((p - c.centre).norm() - c.radius, 2);
   out.valid = std::isfinite(c.radius) && c.radius > 0.0;
   out.axis_in_carrier_mm = c.centre;
   out.diameter_mm = 2.0 * c.radius;
   out.mean_z_mm = z_sum / static_cast<double>(kept.size());
   out.rms_mm = std::sqrt(sum2 / static_cast<double>(kept.size()));
   out.points = static_cast<int>(kept.size());
+  out.inlier_fraction = static_cast<double>(kept.size()) / static_cast<double>(near.size());
   return out;
 }
 
