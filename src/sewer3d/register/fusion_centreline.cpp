@@ -127,7 +127,11 @@ CentrelineReport ReportCentreline(const CentrelineSetup& setup, const std::vecto
     r.across_max_mm = std::max(r.across_max_mm, across);
   }
   if (r.observations > 0) r.across_rms_mm = std::sqrt(r.across_rms_mm / r.observations);
-  r.bend_radius_mm = Radius(c.points.front(), c.points[c.points.size() / 2], c.points.back());
+  // A shorter curve's bend is its points' noise (0.2 mm of sagitta over 0.2 m reads 25 m).
+  constexpr double kMinBendLengthMm = 1000.0;
+  r.bend_radius_mm = r.length_mm < kMinBendLengthMm
+                         ? std::numeric_limits<double>::infinity()
+                         : Radius(c.points.front(), c.points[c.points.size() / 2], c.points.back());
   const Eigen::Vector3d chord = (c.points.back() - c.points.front()).normalized();
   for (const Eigen::Vector3d& p : c.points) {
     const Eigen::Vector3d d = p - c.points.front();

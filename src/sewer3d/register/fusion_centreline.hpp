@@ -69,7 +69,7 @@ struct CentrelineReport {
   /// The nodes' axis points from the curve, across it (mm).
   double across_rms_mm = 0.0, across_max_mm = 0.0;
   /// The curve's bend: the radius of the circle through its first, middle and last control
-  /// points (mm; infinity when they are collinear), and the largest distance of a control
+  /// points (mm; infinity when they are collinear or the curve is shorter than 1 m), and the largest distance of a control
   /// point from the chord of the first and the last.
   double bend_radius_mm = 0.0;
   double max_sagitta_mm = 0.0;
