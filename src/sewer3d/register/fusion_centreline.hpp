@@ -69,8 +69,8 @@ struct CentrelineReport {
   /// The nodes' axis points from the curve, across it (mm).
   double across_rms_mm = 0.0, across_max_mm = 0.0;
   /// The curve's bend: the radius of the circle through its first, middle and last control
-  /// points (mm; infinity when they are collinear or the curve is shorter than 1 m), and the largest distance of a control
-  /// point from the chord of the first and the last.
+  /// points (mm; infinity when they are collinear or the curve is shorter than 1 m), and the
+  /// largest distance of a control point from the chord of the first and the last.
   double bend_radius_mm = 0.0;
   double max_sagitta_mm = 0.0;
   int featureless_points = 0;  ///< second differences held with featureless_bend_radius_mm
