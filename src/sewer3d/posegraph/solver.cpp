@@ -175,7 +175,7 @@ struct LmResult {
   bool usable = false;
 };
 
-/// The centreline's terms (centreline.hpp) on the poses' blocks and the curve's, a copy of its
+/// The axis curve's terms (axis_curve.hpp) on the poses' blocks and the curve's, a copy of its
 /// points in `curve`.
 void AddCentreline(const PoseGraph& graph, const Indexing& ix, std::vector<Eigen::Vector3d>& p,
                    std::vector<Eigen::Quaterniond>& q, std::vector<Eigen::Vector3d>& curve,
