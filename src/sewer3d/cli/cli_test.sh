@@ -146,8 +146,12 @@ expect_ok "$bin" reconstruct --module "$tmp/m/module.json" --image "$tmp/s/plane
   --no-cut-spots --out "$tmp/r/plane_nocut"
 grep -q '"cut_by_step": 0,' "$tmp/r/plane_nocut/report.json" ||
   fail "--no-cut-spots still dropped spots"
-expect_ok "$bin" evaluate plane --cloud "$tmp/r/plane/cloud.ply" --truth "$tmp/s/plane/scene.json"
+expect_ok "$bin" evaluate plane --cloud "$tmp/r/plane/cloud.ply" --truth "$tmp/s/plane/scene.json" \
+  --out "$tmp/r/plane_eval"
 grep -q "RMS" "$tmp/out" || fail "evaluate prints no RMS"
+for f in residuals residuals_smoothed truth_residuals truth_residuals_smoothed; do
+  [ -s "$tmp/r/plane_eval/$f.png" ] || fail "evaluate plane --out wrote no $f.png"
+done
 grep -Eq "plane at (89\.9[5-9]|90\.0[0-4])" "$tmp/out" || fail "evaluate does not find the 90 mm plane: $(cat "$tmp/out")"
 expect_error "cylinder\|points" "$bin" evaluate cylinder --cloud "$tmp/r/plane/cloud.ply" --inner-fraction 0.05
 expect_error "expected one of plane, cylinder, rgbd, registration, model, inspection, calibration, got sphere" "$bin" evaluate sphere --cloud "$tmp/r/plane/cloud.ply"

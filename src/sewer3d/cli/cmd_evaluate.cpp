@@ -35,7 +35,8 @@ constexpr const char* kAllOptions[] = {
 
 // The options an evaluation of `kind` takes.
 std::vector<std::string> OptionsOf(const std::string& kind) {
-  if (kind == "plane" || kind == "cylinder") return {"--cloud", "--truth", "--inner-fraction"};
+  if (kind == "plane" || kind == "cylinder")
+    return {"--cloud", "--truth", "--inner-fraction", "--out"};
   if (kind == "calibration") return {"--captures", "--module", "--out"};
   std::vector<std::string> own{"--run", "--workspace", "--out"};
   if (kind == "rgbd") own.emplace_back("--smoothing-px");
@@ -107,7 +108,9 @@ Command AddEvaluateCommand(CLI::App& app) {
   sub->add_option(
       "--out", args->out,
       "rgbd, registration, model, inspection: folder for evaluation.json and pictures (default "
-      "WS/evaluation/<what>); calibration: the evaluation's JSON file (default: none)");
+      "WS/evaluation/<what>); calibration: the evaluation's JSON file (default: none); plane, "
+      "cylinder: folder for residuals.png (and truth_residuals.png with --truth; default: "
+      "none)");
   sub->add_option("--local-alignment-mm", args->local_alignment_mm,
                   "inspection: judge each observation against the truth aligned by the cameras "
                   "within ± this of it (a long run whose trajectory one alignment cannot hold); 0: "
@@ -139,8 +142,8 @@ Command AddEvaluateCommand(CLI::App& app) {
             }
             if (own.front() == "--run") return EvaluateWorkspace(*args);
             if (args->cloud.empty()) throw CLI::RequiredError("--cloud");
-            return RunEvaluateSurface(args->surface, args->cloud, args->truth,
-                                      args->inner_fraction);
+            return RunEvaluateSurface(args->surface, args->cloud, args->truth, args->inner_fraction,
+                                      args->out);
           }};
 }
 

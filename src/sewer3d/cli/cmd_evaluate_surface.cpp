@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,9 +15,11 @@
 #include "sewer3d/cli/evaluate_commands.hpp"
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/image_io.hpp"
 #include "sewer3d/io/ply_io.hpp"
 #include "sewer3d/model/cloud_facts.hpp"
 #include "sewer3d/model/fit.hpp"
+#include "sewer3d/simeval/residual_image.hpp"
 #include "sewer3d/simio/scene_io.hpp"
 
 namespace sewer3d::cli {
@@ -32,7 +36,10 @@ void WarnOfUnits(const std::string& cloud, const CameraCloudFacts& facts) {
   fmt::print(stderr, "sewer3d: warning: {}: {}\n", cloud, problem);
 }
 
-void PrintPlane(const std::string& cloud, const Points& points) {
+// Each point's signed distance from the fitted surface (positive away from the camera).
+using Residuals = std::function<double(const Eigen::Vector3d&)>;
+
+Residuals PrintPlane(const std::string& cloud, const Points& points) {
   const auto fit = FitPlane(points);
   if (!fit) throw FileError(cloud, "points do not span a plane");
   // A plane nearly parallel to the optical axis meets it far away or never.
@@ -43,10 +50,11 @@ void PrintPlane(const std::string& cloud, const Points& points) {
   fmt::print("plane      median distance to the camera {:.3f} mm, {}\n",
              DescribeCameraCloud(points).median_distance_mm, crossing);
   fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
+  return [plane = *fit](const Eigen::Vector3d& p) { return SignedDistance(plane, p); };
 }
 
-void PrintCylinder(const std::string& cloud, const Points& points,
-                   const std::optional<Scene>& truth) {
+Residuals PrintCylinder(const std::string& cloud, const Points& points,
+                        const std::optional<Scene>& truth) {
   const auto fit = FitCylinderAnyAxis(points);
   if (!fit || !fit->converged) {
     throw FileError(cloud,
@@ -66,13 +74,17 @@ void PrintCylinder(const std::string& cloud, const Points& points,
       "{:.2f}) mm\n",
       2 * fit->radius_mm, a.x(), a.y(), a.z(), c.x(), c.y(), c.z());
   fmt::print("fit        RMS {:.4f} mm, max {:.4f} mm\n", fit->rms_mm, fit->max_mm);
-  if (!truth) return;
+  Residuals residuals = [cylinder = *fit](const Eigen::Vector3d& p) {
+    return SignedDistance(cylinder, p);
+  };
+  if (!truth) return residuals;
   const double error = 2 * fit->radius_mm - truth->diameter_mm;
   // A cylinder through a wall's joint step and relief is not the pipe's: said on the line.
   const std::size_t n = truth->features.size();
   fmt::print("truth      diameter {:.3f} mm: error {:+.3f} mm ({:+.3f} %{})\n", truth->diameter_mm,
              error, 100 * error / truth->diameter_mm,
              n ? fmt::format(", the fit holding the wall's {} features", n) : "");
+  return residuals;
 }
 
 void PrintTruthDistances(const Scene& scene, const Points& all) {
@@ -90,10 +102,36 @@ void PrintTruthDistances(const Scene& scene, const Points& all) {
       all.size(), std::sqrt(sum2 / all.size()), worst, beyond_1mm);
 }
 
+// residuals.png (from the fit) and, with the truth, truth_residuals.png in `out`.
+void WriteResidualImages(const std::filesystem::path& out, const std::string& surface,
+                         const Points& all, const Residuals& fitted, double inner_fraction,
+                         const std::optional<Scene>& truth) {
+  std::filesystem::create_directories(out);
+  std::vector<double> residuals;
+  residuals.reserve(all.size());
+  for (const Eigen::Vector3d& p : all) residuals.push_back(fitted(p));
+  ResidualImageOptions options;
+  options.title = fmt::format("signed distance from the {} fitted to the inner {:.0f} %", surface,
+                              100 * inner_fraction);
+  WriteImage(out / "residuals.png", ResidualImage(all, residuals, options));
+  // The same over cells of about 50 points: the systematic part, the spots' noise averaged.
+  ResidualImageOptions smoothed = options;
+  smoothed.smoothing_cells = std::max(4, static_cast<int>(std::sqrt(all.size() / 50.0 * 4 / 3)));
+  smoothed.range_mm = 0.0;
+  WriteImage(out / "residuals_smoothed.png", ResidualImage(all, residuals, smoothed));
+  if (!truth) return;
+  options.title = "signed distance from the true surface along each point's ray";
+  const std::vector<double> to_truth = RayResiduals(*truth, all);
+  WriteImage(out / "truth_residuals.png", ResidualImage(all, to_truth, options));
+  smoothed.title = options.title;
+  WriteImage(out / "truth_residuals_smoothed.png", ResidualImage(all, to_truth, smoothed));
+}
+
 }  // namespace
 
 int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
-                       const std::string& truth_file, double inner_fraction) {
+                       const std::string& truth_file, double inner_fraction,
+                       const std::string& out) {
   // Every input read before any work: a bad --truth fails at once.
   std::optional<Scene> truth;
   if (!truth_file.empty()) truth = ReadScene(truth_file);
@@ -138,12 +176,11 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
     throw FileError(cloud, fmt::format("only {} points: at least 10 are needed", all.size()));
   fmt::print("{}: {} points, {} in the inner {:.0f} %\n", cloud, all.size(), points.size(),
              100 * inner_fraction);
-  if (surface == "plane")
-    PrintPlane(cloud, points);
-  else
-    PrintCylinder(cloud, points, truth);
+  const Residuals fitted =
+      surface == "plane" ? PrintPlane(cloud, points) : PrintCylinder(cloud, points, truth);
   WarnOfUnits(cloud, facts);
   if (truth) PrintTruthDistances(*truth, all);
+  if (!out.empty()) WriteResidualImages(out, surface, all, fitted, inner_fraction, truth);
   return 0;
 }
 

@@ -8,11 +8,15 @@
 
 namespace sewer3d::cli {
 
-/// `sewer3d evaluate plane|cylinder --cloud PLY [--truth scene.json] [--inner-fraction F]`:
-/// fits `surface` to the inner part of the cloud and prints the fit (and the errors against
-/// the true scene); FileError for a cloud that fits no such surface. Returns the exit code.
+/// `sewer3d evaluate plane|cylinder --cloud PLY [--truth scene.json] [--inner-fraction F]
+/// [--out DIR]`: fits `surface` to the inner part of the cloud and prints the fit (and the
+/// errors against the true scene); with `out`, writes DIR/residuals.png (every point's signed
+/// distance from the fit where the camera sees it) and, with the truth,
+/// DIR/truth_residuals.png. FileError for a cloud that fits no such surface. Returns the exit
+/// code.
 int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
-                       const std::string& truth_file, double inner_fraction);
+                       const std::string& truth_file, double inner_fraction,
+                       const std::string& out);
 
 /// `sewer3d evaluate rgbd --run RUN --workspace WS [--out DIR]`: prints the colour figures,
 /// writes DIR/evaluation.json and DIR/colour_montage.png; returns the exit code.

@@ -43,12 +43,22 @@ std::optional<PlaneFit> FitPlane(const std::vector<Eigen::Vector3d>& points) {
   fit.offset = -fit.normal.dot(centroid);
   double sum2 = 0.0;
   for (const auto& p : points) {
-    const double d = fit.normal.dot(p) + fit.offset;
+    const double d = SignedDistance(fit, p);
     sum2 += d * d;
     fit.max_mm = std::max(fit.max_mm, std::abs(d));
   }
   fit.rms_mm = std::sqrt(sum2 / points.size());
   return fit;
+}
+
+double SignedDistance(const PlaneFit& plane, const Eigen::Vector3d& point) {
+  return -(plane.normal.dot(point) + plane.offset);  // the normal points toward the camera
+}
+
+double SignedDistance(const CylinderFit& cylinder, const Eigen::Vector3d& point) {
+  const Eigen::Vector3d d = point - cylinder.axis_point;
+  const Eigen::Vector3d across = d - d.dot(cylinder.axis_direction) * cylinder.axis_direction;
+  return across.norm() - cylinder.radius_mm;
 }
 
 std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& points,
@@ -102,8 +112,7 @@ std::optional<CylinderFit> FitCylinder(const std::vector<Eigen::Vector3d>& point
   fit.converged = summary.IsSolutionUsable();
   double sum2 = 0.0;
   for (const auto& p : points) {
-    const Eigen::Vector3d d = p - fit.axis_point;
-    const double e = (d - d.dot(fit.axis_direction) * fit.axis_direction).norm() - r;
+    const double e = SignedDistance(fit, p);
     sum2 += e * e;
     fit.max_mm = std::max(fit.max_mm, std::abs(e));
   }

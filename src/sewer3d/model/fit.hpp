@@ -19,6 +19,9 @@ struct PlaneFit {
 /// Total least squares (SVD of the centred points). Needs >= 3 non-collinear points.
 std::optional<PlaneFit> FitPlane(const std::vector<Eigen::Vector3d>& points);
 
+/// Signed distance (mm) of a point from the plane, positive on the far side from the camera.
+double SignedDistance(const PlaneFit& plane, const Eigen::Vector3d& point);
+
 struct CylinderFit {
   Eigen::Vector3d axis_point;      ///< point on the axis closest to the camera centre
   Eigen::Vector3d axis_direction;  ///< unit
@@ -31,6 +34,9 @@ struct CylinderFit {
   bool flat = false;
   double plane_rms_mm = 0.0;  ///< of the total-least-squares plane (FitPlane)
 };
+
+/// Signed distance (mm) of a point from the cylinder, positive outside (away from the axis).
+double SignedDistance(const CylinderFit& cylinder, const Eigen::Vector3d& point);
 
 /// Geometric fit (Ceres, Levenberg–Marquardt) of distance-to-axis − r, started from an
 /// algebraic circle fit in the plane perpendicular to `axis_guess`; `flat` tells a cloud with

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "sewer3d/simeval/model_evaluation.hpp"
+#include "sewer3d/simeval/picture.hpp"
 
 namespace sewer3d {
 namespace {
@@ -47,11 +48,6 @@ cv::Mat1f Shrink(const cv::Mat1f& error, double factor) {
     for (int c = 0; c < cols; ++c)
       if (count(r, c) > 0.0f) mean(r, c) = sum(r, c) / count(r, c);
   return mean;
-}
-
-void Text(cv::Mat3b& image, const std::string& text, cv::Point at, double scale = 0.45) {
-  cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), 1,
-              cv::LINE_AA);
 }
 
 /// A round station step so that labels are at least `min_px` apart.
@@ -120,16 +116,16 @@ cv::Mat3b ModelErrorMap(const ModelEvaluation& e, double range_mm, int length_px
   const int left = 70, top = 30, right = 130, bottom = 45;
   cv::Mat3b out(map.rows + top + bottom, map.cols + left + right, cv::Vec3b(255, 255, 255));
   map.copyTo(out(cv::Rect(left, top, map.cols, map.rows)));
-  Text(out,
-       fmt::format("signed error of the model against the true wall{} (stride {}, +-{:g} mm)",
-                   after_axis_offset ? ", each station's axis offset removed," : "", e.stride,
-                   range_mm),
-       {left, 20});
+  DrawLabel(out,
+            fmt::format("signed error of the model against the true wall{} (stride {}, +-{:g} mm)",
+                        after_axis_offset ? ", each station's axis offset removed," : "", e.stride,
+                        range_mm),
+            {left, 20});
   // Clock ticks: 12, 3, 6, 9, 12 o'clock down the left side.
   for (int h = 0; h <= 4; ++h) {
     const int y = top + static_cast<int>(std::lround(h * 0.25 * (map.rows - 1)));
     cv::line(out, {left - 6, y}, {left - 1, y}, cv::Scalar(0, 0, 0));
-    Text(out, fmt::format("{}h", h % 4 == 0 ? 12 : 3 * h), {left - 40, y + 5});
+    DrawLabel(out, fmt::format("{}h", h % 4 == 0 ? 12 : 3 * h), {left - 40, y + 5});
   }
   // Station ticks along the bottom (model stations, mm).
   const double mm_per_px = e.grid.resolution_mm * e.stride * stations / map.cols;
@@ -139,20 +135,10 @@ cv::Mat3b ModelErrorMap(const ModelEvaluation& e, double range_mm, int length_px
     const int x = left + static_cast<int>(std::lround((s - s0) / mm_per_px));
     if (x >= left + map.cols) break;
     cv::line(out, {x, top + map.rows}, {x, top + map.rows + 5}, cv::Scalar(0, 0, 0));
-    Text(out, fmt::format("{:g}", s), {x - 14, top + map.rows + 20});
+    DrawLabel(out, fmt::format("{:g}", s), {x - 14, top + map.rows + 20});
   }
-  Text(out, "station (mm)", {left + map.cols / 2 - 40, top + map.rows + 38});
-  // Colour bar: +range at the top, −range at the bottom.
-  const int bar_x = left + map.cols + 20, bar_h = std::min(map.rows, 300);
-  cv::Mat1f ramp(bar_h, 1);
-  for (int y = 0; y < bar_h; ++y)
-    ramp(y, 0) = static_cast<float>(range_mm * (1.0 - 2.0 * y / std::max(1, bar_h - 1)));
-  cv::Mat3b bar;
-  cv::resize(DisplacementView(ramp, range_mm), bar, {20, bar_h}, 0, 0, cv::INTER_NEAREST);
-  bar.copyTo(out(cv::Rect(bar_x, top, 20, bar_h)));
-  Text(out, fmt::format("+{:g} mm", range_mm), {bar_x + 24, top + 10});
-  Text(out, "0", {bar_x + 24, top + bar_h / 2 + 5});
-  Text(out, fmt::format("-{:g} mm", range_mm), {bar_x + 24, top + bar_h});
+  DrawLabel(out, "station (mm)", {left + map.cols / 2 - 40, top + map.rows + 38});
+  DrawColourBar(out, {left + map.cols + 20, top}, std::min(map.rows, 300), range_mm);
   return out;
 }
 
