@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "sewer3d/core/check.hpp"
-#include "sewer3d/model/circle_fit.hpp"
+#include "sewer3d/core/circle_fit.hpp"
 
 namespace sewer3d {
 namespace {

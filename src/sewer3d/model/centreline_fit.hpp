@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "sewer3d/model/circle_fit.hpp"
+#include "sewer3d/core/circle_fit.hpp"
 #include "sewer3d/model/pipe_map.hpp"
 
 namespace sewer3d {

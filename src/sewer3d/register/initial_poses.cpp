@@ -21,79 +21,6 @@ double DistanceAt(const std::vector<OdometryReading>& odometry, double time_s, b
                                           : odometry.back().distance_mm;
 }
 
-struct Circle {
-  Eigen::Vector2d centre;
-  double radius = 0.0;
-};
-
-// Kåsa: x² + y² + D x + E y + F = 0 in least squares.
-std::optional<Circle> AlgebraicCircle(const std::vector<Eigen::Vector2d>& p) {
-  Eigen::MatrixXd a(p.size(), 3);
-  Eigen::VectorXd b(p.size());
-  for (size_t i = 0; i < p.size(); ++i) {
-    a.row(i) << p[i].x(), p[i].y(), 1.0;
-    b(i) = -p[i].squaredNorm();
-  }
-  const Eigen::Vector3d x = a.colPivHouseholderQr().solve(b);
-  const Eigen::Vector2d centre(-0.5 * x(0), -0.5 * x(1));
-  const double r2 = centre.squaredNorm() - x(2);
-  if (!(r2 > 0.0) || !x.allFinite()) return std::nullopt;
-  return Circle{centre, std::sqrt(r2)};
-}
-
-// Gauss–Newton on r_i = |p_i − c| − R.
-Circle GeometricCircle(const std::vector<Eigen::Vector2d>& p, Circle c, int iterations) {
-  for (int it = 0; it < iterations; ++it) {
-    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector2d& q : p) {
-      const Eigen::Vector2d d = q - c.centre;
-      const double n = d.norm();
-      if (n <= 0.0) continue;
-      const Eigen::Vector3d j(-d.x() / n, -d.y() / n, -1.0);
-      h += j * j.transpose();
-      g += j * (n - c.radius);
-    }
-    const Eigen::Vector3d step = -h.ldlt().solve(g);
-    if (!step.allFinite()) break;
-    c.centre += step.head<2>();
-    c.radius += step(2);
-    if (step.norm() < 1e-9) break;
-  }
-  return c;
-}
-
-double Residual(const Eigen::Vector2d& p, const Circle& c) {
-  return std::abs((p - c.centre).norm() - c.radius);
-}
-
-// Indices of the points within `band` of the circle.
-std::vector<size_t> Within(const std::vector<Eigen::Vector2d>& p, const Circle& c, double band) {
-  std::vector<size_t> out;
-  for (size_t i = 0; i < p.size(); ++i)
-    if (Residual(p[i], c) <= band) out.push_back(i);
-  return out;
-}
-
-std::vector<Eigen::Vector2d> Select(const std::vector<Eigen::Vector2d>& p,
-                                    const std::vector<size_t>& indices) {
-  std::vector<Eigen::Vector2d> out;
-  out.reserve(indices.size());
-  for (size_t i : indices) out.push_back(p[i]);
-  return out;
-}
-
-// σ of the residuals of the indexed points from their median absolute value (1.4826 MAD).
-double RobustSigma(const std::vector<Eigen::Vector2d>& p, const std::vector<size_t>& indices,
-                   const Circle& c) {
-  std::vector<double> r;
-  r.reserve(indices.size());
-  for (size_t i : indices) r.push_back(Residual(p[i], c));
-  const auto middle = r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2);
-  std::nth_element(r.begin(), middle, r.end());
-  return 1.4826 * *middle;
-}
-
 }  // namespace
 
 InitialPosesResult InitialPoses(const CaptureRun& run) {
@@ -149,12 +76,10 @@ InitialPosesResult InitialPoses(const CaptureRun& run) {
 }
 
 void CarrierOffsetOptions::Check() const {
-  SEWER3D_VALIDATE(min_points >= 3, "min_points", "must be >= 3, got " << min_points);
+  SEWER3D_VALIDATE(min_points >= 8, "min_points", "must be >= 8, got " << min_points);
   SEWER3D_VALIDATE(min_modules >= 1, "min_modules", "must be >= 1, got " << min_modules);
-  SEWER3D_VALIDATE(iterations >= 0, "iterations", "must be >= 0, got " << iterations);
   ValidatePositive("outlier_mm", outlier_mm);
-  SEWER3D_VALIDATE(trim_rounds >= 0, "trim_rounds", "must be >= 0, got " << trim_rounds);
-  ValidatePositive("trim_band_mm", trim_band_mm);
+  circle.Check();
 }
 
 CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
@@ -180,36 +105,28 @@ CarrierOffsetEstimate EstimateCarrierOffset(const Rig& rig,
   out.modules = static_cast<int>(modules.size());
   if (static_cast<int>(points.size()) < options.min_points || out.modules < options.min_modules)
     return out;
-  const auto first = AlgebraicCircle(points);
-  if (!first) return out;
-  // The points within outlier_mm of the first circle; then, trim_rounds times, those within
-  // max(trim_band_mm, 3 σ) of the last fit (σ from the median absolute residual): what is not
-  // the wall's circle (an intrusion, the far side of a joint's step) leaves the fit.
-  std::vector<size_t> near = Within(points, *first, options.outlier_mm);
-  if (static_cast<int>(near.size()) < options.min_points) return out;
-  std::vector<size_t> kept = near;
-  Circle c = GeometricCircle(Select(points, kept), *first, options.iterations);
-  for (int round = 0; round < options.trim_rounds; ++round) {
-    const double band = std::max(options.trim_band_mm, 3.0 * RobustSigma(points, near, c));
-    std::vector<size_t> trimmed;
-    for (size_t i : near)
-      if (Residual(points[i], c) <= band) trimmed.push_back(i);
-    if (static_cast<int>(trimmed.size()) < options.min_points) break;
-    kept = std::move(trimmed);
-    c = GeometricCircle(Select(points, kept), c, options.iterations);
-  }
-  double sum2 = 0.0, z_sum = 0.0;
-  for (size_t i : kept) {
-    sum2 += std::pow(Residual(points[i], c), 2);
+  // What is not the wall's circle (an intrusion, the far side of a joint's step) gets no
+  // weight; the inlier share is taken of the points near the circle, so a view into a
+  // connection's bore does not count against it, a joint's far side does.
+  std::vector<std::uint8_t> inlier;
+  const CircleFit fit = FitCircleRobust(points, options.circle, &inlier);
+  if (!fit.converged) return out;
+  int near = 0, kept = 0;
+  double z_sum = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    near += std::abs((points[i] - fit.centre).norm() - fit.radius_mm) <= options.outlier_mm;
+    if (!inlier[i]) continue;
+    ++kept;
     z_sum += z[i];
   }
-  out.valid = std::isfinite(c.radius) && c.radius > 0.0;
-  out.axis_in_carrier_mm = c.centre;
-  out.diameter_mm = 2.0 * c.radius;
-  out.mean_z_mm = z_sum / static_cast<double>(kept.size());
-  out.rms_mm = std::sqrt(sum2 / static_cast<double>(kept.size()));
-  out.points = static_cast<int>(kept.size());
-  out.inlier_fraction = static_cast<double>(kept.size()) / static_cast<double>(near.size());
+  if (kept < options.min_points) return out;
+  out.valid = true;
+  out.axis_in_carrier_mm = fit.centre;
+  out.diameter_mm = 2.0 * fit.radius_mm;
+  out.mean_z_mm = z_sum / kept;
+  out.rms_mm = fit.rms_mm;
+  out.points = kept;
+  out.inlier_fraction = static_cast<double>(kept) / std::max(kept, near);
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include <optional>
 #include <vector>
 
+#include "sewer3d/core/circle_fit.hpp"
 #include "sewer3d/core/rigid3.hpp"
 #include "sewer3d/run/capture_run.hpp"
 
@@ -66,14 +67,13 @@ struct ModuleWallPoints {
 };
 
 struct CarrierOffsetOptions {
-  int min_points = 30;      ///< in all
-  int min_modules = 3;      ///< with at least one point: the circle needs the angles spread
-  int iterations = 20;      ///< Gauss–Newton steps of the geometric fit
-  double outlier_mm = 5.0;  ///< points farther than this from the first circle are dropped
-  /// Refits on the points within max(trim_band_mm, 3 σ) of the last fit (σ from the median
-  /// absolute residual): an intrusion or a joint's far side leaves the circle.
-  int trim_rounds = 2;
-  double trim_band_mm = 0.5;
+  int min_points = 30;  ///< in all, and on the circle
+  int min_modules = 3;  ///< with at least one point: the circle needs the angles spread
+  /// The circle (FitCircleRobust): round (a module's arc cannot tell an oval), Tukey weights
+  /// on a MAD scale, so an intrusion or a joint's far side leaves it.
+  CircleFitOptions circle{.model_ovality = false};
+  /// The inlier share is taken of the points within this of the circle.
+  double outlier_mm = 5.0;
 
   void Check() const;
 };
@@ -90,15 +90,14 @@ struct CarrierOffsetEstimate {
   double mean_z_mm = 0.0;
   double rms_mm = 0.0;  ///< radial residual of the points used
   int points = 0;       ///< used
-  /// Of the points within outlier_mm of the first circle, the share the trimmed fit kept.
+  /// Of the points within outlier_mm of the circle, the share it kept (non-zero weight).
   double inlier_fraction = 0.0;
   int modules = 0;  ///< contributing
 };
 
 /// Fits the pipe's cross-section to the modules' wall points mapped into the carrier frame
-/// (rig's carrier_from_camera) and projected along the carrier axis: an algebraic (Kåsa) fit,
-/// then Gauss–Newton on the geometric distances after dropping outliers, refitted on the points
-/// near the circle (CarrierOffsetOptions::trim_rounds). Assumes the pipe
+/// (rig's carrier_from_camera) and projected along the carrier axis: the robust circle fit of
+/// core/circle_fit.hpp (CarrierOffsetOptions::circle). Assumes the pipe
 /// axis is parallel to the carrier's (a tilt of α widens the circle by 1/cos α along it).
 /// `valid` false with too few points or modules. Throws std::invalid_argument for a module
 /// index the rig lacks or bad options.

@@ -100,14 +100,14 @@ TEST(InitialPoses, CarrierOffsetFromSixWalls) {
   EXPECT_LT(e.rms_mm, 0.1);
   EXPECT_GT(e.inlier_fraction, 0.99);
   // An intrusion in module 0's view: the points of its upper half 3 mm inward (within the
-  // first fit's 5 mm band). The trimmed fit leaves them out; without trimming they pull the
-  // centre.
+  // 5 mm band of the inlier share). The robust fit leaves them out; least squares lets them
+  // pull the centre.
   std::vector<ModuleWallPoints> intruded = walls;
   std::vector<Eigen::Vector3d>& points = intruded[0].points_in_camera;
   for (size_t i = 0; i < points.size() / 2; ++i) points[i] *= 1.0 - 3.0 / points[i].norm();
   const CarrierOffsetEstimate trimmed = EstimateCarrierOffset(rig, intruded);
   CarrierOffsetOptions untrimmed_options;
-  untrimmed_options.trim_rounds = 0;
+  untrimmed_options.circle.tukey_c = 1e6;  // every point weighs alike: least squares
   const CarrierOffsetEstimate untrimmed = EstimateCarrierOffset(rig, intruded, untrimmed_options);
   EXPECT_LT((trimmed.axis_in_carrier_mm - axis).norm(), 0.05);
   EXPECT_NEAR(trimmed.inlier_fraction, 11.0 / 12.0, 0.02);  // 6 × 12 × 16 points, 96 moved

@@ -1,12 +1,14 @@
 #pragma once
 /// \file
-/// Robust circle fit of one cross-section slice (paper §4.4 fits a cylinder; the centreline
-/// fit, centreline_fit.hpp, fits one circle per slice). Kåsa's algebraic fit starts a
+/// Robust circle fit of one cross-section (paper §4.4 fits a cylinder; the model's centreline
+/// fit, model/centreline_fit.hpp, fits one circle per slice; the registration one per instant
+/// to the six modules' walls, register/initial_poses.hpp). Kåsa's algebraic fit starts a
 /// geometric Gauss–Newton fit, iteratively reweighted with Huber and then Tukey weights on a
 /// MAD scale, so that what is not round pipe (intrusions, deposits, joint gaps, spalling) does
 /// not pull the centre.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 namespace sewer3d {
@@ -36,8 +38,10 @@ struct CircleFit {
 };
 
 /// Fits `points` (2D, mm). Needs ≥ 8 points; fewer, or a degenerate configuration, gives
-/// converged = false.
+/// converged = false. `inliers`: if given, set to one flag per point (1: a non-zero Tukey
+/// weight at the final parameters, the points of rms_mm and inlier_fraction).
 CircleFit FitCircleRobust(const std::vector<Eigen::Vector2d>& points,
-                          const CircleFitOptions& options);
+                          const CircleFitOptions& options,
+                          std::vector<std::uint8_t>* inliers = nullptr);
 
 }  // namespace sewer3d

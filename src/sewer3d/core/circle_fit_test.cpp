@@ -1,4 +1,4 @@
-#include "sewer3d/model/circle_fit.hpp"
+#include "sewer3d/core/circle_fit.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "sewer3d/model/circle_fit.hpp"
+#include "sewer3d/core/circle_fit.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -113,8 +113,9 @@ void CircleFitOptions::Check() const {
 }
 
 CircleFit FitCircleRobust(const std::vector<Eigen::Vector2d>& points,
-                          const CircleFitOptions& options) {
+                          const CircleFitOptions& options, std::vector<std::uint8_t>* inliers) {
   options.Check();
+  if (inliers != nullptr) inliers->assign(points.size(), 0);
   CircleFit fit;
   Vector5d x;
   const int n_params = options.model_ovality ? 5 : 3;
@@ -146,12 +147,13 @@ CircleFit FitCircleRobust(const std::vector<Eigen::Vector2d>& points,
   }
   // Final statistics on the final parameters.
   double sum2 = 0.0;
-  int inliers = 0;
+  int kept = 0;
   std::array<bool, 36> bins{};
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double r = Residual(points[i], x, nullptr);
     if (std::abs(r) >= options.tukey_c * fit.scale_mm) continue;
-    ++inliers, sum2 += r * r;
+    if (inliers != nullptr) (*inliers)[i] = 1;
+    ++kept, sum2 += r * r;
     const Eigen::Vector2d v = points[i] - x.head<2>();
     const double phi = std::atan2(v.y(), v.x()) + std::numbers::pi;
     bins[std::min<std::size_t>(35, static_cast<std::size_t>(phi / (2 * std::numbers::pi) * 36))] =
@@ -160,10 +162,10 @@ CircleFit FitCircleRobust(const std::vector<Eigen::Vector2d>& points,
   fit.centre = x.head<2>();
   fit.radius_mm = x(2);
   fit.ovality_mm = std::hypot(x(3), x(4));
-  fit.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(points.size());
-  fit.rms_mm = inliers > 0 ? std::sqrt(sum2 / inliers) : 0.0;
+  fit.inlier_fraction = static_cast<double>(kept) / static_cast<double>(points.size());
+  fit.rms_mm = kept > 0 ? std::sqrt(sum2 / kept) : 0.0;
   fit.coverage_deg = 10.0 * static_cast<double>(std::count(bins.begin(), bins.end(), true));
-  fit.converged = x.allFinite() && inliers >= n_params + 3 && fit.radius_mm > 0.0;
+  fit.converged = x.allFinite() && kept >= n_params + 3 && fit.radius_mm > 0.0;
   return fit;
 }
 
