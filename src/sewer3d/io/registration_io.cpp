@@ -181,11 +181,17 @@ RgbdPairInput ReadRgbdForRegistration(const std::filesystem::path& rgbd_folder, 
                                      " channel(s) of " + std::to_string(color.elemSize1() * 8) +
                                      " bits): rgbd writes 8-bit RGB; run rgbd --force");
   }
-  const cv::Mat depth = ReadImage(files.depth, cv::IMREAD_UNCHANGED);
-  if (depth.type() != CV_32FC1) throw FileError(files.depth, "not a float32 depth map");
+  const cv::Mat1f depth = ReadRgbdDepth(rgbd_folder, module, counter);
   if (color.size() != depth.size())
     throw FileError(files.color, "size differs from the depth map's " + files.depth.string());
-  return {cv::Mat3b(color), cv::Mat1f(depth)};
+  return {cv::Mat3b(color), depth};
+}
+
+cv::Mat1f ReadRgbdDepth(const std::filesystem::path& rgbd_folder, int module, int counter) {
+  const std::filesystem::path path = RgbdAcquisitionFiles(rgbd_folder, module, counter).depth;
+  const cv::Mat depth = ReadImage(path, cv::IMREAD_UNCHANGED);
+  if (depth.type() != CV_32FC1) throw FileError(path, "not a float32 depth map");
+  return depth;
 }
 
 void WriteRegistrationGraphPicture(const std::filesystem::path& path,

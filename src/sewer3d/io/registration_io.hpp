@@ -80,6 +80,10 @@ struct RgbdPairInput {
 RgbdPairInput ReadRgbdForRegistration(const std::filesystem::path& rgbd_folder, int module,
                                       int counter);
 
+/// The depth map alone (mm, NaN = none); FileError when it is missing, unreadable or not
+/// float32.
+cv::Mat1f ReadRgbdDepth(const std::filesystem::path& rgbd_folder, int module, int counter);
+
 /// The picture of the graph over the unrolled pipe (paper's figure): x = station (mm), y = clock
 /// of each camera (0–12 h, crown at the top); edges as lines coloured by type (feature green,
 /// projection blue, rig orange, odometry grey, straightness magenta; rejected ones thin red),

@@ -11,8 +11,10 @@
 #include "sewer3d/core/check.hpp"
 #include "sewer3d/io/atomic_file.hpp"
 #include "sewer3d/io/file_error.hpp"
+#include "sewer3d/io/registration_io.hpp"
 #include "sewer3d/io/rgbd_io.hpp"
 #include "sewer3d/io/text_file.hpp"
+#include "sewer3d/pipeline/parallel_items.hpp"
 #include "sewer3d/pipeline/register_outputs.hpp"
 #include "sewer3d/pipeline/register_warnings.hpp"
 #include "sewer3d/register/depth_geometry.hpp"
@@ -54,8 +56,9 @@ std::vector<AcquisitionNode> UsableNodes(const std::vector<AcquisitionNode>& all
   return usable;
 }
 
-/// The pipe's axis at every counter from the walls of its nodes (EstimateCarrierOffset); each
-/// node whose instant gave one, with a fit within `axis_max_rms_mm` that kept at least
+/// The pipe's axis at every counter from the walls of its nodes (EstimateCarrierOffset; the
+/// counters on options.threads workers, each reading its nodes' depth maps); each node whose
+/// instant gave one, with a fit within `axis_max_rms_mm` that kept at least
 /// `axis_min_inliers` of its points, gets the axis point in its camera frame. Returns the first
 /// counter's estimate.
 CarrierOffsetEstimate InstantAxes(std::vector<AcquisitionNode>& nodes, const CaptureRun& run,
@@ -64,31 +67,38 @@ CarrierOffsetEstimate InstantAxes(std::vector<AcquisitionNode>& nodes, const Cap
                                   const RegisterProgress& progress) {
   std::map<int, std::vector<size_t>> per_counter;
   for (size_t i = 0; i < nodes.size(); ++i) per_counter[nodes[i].counter].push_back(i);
-  CarrierOffsetEstimate first;
-  int done = 0;
-  for (const auto& [counter, members] : per_counter) {
-    std::vector<ModuleWallPoints> walls;
-    for (size_t i : members) {
-      const AcquisitionNode& n = nodes[i];
-      const RgbdPairInput in = ReadRgbdForRegistration(rgbd_folder, n.module, n.counter);
-      const CameraModel camera(run.rig.modules[n.module].module.camera);
-      walls.push_back({n.module, SampleDepthPoints(in.depth_mm, camera, options.wall_step_px)});
-    }
-    const CarrierOffsetEstimate axis =
-        EstimateCarrierOffset(run.rig, walls, options.carrier_offset);
-    if (done == 0) first = axis;
-    if (progress) progress("walls", ++done, static_cast<int>(per_counter.size()));
+  const std::vector<std::pair<const int, std::vector<size_t>>> counters(per_counter.begin(),
+                                                                        per_counter.end());
+  std::vector<CarrierOffsetEstimate> axes(counters.size());
+  ForEachItem<int>(
+      counters.size(), options.threads, [] { return 0; },
+      [&](size_t k, int&) {
+        std::vector<ModuleWallPoints> walls;
+        for (size_t i : counters[k].second) {
+          const AcquisitionNode& n = nodes[i];
+          const CameraModel camera(run.rig.modules[n.module].module.camera);
+          walls.push_back(
+              {n.module, SampleDepthPoints(ReadRgbdDepth(rgbd_folder, n.module, n.counter), camera,
+                                           options.wall_step_px)});
+        }
+        axes[k] = EstimateCarrierOffset(run.rig, walls, options.carrier_offset);
+      },
+      [&](int finished) {
+        if (progress) progress("walls", finished, static_cast<int>(counters.size()));
+      });
+  for (size_t k = 0; k < counters.size(); ++k) {
+    const CarrierOffsetEstimate& axis = axes[k];
     if (!axis.valid || axis.rms_mm > options.axis_max_rms_mm ||
         axis.inlier_fraction < options.axis_min_inliers)
       continue;
     const Eigen::Vector3d in_carrier(axis.axis_in_carrier_mm.x(), axis.axis_in_carrier_mm.y(),
                                      axis.mean_z_mm);
-    for (size_t i : members) {
+    for (size_t i : counters[k].second) {
       nodes[i].axis_in_camera =
           run.rig.modules[nodes[i].module].carrier_from_camera.Inverse() * in_carrier;
     }
   }
-  return first;
+  return axes.empty() ? CarrierOffsetEstimate{} : axes.front();
 }
 
 }  // namespace

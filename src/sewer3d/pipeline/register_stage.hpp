@@ -34,12 +34,12 @@ struct RegisterStageOptions {
   /// An instant's axis (its walls' circle) with a larger radial RMS is not used: walls that are
   /// no circle (a joint's step, an intrusion, a deformed pipe) do not say where the axis is.
   double axis_max_rms_mm = 1.0;
-  /// Nor one whose trimmed fit kept less than this share of the points near its first circle
-  /// (a joint's step splits the walls into two circles).
+  /// Nor one whose robust fit kept less than this share of the points near its circle (a
+  /// joint's step splits the walls into two circles).
   double axis_min_inliers = 0.8;
   double length_scale_mm = 150;  ///< L of the information eigenvalues in edges.csv
-  int threads = 1;               ///< pairs registered at once; does not change the outputs
-  bool force = false;            ///< redo from scratch (Workspace::BeginStage)
+  int threads = 1;     ///< instants' walls and pairs worked on at once; does not change the outputs
+  bool force = false;  ///< redo from scratch (Workspace::BeginStage)
 
   void Check() const;
 };
