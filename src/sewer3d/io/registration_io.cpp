@@ -189,7 +189,7 @@ RgbdPairInput ReadRgbdForRegistration(const std::filesystem::path& rgbd_folder, 
 
 cv::Mat1f ReadRgbdDepth(const std::filesystem::path& rgbd_folder, int module, int counter) {
   const std::filesystem::path path = RgbdAcquisitionFiles(rgbd_folder, module, counter).depth;
-  const cv::Mat depth = ReadImage(path, cv::IMREAD_UNCHANGED);
+  cv::Mat depth = ReadImage(path, cv::IMREAD_UNCHANGED);
   if (depth.type() != CV_32FC1) throw FileError(path, "not a float32 depth map");
   return depth;
 }
