@@ -2,10 +2,10 @@
 /// \file
 /// Robust circle fit of one cross-section (paper §4.4 fits a cylinder; the model's centreline
 /// fit, model/centreline_fit.hpp, fits one circle per slice; the registration one per instant
-/// to the six modules' walls, register/initial_poses.hpp). Kåsa's algebraic fit starts a
-/// geometric Gauss–Newton fit, iteratively reweighted with Huber and then Tukey weights on a
-/// MAD scale, so that what is not round pipe (intrusions, deposits, joint gaps, spalling) does
-/// not pull the centre.
+/// to the six modules' walls, register/initial_poses.hpp). Kåsa's algebraic centre, then a
+/// least-median-of-squares start over angular sectors, then a geometric Gauss–Newton fit
+/// iteratively reweighted with Tukey weights on a MAD scale, so that what is not round pipe
+/// (intrusions, deposits, joint gaps, spalling) does not pull the centre.
 
 #include <Eigen/Core>
 #include <cstdint>
