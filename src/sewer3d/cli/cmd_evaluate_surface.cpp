@@ -102,31 +102,6 @@ void PrintTruthDistances(const Scene& scene, const Points& all) {
       all.size(), std::sqrt(sum2 / all.size()), worst, beyond_1mm);
 }
 
-// residuals.png (from the fit) and, with the truth, truth_residuals.png in `out`.
-void WriteResidualImages(const std::filesystem::path& out, const std::string& surface,
-                         const Points& all, const Residuals& fitted, double inner_fraction,
-                         const std::optional<Scene>& truth) {
-  std::filesystem::create_directories(out);
-  std::vector<double> residuals;
-  residuals.reserve(all.size());
-  for (const Eigen::Vector3d& p : all) residuals.push_back(fitted(p));
-  ResidualImageOptions options;
-  options.title = fmt::format("signed distance from the {} fitted to the inner {:.0f} %", surface,
-                              100 * inner_fraction);
-  WriteImage(out / "residuals.png", ResidualImage(all, residuals, options));
-  // The same over cells of about 50 points: the systematic part, the spots' noise averaged.
-  ResidualImageOptions smoothed = options;
-  smoothed.smoothing_cells = std::max(4, static_cast<int>(std::sqrt(all.size() / 50.0 * 4 / 3)));
-  smoothed.range_mm = 0.0;
-  WriteImage(out / "residuals_smoothed.png", ResidualImage(all, residuals, smoothed));
-  if (!truth) return;
-  options.title = "signed distance from the true surface along each point's ray";
-  const std::vector<double> to_truth = RayResiduals(*truth, all);
-  WriteImage(out / "truth_residuals.png", ResidualImage(all, to_truth, options));
-  smoothed.title = options.title;
-  WriteImage(out / "truth_residuals_smoothed.png", ResidualImage(all, to_truth, smoothed));
-}
-
 }  // namespace
 
 int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
@@ -180,7 +155,15 @@ int RunEvaluateSurface(const std::string& surface, const std::string& cloud,
       surface == "plane" ? PrintPlane(cloud, points) : PrintCylinder(cloud, points, truth);
   WarnOfUnits(cloud, facts);
   if (truth) PrintTruthDistances(*truth, all);
-  if (!out.empty()) WriteResidualImages(out, surface, all, fitted, inner_fraction, truth);
+  if (!out.empty()) {
+    std::vector<double> residuals(all.size());
+    std::transform(all.begin(), all.end(), residuals.begin(), fitted);
+    const std::string title = fmt::format(
+        "signed distance from the {} fitted to the inner {:.0f} %", surface, 100 * inner_fraction);
+    std::filesystem::create_directories(out);
+    for (const NamedPicture& p : ResidualPictures(all, residuals, title, truth ? &*truth : nullptr))
+      WriteImage(std::filesystem::path(out) / p.file, p.image);
+  }
   return 0;
 }
 

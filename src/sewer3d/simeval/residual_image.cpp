@@ -128,4 +128,23 @@ cv::Mat3b ResidualImage(const std::vector<Eigen::Vector3d>& points,
   return out;
 }
 
+std::vector<NamedPicture> ResidualPictures(const std::vector<Eigen::Vector3d>& points,
+                                           const std::vector<double>& fitted_mm,
+                                           const std::string& fitted_title, const Scene* truth) {
+  ResidualImageOptions single;
+  single.title = fitted_title;
+  ResidualImageOptions smoothed = single;
+  smoothed.smoothing_cells =
+      std::max(4, static_cast<int>(std::sqrt(static_cast<double>(points.size()) / 50.0 * 4 / 3)));
+  std::vector<NamedPicture> out{
+      {"residuals.png", ResidualImage(points, fitted_mm, single)},
+      {"residuals_smoothed.png", ResidualImage(points, fitted_mm, smoothed)}};
+  if (truth == nullptr) return out;
+  single.title = smoothed.title = "signed distance from the true surface along each point's ray";
+  const std::vector<double> to_truth = RayResiduals(*truth, points);
+  out.push_back({"truth_residuals.png", ResidualImage(points, to_truth, single)});
+  out.push_back({"truth_residuals_smoothed.png", ResidualImage(points, to_truth, smoothed)});
+  return out;
+}
+
 }  // namespace sewer3d

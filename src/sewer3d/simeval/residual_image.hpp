@@ -41,4 +41,18 @@ cv::Mat3b ResidualImage(const std::vector<Eigen::Vector3d>& points,
                         const std::vector<double>& residual_mm,
                         const ResidualImageOptions& options = {});
 
+/// A picture and the file name it is written under.
+struct NamedPicture {
+  std::string file;
+  cv::Mat3b image;
+};
+
+/// The pictures of `evaluate plane|cylinder --out`: residuals.png (`fitted_mm`, each point's
+/// signed distance from the fitted surface, titled `fitted_title`) and residuals_smoothed.png
+/// (the same over cells of about 50 points: the systematic part, the spots' noise averaged);
+/// with `truth`, truth_residuals.png and truth_residuals_smoothed.png (RayResiduals).
+std::vector<NamedPicture> ResidualPictures(const std::vector<Eigen::Vector3d>& points,
+                                           const std::vector<double>& fitted_mm,
+                                           const std::string& fitted_title, const Scene* truth);
+
 }  // namespace sewer3d

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -52,6 +53,24 @@ TEST(ResidualImage, ABowlIsBlueInTheMiddleAndRedAtTheCorners) {
   EXPECT_GT(centre[0], centre[2] + 100);  // BGR: blue
   EXPECT_GT(corner[2], corner[0] + 100);  // red
   EXPECT_THROW(ResidualImage(points, {0.1}, options), std::invalid_argument);
+}
+
+// Two pictures from the fit, two more with the truth; points on the true plane are white there.
+TEST(ResidualImage, PicturesOfAFitAndOfTheTruth) {
+  Scene plane;
+  plane.type = Scene::Type::kPlane;
+  plane.distance_mm = 100.0;
+  std::vector<Eigen::Vector3d> points;
+  for (int v = -30; v <= 30; v += 2)
+    for (int u = -40; u <= 40; u += 2) points.emplace_back(u, v, 100.0);
+  const std::vector<double> fitted(points.size(), 0.01);
+  EXPECT_EQ(ResidualPictures(points, fitted, "fit", nullptr).size(), 2u);
+  const std::vector<NamedPicture> all = ResidualPictures(points, fitted, "fit", &plane);
+  ASSERT_EQ(all.size(), 4u);
+  EXPECT_EQ(all[0].file, "residuals.png");
+  EXPECT_EQ(all[3].file, "truth_residuals_smoothed.png");
+  const cv::Vec3b centre = all[2].image(40 + 150, 20 + 400);  // the view's middle
+  EXPECT_GT(std::min({centre[0], centre[1], centre[2]}), 240);
 }
 
 }  // namespace
